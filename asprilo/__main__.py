@@ -1,0 +1,7 @@
+"""``python -m asprilo`` runs the ``asprilo`` command."""
+
+import sys
+
+from .cli import main
+
+sys.exit(main())

@@ -1,0 +1,102 @@
+"""The ``asprilo`` command and its stand-alone twins ``gen``, ``check`` and ``viz``.
+
+Each subcommand lives in a module with ``configure(parser)`` and ``run(args) -> int``;
+the module is imported only when its subcommand runs, so ``asprilo --help`` stays quick
+and only ``viz`` loads Qt.  Bad input (:class:`InputError`) becomes one line
+``error: FILE[:LINE]: what is wrong`` on stderr and exit status 2.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import os
+import sys
+from typing import Callable, Sequence
+
+from . import __version__
+from .errors import InputError
+
+#: name -> (module, one-line summary); a command is listed here once it works.
+COMMANDS: dict[str, tuple[str, str]] = {
+    "info": ("asprilo.info", "summarise an instance (and plan): counts, domain, horizon"),
+}
+
+
+def _parser(name: str, prog: str, summary: str, parent=None) -> argparse.ArgumentParser:
+    module = importlib.import_module(COMMANDS[name][0])
+    kwargs = dict(description=(module.__doc__ or summary).strip(),
+                  formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = parent.add_parser(name, help=summary, **kwargs) if parent else \
+        argparse.ArgumentParser(prog=prog, **kwargs)
+    module.configure(parser)
+    parser.set_defaults(run=module.run)
+    return parser
+
+
+def domain_argument(text: str):
+    """``--domain`` values for argparse: a|b|c|m|md."""
+    from .domain import Domain
+    try:
+        return Domain.parse(text)
+    except InputError as error:
+        raise argparse.ArgumentTypeError(error.message) from None
+
+
+def run_command(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespace) -> int:
+    """Run a command, turning bad input and interruptions into messages and exit codes."""
+    try:
+        return run(args) or 0
+    except InputError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("interrupted", file=sys.stderr)
+        return 130
+    except BrokenPipeError:
+        # the reader went away (e.g. `| head`): stop quietly
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """``asprilo COMMAND ...``."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    parser = argparse.ArgumentParser(
+        prog="asprilo",
+        description="asprilo: experimenting with robotic intra-logistics in Answer Set Programming.")
+    parser.add_argument("--version", action="version", version=f"asprilo {__version__}")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND")
+    chosen = next((word for word in argv if not word.startswith("-")), None)
+    for name, (_module, summary) in COMMANDS.items():
+        if name == chosen:
+            _parser(name, name, summary, commands)
+        else:
+            commands.add_parser(name, help=summary)
+    args = parser.parse_args(argv)
+    if args.command is None:
+        parser.print_help()
+        return 2
+    return run_command(args.run, args)
+
+
+def _standalone(name: str) -> int:
+    parser = _parser(name, name, COMMANDS[name][1])
+    args = parser.parse_args()
+    return run_command(args.run, args)
+
+
+def gen_main() -> int:
+    return _standalone("gen")
+
+
+def check_main() -> int:
+    return _standalone("check")
+
+
+def viz_main() -> int:
+    return _standalone("viz")
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,63 @@
+"""Summarise an instance and, optionally, a plan: counts, standard file name, domain, horizon.
+
+Examples:
+  asprilo info instance.lp
+  asprilo info instance.lp plan.lp --json
+  python -m clingo instance.lp encoding.lp | asprilo info instance.lp -
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+from collections import Counter
+
+from .cli import domain_argument
+from .domain import Domain, detect_domain
+from .reader import read_instance, read_instance_and_plan
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("instance", metavar="INSTANCE", help="instance file (- = stdin)")
+    parser.add_argument("plan", metavar="PLAN", nargs="?", help="plan file or clingo output (- = stdin)")
+    parser.add_argument("--domain", type=domain_argument, help="a|b|c|m|md (default: detected)")
+    parser.add_argument("--json", action="store_true", help="print the summary as JSON")
+
+
+def summary(args: argparse.Namespace) -> dict:
+    if args.plan is None:
+        instance, plan = read_instance(args.instance), None
+    else:
+        instance, plan = read_instance_and_plan(args.instance, args.plan)
+    counts = instance.counts()
+    report = {
+        "name": instance.file_name(),
+        "counts": counts,
+        "order_lines": sum(len(order.lines) for order in instance.orders.values()),
+        "domain": (args.domain or detect_domain(instance, plan)).value,
+        "domain_detected": args.domain is None,
+    }
+    if plan is not None:
+        report["horizon"] = plan.horizon
+        report["actions"] = dict(sorted(Counter(action.name for action in plan.actions).items()))
+    return report
+
+
+def run(args: argparse.Namespace) -> int:
+    report = summary(args)
+    if args.json:
+        print(json.dumps(report, indent=2))
+        return 0
+    c = report["counts"]
+    domain = Domain(report["domain"]).label + (" (detected)" if report["domain_detected"] else "")
+    print(f"instance: {c['x']}x{c['y']} grid, {c['nodes']} nodes, {c['highways']} highways")
+    print(f"objects:  {c['robots']} robots, {c['shelves']} shelves, {c['stations']} picking stations, "
+          f"{c['destinations']} destinations")
+    print(f"stock:    {c['products']} products, {c['units']} units; "
+          f"{c['orders']} orders with {report['order_lines']} lines")
+    print(f"name:     {report['name']}")
+    print(f"domain:   {domain}")
+    if "horizon" in report:
+        kinds = ", ".join(f"{count} {name}" for name, count in report["actions"].items()) or "none"
+        print(f"plan:     horizon {report['horizon']}, {sum(report['actions'].values())} actions ({kinds})")
+    return 0

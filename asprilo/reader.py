@@ -1,0 +1,293 @@
+"""Read instances and plans (SPEC.md §2-3) from files, strings or stdin, through clingo.
+
+This module and :mod:`asprilo.writer` are the only places that know the shapes of the
+``init/2`` and ``occurs/3`` facts.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Callable, Iterable, Sequence
+
+import clingo
+from clingo import SymbolType
+
+from .errors import InputError
+from .model import Action, Cell, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
+from .writer import format_action, format_value
+from .sources import Source, SourceLike, as_sources, line_of, load_facts, locate, symbol_fact
+
+
+def read_instance(inputs: SourceLike | Iterable[SourceLike]) -> Instance:
+    """Read an instance from one or several files (``-`` = stdin) or :class:`Source` objects."""
+    sources = as_sources(inputs)
+    return _build_instance(sources, *load_facts(sources))
+
+
+def read_plan(inputs: SourceLike | Iterable[SourceLike]) -> Plan:
+    """Read a plan from plan files or clingo's printed output; other atoms are ignored."""
+    sources = as_sources(inputs)
+    return _build_plan(sources, *load_facts(sources))
+
+
+def read_instance_and_plan(instance: SourceLike | Iterable[SourceLike],
+                           plan: SourceLike | Iterable[SourceLike]) -> tuple[Instance, Plan]:
+    """Read both and make sure the plan only moves robots the instance has."""
+    plan_sources = as_sources(plan)
+    the_instance = read_instance(instance)
+    the_plan = read_plan(plan_sources)
+    require_known_robots(the_plan, the_instance, plan_sources)
+    return the_instance, the_plan
+
+
+def text_source(text: str, name: str = "<string>") -> Source:
+    """A source for ASP text held in a string."""
+    return Source(name, text)
+
+
+# --- terms -------------------------------------------------------------------------------
+
+def value_of(symbol: clingo.Symbol) -> Any:
+    """A term as a Python value: numbers -> int, tuples -> tuple, anything else -> its text."""
+    kind = symbol.type
+    if kind == SymbolType.Number:
+        return symbol.number
+    if kind == SymbolType.Function and symbol.name == "":
+        return tuple(value_of(argument) for argument in symbol.arguments)
+    if kind == SymbolType.Function and not symbol.arguments and not symbol.negative:
+        return symbol.name
+    return str(symbol)
+
+
+def _is_cell(value: Any) -> bool:
+    return type(value) is tuple and len(value) == 2 and type(value[0]) is int and type(value[1]) is int
+
+
+def _is_int(value: Any) -> bool:
+    return isinstance(value, int)
+
+
+# --- instances ---------------------------------------------------------------------------
+
+#: object type -> attribute -> (test of the value's shape, description used in messages)
+_ATTRIBUTES: dict[str, dict[str, tuple[Callable[[Any], bool], str]]] = {
+    "node": {"at": (_is_cell, "a cell (X,Y)")},
+    "highway": {"at": (_is_cell, "a cell (X,Y)")},
+    "robot": {"at": (_is_cell, "a cell (X,Y)"), "carries": (_is_int, "a shelf id")},
+    "shelf": {"at": (_is_cell, "a cell (X,Y)")},
+    "pickingStation": {"at": (_is_cell, "a cell (X,Y)")},
+    "destination": {"at": (_is_cell, "a cell (X,Y)")},
+    "product": {"on": (lambda v: _is_int(v) or _is_cell(v), "(Shelf,Units) or Shelf")},
+    "order": {"line": (lambda v: _is_int(v) or _is_cell(v), "(Product,Units) or Product"),
+              "pickingStation": (_is_int, "a picking station id")},
+    "grid": {"xsize": (_is_int, "an integer"), "ysize": (_is_int, "an integer")},
+}
+
+
+class _InstanceBuilder:
+    """Collects ``init/2`` facts, rejecting unknown shapes and conflicting duplicates.
+
+    Each fact comes with its origin, used only to say where a bad fact stands.
+    """
+
+    def __init__(self, sources: Sequence[Source]):
+        self.sources = sources
+        self.instance = Instance()
+        self.seen: dict[tuple, tuple[Any, Any]] = {}
+        self.grid: dict[str, int] = {}
+
+    def fail(self, message: str, origin: Any) -> InputError:
+        return InputError(message, *_where(origin, self.sources))
+
+    def single(self, key: tuple, value: Any, origin: Any, what: str) -> None:
+        """Record a value that may be stated once only (a duplicate must be identical)."""
+        first = self.seen.get(key)
+        if first is not None and first[0] != value:
+            raise self.fail(f"{what}: {format_value(first[0])} and {format_value(value)}", origin)
+        self.seen[key] = (value, origin)
+
+    def add(self, kind: Any, ident: Any, attribute: Any, value: Any, origin: Any) -> None:
+        attributes = _ATTRIBUTES.get(kind)
+        if attributes is None:
+            raise self.fail(f"unknown object type '{kind}' (known: {', '.join(_ATTRIBUTES)})", origin)
+        if attribute not in attributes:
+            raise self.fail(f"unknown attribute '{attribute}' of {kind} "
+                            f"(known: {', '.join(attributes)})", origin)
+        shape, description = attributes[attribute]
+        if not isinstance(ident, int):
+            raise self.fail(f"{kind} id must be an integer, got {format_value(ident)}", origin)
+        if not shape(value):
+            raise self.fail(f"{kind} {ident}: value of '{attribute}' must be {description}, "
+                            f"got {format_value(value)}", origin)
+        getattr(self, f"_{kind}")(ident, attribute, value, origin)
+
+    def add_symbol(self, atom: clingo.Symbol) -> None:
+        """Add an ``init/2`` atom of any shape (the slow path for unusual terms)."""
+        plain = symbol_fact(atom)
+        if plain is not None:
+            return self.add(*plain[1], atom)
+        obj, val = atom.arguments
+        if not (obj.match("object", 2) and val.match("value", 2)):
+            raise self.fail(f"expected init(object(Type,Id),value(Attribute,Value)), got {atom}", atom)
+        self.add(*(value_of(term) for term in (*obj.arguments, *val.arguments)), atom)
+
+    # one method per object type --------------------------------------------------------
+
+    def _placed(self, table: dict, factory: Callable, kind: str, ident: int, value: Cell,
+                origin: Any) -> None:
+        self.single((kind, ident, "at"), value, origin, f"{kind} {ident} is at two places")
+        table[ident] = factory(ident, value)
+
+    def _node(self, ident, _attribute, value, origin):
+        self._placed(self.instance.nodes, lambda _i, cell: cell, "node", ident, value, origin)
+
+    def _highway(self, ident, _attribute, value, origin):
+        self._placed(self.instance.highways, lambda _i, cell: cell, "highway", ident, value, origin)
+
+    def _shelf(self, ident, _attribute, value, origin):
+        self._placed(self.instance.shelves, Shelf, "shelf", ident, value, origin)
+
+    def _pickingStation(self, ident, _attribute, value, origin):
+        self._placed(self.instance.stations, PickingStation, "picking station", ident, value, origin)
+
+    def _destination(self, ident, _attribute, value, origin):
+        self._placed(self.instance.destinations, Destination, "destination", ident, value, origin)
+
+    def _robot(self, ident, attribute, value, origin):
+        robot = self.instance.robots.get(ident)
+        if robot is None:
+            robot = self.instance.robots[ident] = Robot(ident, None)  # type: ignore[arg-type]
+        if attribute == "at":
+            self.single(("robot", ident, "at"), value, origin, f"robot {ident} is at two places")
+            robot.at = value
+        else:
+            self.single(("robot", ident, "carries"), value, origin, f"robot {ident} carries two shelves")
+            robot.carries = value
+
+    def _product(self, ident, _attribute, value, origin):
+        shelf, units = value if isinstance(value, tuple) else (value, None)
+        self.single(("product", ident, shelf), units, origin,
+                    f"product {ident} has two quantities on shelf {shelf}")
+        product = self.instance.products.get(ident)
+        if product is None:
+            product = self.instance.products[ident] = Product(ident)
+        product.stock[shelf] = units
+
+    def _order(self, ident, attribute, value, origin):
+        order = self.instance.orders.get(ident)
+        if order is None:
+            order = self.instance.orders[ident] = Order(ident)
+        if attribute == "pickingStation":
+            self.single(("order", ident, "station"), value, origin,
+                        f"order {ident} names two picking stations")
+            order.station = value
+            return
+        product, units = value if isinstance(value, tuple) else (value, None)
+        self.single(("order", ident, product), units, origin,
+                    f"order {ident} has two quantities for product {product}")
+        order.lines[product] = units
+
+    def _grid(self, _ident, attribute, value, origin):
+        if value < 1:
+            raise self.fail(f"grid {attribute} must be at least 1, got {value}", origin)
+        self.single(("grid", attribute), value, origin, f"grid has two values of {attribute}")
+        self.grid[attribute] = value
+
+    def finish(self) -> Instance:
+        instance = self.instance
+        for robot in instance.robots.values():
+            if robot.at is None:
+                raise self.fail(f"robot {robot.id} has no position (no value(at,(X,Y)))",
+                                self.seen[("robot", robot.id, "carries")][1])
+        if self.grid:
+            self._expand_grid()
+        return instance
+
+    def _expand_grid(self) -> None:
+        if len(self.grid) != 2:
+            missing = "ysize" if "xsize" in self.grid else "xsize"
+            origin = next(origin for key, (_v, origin) in self.seen.items() if key[0] == "grid")
+            raise self.fail(f"grid gives no {missing}", origin)
+        width, height = self.grid["xsize"], self.grid["ysize"]
+        nodes = self.instance.nodes
+        taken = set(nodes.values())
+        next_id = max(nodes) + 1 if nodes else None
+        for y in range(1, height + 1):
+            for x in range(1, width + 1):
+                if (x, y) in taken:
+                    continue
+                if next_id is None:
+                    nodes[(y - 1) * width + x] = (x, y)
+                else:
+                    nodes[next_id] = (x, y)
+                    next_id += 1
+
+
+def _where(origin: Any, sources: Sequence[Source]) -> tuple[str | None, int | None]:
+    if isinstance(origin, clingo.Symbol):
+        return locate(sources, origin)
+    return line_of(*origin)
+
+
+def _no_facts(what: str, sources: Sequence[Source]) -> InputError:
+    names = ", ".join(source.name for source in sources) or None
+    return InputError(f"no {what} found", names)
+
+
+def _build_instance(sources: Sequence[Source], facts: list | None, atoms: list[clingo.Symbol]) -> Instance:
+    builder = _InstanceBuilder(sources)
+    if facts is not None:
+        for name, args, origin in facts:
+            if name == "init":
+                builder.add(*args, origin)
+    else:
+        for atom in atoms:
+            if atom.match("init", 2):
+                builder.add_symbol(atom)
+    if not builder.seen:
+        raise _no_facts("instance facts (expected init(object(..),value(..)) facts)", sources)
+    return builder.finish()
+
+
+def instance_from_atoms(atoms: Iterable[clingo.Symbol], sources: Sequence[Source] = ()) -> Instance:
+    """Build an :class:`Instance` from ground atoms; atoms other than ``init/2`` are ignored."""
+    return _build_instance(sources, None, list(atoms))
+
+
+# --- plans -------------------------------------------------------------------------------
+
+def _action_of(atom: clingo.Symbol, sources: Sequence[Source]) -> Action:
+    plain = symbol_fact(atom)
+    if plain is not None:
+        kind, robot, name, args, step = plain[1]
+        return Action(step, robot, name, args, kind)
+    obj, action, step = atom.arguments
+    if not (obj.match("object", 2) and action.match("action", 2)):
+        raise InputError(f"expected occurs(object(robot,R),action(Name,Args),T), got {atom}",
+                         *locate(sources, atom))
+    if step.type != SymbolType.Number:
+        raise InputError(f"the time step of {atom} must be an integer", *locate(sources, atom))
+    return Action(step=step.number, robot=value_of(obj.arguments[1]),
+                  name=str(value_of(action.arguments[0])), args=value_of(action.arguments[1]),
+                  kind=str(value_of(obj.arguments[0])))
+
+
+def _build_plan(sources: Sequence[Source], facts: list | None, atoms: list[clingo.Symbol]) -> Plan:
+    if facts is not None:
+        return Plan([Action(args[4], args[1], args[2], args[3], args[0])
+                     for fact, args, _origin in facts if fact == "occurs"])
+    return Plan([_action_of(atom, sources) for atom in atoms if atom.match("occurs", 3)])
+
+
+def plan_from_atoms(atoms: Iterable[clingo.Symbol], sources: Sequence[Source] = ()) -> Plan:
+    """Build a :class:`Plan` from the ``occurs/3`` atoms among ``atoms``."""
+    return _build_plan(sources, None, list(atoms))
+
+
+def require_known_robots(plan: Plan, instance: Instance, sources: Sequence[Source] = ()) -> None:
+    """Reject a plan whose actions name a robot the instance does not have."""
+    for action in plan.actions:
+        if action.kind == "robot" and action.robot not in instance.robots:
+            atom = clingo.parse_term(format_action(action))
+            known = f"robots {min(instance.robots)}..{max(instance.robots)}" if instance.robots else "no robots"
+            raise InputError(f"the plan moves robot {action.robot}, but the instance has {known} "
+                             "(plan and instance do not fit)", *locate(sources, atom))

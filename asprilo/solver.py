@@ -1,0 +1,231 @@
+"""One driver around ``clingo.Control`` used by every tool.
+
+It loads programs and facts, registers the clingcon or clingo-dl theory when a program
+needs one, grounds and solves program parts step by step (multi-shot), stops a solve
+call after a wall-clock limit, and reports statistics.  Models come back as symbols.
+"""
+
+from __future__ import annotations
+
+import re
+import time
+from dataclasses import dataclass, field
+from enum import Enum
+from pathlib import Path
+from typing import Callable, Iterable, Mapping, Sequence
+
+import clingo
+import clingo.ast
+
+from .errors import InputError
+
+Part = tuple[str, Sequence[clingo.Symbol | int | str]]
+
+#: Options each theory needs here (see DESIGN.md: clingcon answered UNSAT on satisfiable
+#: A/B/C programs unless translation of pseudo-Boolean constraints is switched off).
+_THEORY_OPTIONS = {"clingcon": {"translate-pb": "0"}, "dl": {}}
+
+
+class Status(str, Enum):
+    SAT = "sat"
+    UNSAT = "unsat"
+    UNKNOWN = "unknown"  # stopped by the time limit before an answer was found
+
+
+@dataclass
+class Statistics:
+    """Accumulated over all ground and solve calls of a :class:`Solver`."""
+
+    ground_time: float = 0.0
+    solve_time: float = 0.0
+    rules: int = 0
+    atoms: int = 0
+    choices: int = 0
+    conflicts: int = 0
+    models: int = 0
+
+    def as_dict(self) -> dict[str, float | int]:
+        return dict(self.__dict__)
+
+
+@dataclass
+class Result:
+    """The outcome of one solve call."""
+
+    status: Status
+    symbols: list[clingo.Symbol] = field(default_factory=list)
+    assignment: dict[str, int] = field(default_factory=dict)  # theory variables (clingcon / dl)
+    cost: list[int] = field(default_factory=list)
+    optimal: bool = False  # the optimisation was proven (for programs with #minimize)
+    timed_out: bool = False
+
+    @property
+    def satisfiable(self) -> bool:
+        return self.status is Status.SAT
+
+
+def _theory(name: str | None):
+    if name is None:
+        return None
+    if name == "clingcon":
+        from clingcon import ClingconTheory
+        return ClingconTheory()
+    if name == "dl":
+        from clingodl import ClingoDLTheory
+        return ClingoDLTheory()
+    raise ValueError(f"unknown theory {name!r} (use 'clingcon' or 'dl')")
+
+
+def _symbol(value: clingo.Symbol | int | str) -> clingo.Symbol:
+    if isinstance(value, clingo.Symbol):
+        return value
+    return clingo.Number(value) if isinstance(value, int) else clingo.parse_term(str(value))
+
+
+_LOCATION = re.compile(r"^(.*?):(\d+):\d+(?:-\d+(?::\d+)?)?: (?:error|info|warning): (.*)", re.S)
+
+
+class Solver:
+    """A clingo ``Control`` with a theory (``"clingcon"``, ``"dl"`` or none) and statistics.
+
+    ``options`` are clingo command-line options (e.g. ``["--seed=3"]``); ``constants``
+    become ``-c name=value``.
+    """
+
+    def __init__(self, theory: str | None = None, options: Iterable[str] = (),
+                 constants: Mapping[str, int | str] | None = None):
+        self.messages: list[str] = []
+        arguments = [*options, *(f"-c{name}={value}" for name, value in (constants or {}).items())]
+        self.control = clingo.Control(arguments, logger=self._log)
+        self.theory_name = theory
+        self.theory = _theory(theory)
+        if self.theory is not None:
+            self.theory.register(self.control)
+            for key, value in _THEORY_OPTIONS[theory].items():
+                self.theory.configure(key, value)
+        self.stats = Statistics()
+        self._prepared = False
+
+    def _log(self, _code: clingo.MessageCode, message: str) -> None:
+        self.messages.append(message)
+
+    def _error(self, default_name: str) -> InputError:
+        errors = [m for m in self.messages if ": error:" in m] or self.messages
+        text = errors[0].strip() if errors else "clingo rejected the program"
+        self.messages.clear()
+        match = _LOCATION.match(text)
+        if not match:
+            return InputError(text.splitlines()[0], default_name)
+        name = default_name if match.group(1) in ("<string>", "<block>") else match.group(1)
+        return InputError(match.group(3).splitlines()[0], name, int(match.group(2)))
+
+    # --- programs ------------------------------------------------------------------------
+
+    def load(self, path: str | Path) -> None:
+        """Load a program file (all of its ``#program`` parts)."""
+        path = Path(path)
+        if not path.is_file():
+            raise InputError("no such file" if not path.exists() else "is not a file", str(path))
+        self.messages.clear()
+        try:
+            if self.theory is None:
+                self.control.load(str(path))
+            else:
+                with clingo.ast.ProgramBuilder(self.control) as builder:
+                    clingo.ast.parse_files([str(path)], lambda s: self.theory.rewrite_ast(s, builder.add),
+                                           logger=self._log)
+        except RuntimeError:
+            raise self._error(str(path)) from None
+
+    def add(self, text: str, part: str = "base", parameters: Sequence[str] = (),
+            name: str = "<string>") -> None:
+        """Add program text to ``part`` (the text may switch parts with ``#program``)."""
+        self.messages.clear()
+        try:
+            if self.theory is None:
+                self.control.add(part, list(parameters), text)
+            else:
+                header = f"#program {part}({','.join(parameters)}).\n" if parameters else f"#program {part}.\n"
+                with clingo.ast.ProgramBuilder(self.control) as builder:
+                    clingo.ast.parse_string(header + text, lambda s: self.theory.rewrite_ast(s, builder.add),
+                                            logger=self._log)
+        except RuntimeError:
+            raise self._error(name) from None
+
+    def add_facts(self, facts: Iterable[clingo.Symbol | str], part: str = "base") -> None:
+        """Add ground facts (symbols or their text) to ``part``."""
+        self.add("".join(f"{fact}.\n" for fact in facts), part)
+
+    def ground(self, parts: Iterable[Part] = (("base", ()),), context: object | None = None) -> None:
+        """Ground program parts, e.g. ``[("step", [3])]``."""
+        parts = [(name, [_symbol(value) for value in values]) for name, values in parts]
+        self.messages.clear()
+        started = time.perf_counter()
+        try:
+            self.control.ground(parts, context=context)
+        except RuntimeError:
+            raise self._error("<program>") from None
+        self.stats.ground_time += time.perf_counter() - started
+        self._prepared = False
+
+    def assign_external(self, atom: clingo.Symbol | str, value: bool | None) -> None:
+        """Set an ``#external`` atom to true, false, or free (``None``)."""
+        self.control.assign_external(_symbol(atom), value)
+
+    def release_external(self, atom: clingo.Symbol | str) -> None:
+        self.control.release_external(_symbol(atom))
+
+    # --- solving -------------------------------------------------------------------------
+
+    def solve(self, time_limit: float | None = None,
+              assumptions: Sequence[tuple[clingo.Symbol, bool]] = (),
+              on_model: Callable[[clingo.Model], None] | None = None,
+              shown: bool = True) -> Result:
+        """Solve the grounded program; stop after ``time_limit`` seconds of wall-clock time.
+
+        The result holds the last model found (the best one when optimising), its shown
+        atoms (all atoms with ``shown=False``) and the theory assignment.
+        """
+        if self.theory is not None and not self._prepared:
+            self.theory.prepare(self.control)
+            self._prepared = True
+        result = Result(Status.UNKNOWN)
+
+        def record(model: clingo.Model) -> None:
+            if self.theory is not None:
+                self.theory.on_model(model)
+                result.assignment = {str(name): value for name, value
+                                     in self.theory.assignment(model.thread_id)}
+            result.symbols = list(model.symbols(shown=True) if shown else model.symbols(atoms=True))
+            result.cost = list(model.cost)
+            result.status = Status.SAT
+            self.stats.models += 1
+            if on_model is not None:
+                on_model(model)
+
+        on_statistics = self.theory.on_statistics if self.theory is not None else None
+        started = time.perf_counter()
+        with self.control.solve(assumptions=list(assumptions), on_model=record,
+                                on_statistics=on_statistics, async_=True) as handle:
+            finished = handle.wait(time_limit) if time_limit is not None else handle.wait()
+            if not finished:
+                handle.cancel()
+                result.timed_out = True
+            outcome = handle.get()
+        self.stats.solve_time += time.perf_counter() - started
+        if outcome.unsatisfiable and not result.timed_out:
+            result.status = Status.UNSAT
+        result.optimal = bool(result.cost) and outcome.exhausted and not result.timed_out
+        self._collect_statistics()
+        return result
+
+    def _collect_statistics(self) -> None:
+        stats = self.control.statistics
+        if not stats or "problem" not in stats:
+            return
+        program = stats["problem"].get("lp", {})
+        self.stats.rules = int(program.get("rules", 0))
+        self.stats.atoms = int(program.get("atoms", 0))
+        solvers = stats["solving"]["solvers"]  # this call's figures; the program's are cumulative
+        self.stats.choices += int(solvers.get("choices", 0))
+        self.stats.conflicts += int(solvers.get("conflicts", 0))

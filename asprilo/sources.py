@@ -1,0 +1,273 @@
+"""Input sources: files, strings and stdin, turned into ground atoms by clingo.
+
+A source is ASP text with a name for messages.  Text printed by clingo (``Answer: 1``
+followed by a line of atoms, ``SATISFIABLE``, statistics) is recognised and reduced to
+the facts of its last answer, keeping line numbers so that messages point into the
+original text.
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Iterable, Sequence, Union
+
+import clingo
+import clingo.ast
+
+from .errors import InputError
+
+STDIN = "-"
+
+
+@dataclass(frozen=True)
+class Source:
+    """ASP text and the name it is reported under (a path, ``<stdin>`` or ``<string>``)."""
+
+    name: str
+    text: str
+
+    @classmethod
+    def from_path(cls, path: str | Path) -> "Source":
+        """Read a file; ``-`` reads standard input."""
+        if str(path) == STDIN:
+            return cls.from_stdin()
+        path = Path(path)
+        if not path.exists():
+            raise InputError("no such file", str(path))
+        if path.is_dir():
+            raise InputError("is a directory, not a file", str(path))
+        try:
+            return cls(str(path), path.read_text(encoding="utf-8"))
+        except UnicodeDecodeError:
+            raise InputError("not a text file (it is not UTF-8)", str(path)) from None
+        except OSError as error:
+            raise InputError(error.strerror or "cannot be read", str(path)) from None
+
+    @classmethod
+    def from_stdin(cls) -> "Source":
+        if sys.stdin is None or sys.stdin.isatty():
+            raise InputError("nothing to read (standard input is a terminal)", "<stdin>")
+        return cls("<stdin>", sys.stdin.read())
+
+
+SourceLike = Union[str, Path, Source]
+
+
+def as_sources(inputs: SourceLike | Iterable[SourceLike]) -> list[Source]:
+    """Normalise one or several paths / ``-`` / :class:`Source` objects to sources."""
+    if isinstance(inputs, (str, Path, Source)):
+        inputs = [inputs]
+    return [item if isinstance(item, Source) else Source.from_path(item) for item in inputs]
+
+
+# --- clingo's printed output -------------------------------------------------------------
+
+# clingo prints atoms on lines of their own; every other line (version, "Reading from",
+# "Solving...", status words, statistics) starts with an upper-case word or names a version.
+_ATOM_LINE = re.compile(r"^(?![\w-]+ version )[a-z_&-]")
+
+
+def is_clingo_output(text: str) -> bool:
+    """Whether ``text`` looks like clingo's printed output rather than a program."""
+    return any(
+        line.startswith(("Answer:", "SATISFIABLE", "UNSATISFIABLE", "OPTIMUM FOUND", "clingo version"))
+        for line in text.splitlines()
+    )
+
+
+def split_atoms(line: str) -> list[str]:
+    """Split a line of atoms as clingo prints them (space separated, strings quoted)."""
+    atoms, depth, quoted, start = [], 0, False, 0
+    for index, char in enumerate(line):
+        if quoted:
+            quoted = char != '"' or line[index - 1] == "\\"
+        elif char == '"':
+            quoted = True
+        elif char in "([":
+            depth += 1
+        elif char in ")]":
+            depth -= 1
+        elif char.isspace() and depth == 0:
+            if index > start:
+                atoms.append(line[start:index])
+            start = index + 1
+    if line[start:].strip():
+        atoms.append(line[start:].strip())
+    return atoms
+
+
+def answer_facts(text: str, name: str) -> str:
+    """Reduce clingo output to the facts of its last answer, one output line per text line."""
+    lines = text.splitlines()
+    answers = [i for i, line in enumerate(lines) if line.startswith("Answer:")]
+    if answers:
+        keep = {answers[-1] + 1}
+    else:
+        keep = {i for i, line in enumerate(lines) if _ATOM_LINE.match(line)}
+        if not keep:
+            status = next((line.strip() for line in lines if line.strip() in
+                           ("UNSATISFIABLE", "UNKNOWN", "INTERRUPTED")), None)
+            reason = f" (clingo reported {status})" if status else ""
+            raise InputError(f"the clingo output holds no answer{reason}", name)
+    out = []
+    for i, line in enumerate(lines):
+        if i not in keep:
+            out.append("")
+            continue
+        atoms = split_atoms(line.strip())
+        out.append(" ".join(atom if atom.endswith(".") else atom + "." for atom in atoms))
+    return "\n".join(out)
+
+
+# --- facts ------------------------------------------------------------------------------
+
+#: A fact of interest: predicate name, arguments as Python values, and where it came from
+#: (``(source, offset)`` for scanned text, ``(sources, symbol)`` for grounded atoms).
+Fact = tuple[str, tuple, tuple]
+
+_INT = r"(-?\d+)"
+_INIT = re.compile(
+    r"init\(\s*object\(\s*(\w+)\s*,\s*" + _INT + r"\s*\)\s*,\s*value\(\s*(\w+)\s*,\s*"
+    r"(?:\(\s*" + _INT + r"\s*,\s*" + _INT + r"\s*\)|" + _INT + r")\s*\)\s*\)\s*\.")
+_OCCURS = re.compile(
+    r"occurs\(\s*object\(\s*(\w+)\s*,\s*" + _INT + r"\s*\)\s*,\s*action\(\s*(\w+)\s*,\s*"
+    r"\(\s*((?:-?\d+\s*(?:,\s*-?\d+\s*)*)?)\)\s*\)\s*,\s*" + _INT + r"\s*\)\s*\.")
+_SKIP = re.compile(r"(?:\s+|%(?!\*)[^\n]*|#program\s+base\s*\.)+")
+
+
+def _init_fact(match: re.Match) -> tuple:
+    kind, ident, attribute, x, y, single = match.groups()
+    return (kind, int(ident), attribute, (int(x), int(y)) if single is None else int(single))
+
+
+def _occurs_fact(match: re.Match) -> tuple:
+    kind, ident, name, args, step = match.groups()
+    values = tuple(int(v) for v in args.split(",")) if args.strip() else ()
+    return (kind, int(ident), name, values, int(step))
+
+
+def scan_facts(text: str) -> list[tuple[str, tuple, int]] | None:
+    """Read text made only of plain ``init/2`` / ``occurs/3`` facts, comments and
+    ``#program base.`` without clingo; ``None`` when it holds anything else."""
+    facts, position, end = [], 0, len(text)
+    skip, init, occurs = _SKIP.match, _INIT.match, _OCCURS.match
+    while True:
+        gap = skip(text, position)
+        if gap:
+            position = gap.end()
+        if position >= end:
+            return facts
+        match = init(text, position)
+        if match:
+            facts.append(("init", _init_fact(match), position))
+        else:
+            match = occurs(text, position)
+            if not match:
+                return None
+            facts.append(("occurs", _occurs_fact(match), position))
+        position = match.end()
+
+
+def symbol_fact(symbol: clingo.Symbol) -> tuple[str, tuple] | None:
+    """An ``init/2`` or ``occurs/3`` atom as ``(name, arguments)`` when it has the plain shape."""
+    text = str(symbol) + "."
+    match = _INIT.fullmatch(text)
+    if match:
+        return "init", _init_fact(match)
+    match = _OCCURS.fullmatch(text)
+    if match:
+        return "occurs", _occurs_fact(match)
+    return None
+
+
+def load_facts(sources: Sequence[Source]) -> tuple[list[tuple[str, tuple, int]] | None, list[clingo.Symbol]]:
+    """The sources' facts, scanned directly when they are plain facts (fast), else grounded.
+
+    Returns ``(facts, [])`` with ``facts`` as ``(name, arguments, (source, offset))`` when
+    scanning worked, or ``(None, atoms)`` with the ground atoms of the program.
+    """
+    scanned = []
+    for source in sources:
+        facts = scan_facts(_program_text(source))
+        if facts is None:
+            return None, ground_atoms(sources)
+        scanned += [(name, args, (source, offset)) for name, args, offset in facts]
+    if not scanned:
+        return None, ground_atoms(sources)
+    return scanned, []
+
+
+def line_of(source: Source, offset: int) -> tuple[str, int]:
+    """``(file, line)`` of a character offset in a source's program text."""
+    return source.name, _program_text(source).count("\n", 0, offset) + 1
+
+
+# --- grounding ---------------------------------------------------------------------------
+
+_LOCATION = re.compile(r"^<block>:(\d+):\d+(?:-\d+(?::\d+)?)?: (?:error|info|warning): (.*)", re.S)
+
+
+def _program_text(source: Source) -> str:
+    return answer_facts(source.text, source.name) if is_clingo_output(source.text) else source.text
+
+
+def ground_atoms(sources: Sequence[Source]) -> list[clingo.Symbol]:
+    """Ground the ``base`` part of all sources together and return the atoms of its answer.
+
+    Sources may contain comments, ``#const``, ``#program base.`` and rules; a program
+    whose rules leave choices open contributes its first answer set.
+    """
+    messages: list[str] = []
+    control = clingo.Control(["--warn=none"], logger=lambda _code, message: messages.append(message))
+    for source in sources:
+        messages.clear()
+        try:
+            control.add("base", [], _program_text(source))
+        except RuntimeError:
+            raise _clingo_error(messages, source.name) from None
+    messages.clear()
+    try:
+        control.ground([("base", [])])
+    except RuntimeError:
+        raise _clingo_error(messages, sources[0].name if len(sources) == 1 else None) from None
+    with control.solve(yield_=True) as handle:
+        for model in handle:
+            return list(model.symbols(atoms=True))
+    names = ", ".join(source.name for source in sources)
+    raise InputError("the program has no answer set (its rules contradict each other)", names)
+
+
+def _clingo_error(messages: list[str], name: str | None) -> InputError:
+    text = messages[0].strip() if messages else "clingo rejected the input"
+    match = _LOCATION.match(text)
+    if match:
+        detail = match.group(2).splitlines()[0]
+        return InputError(detail, name, int(match.group(1)))
+    return InputError(text.splitlines()[0], name)
+
+
+# --- finding a fact again ----------------------------------------------------------------
+
+def locate(sources: Sequence[Source], atom: clingo.Symbol | str) -> tuple[str | None, int | None]:
+    """Return ``(file, line)`` of the first fact ``atom`` in the sources (for messages)."""
+    wanted = str(atom).replace(" ", "")
+    for source in sources:
+        found: list[int] = []
+
+        def visit(statement: clingo.ast.AST) -> None:
+            if found or statement.ast_type != clingo.ast.ASTType.Rule or statement.body:
+                return
+            head = statement.head
+            if head.ast_type == clingo.ast.ASTType.Literal and str(head).replace(" ", "") == wanted:
+                found.append(statement.location.begin.line)
+
+        try:
+            clingo.ast.parse_string(_program_text(source), visit, logger=lambda _c, _m: None)
+        except (RuntimeError, InputError):
+            continue
+        if found:
+            return source.name, found[0]
+    return (sources[0].name if len(sources) == 1 else None), None

@@ -1,0 +1,1 @@
+"""Reference encodings per domain and style, and the registry that finds them."""

@@ -1,0 +1,1 @@
+"""The instance generator: logic programs per scenario dimension and their multi-shot driver."""

@@ -1,0 +1,94 @@
+"""Bad input: one line `error: FILE[:LINE]: what is wrong`, exit status 2, no traceback."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+from asprilo.cli import main
+
+from conftest import SMALL_A
+
+PLAN_FOR_ROBOT_9 = "occurs(object(robot,1),action(move,(1,0)),1).\noccurs(object(robot,9),action(move,(1,0)),2).\n"
+
+
+def run(capsys, *args):
+    code = main(["info", *map(str, args)])
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+@pytest.mark.parametrize("name, text, message", [
+    ("syntax.lp", "init(object(robot,1),value(at,(1,1))).\ninit(object(robot,2),value(at,(1,2)).\n",
+     "syntax.lp:2: syntax error, unexpected ., expecting ) or ;"),
+    ("empty.lp", "% nothing but a comment\n",
+     "empty.lp: no instance facts (expected init(object(..),value(..)) facts) found"),
+    ("type.lp", "init(object(node,1),value(at,(1,1))).\ninit(object(robott,1),value(at,(1,1))).\n",
+     "type.lp:2: unknown object type 'robott' (known: node, highway, robot, shelf, pickingStation, "
+     "destination, product, order, grid)"),
+    ("attribute.lp", "init(object(robot,1),value(colour,red)).\n",
+     "attribute.lp:1: unknown attribute 'colour' of robot (known: at, carries)"),
+    ("shape.lp", "init(object(node,1),value(at,(1,1))).\n\ninit(object(robot,1),value(at,5)).\n",
+     "shape.lp:3: robot 1: value of 'at' must be a cell (X,Y), got 5"),
+    ("arity.lp", "init(object(shelf,1),value(at,(1,1,2))).\n",
+     "arity.lp:1: shelf 1: value of 'at' must be a cell (X,Y), got (1,1,2)"),
+    ("line.lp", "init(object(order,1),value(line,(a,b))).\n",
+     "line.lp:1: order 1: value of 'line' must be (Product,Units) or Product, got (a,b)"),
+    ("twice.lp", "init(object(robot,1),value(at,(1,1))).\ninit(object(robot,1),value(at,(2,1))).\n",
+     "twice.lp:2: robot 1 is at two places: (1,1) and (2,1)"),
+    ("ids.lp", "init(object(robot,r1),value(at,(1,1))).\n",
+     "ids.lp:1: robot id must be an integer, got r1"),
+    ("unsafe.lp", "init(object(robot,1),value(at,(X,1))).\n",
+     "unsafe.lp:1: unsafe variables in:"),
+    ("contradiction.lp", "init(object(robot,1),value(at,(1,1))).\n:- init(object(robot,1),_).\n",
+     "contradiction.lp: the program has no answer set (its rules contradict each other)"),
+])
+def test_bad_instances(capsys, write, name, text, message):
+    path = write(name, text)
+    code, out, err = run(capsys, path)
+    assert (code, out) == (2, "")
+    assert err == f"error: {path.parent}/{message}\n"
+
+
+def test_missing_file(capsys, tmp_path):
+    assert run(capsys, tmp_path / "nope.lp") == (2, "", f"error: {tmp_path}/nope.lp: no such file\n")
+
+
+def test_directory_instead_of_file(capsys, tmp_path):
+    assert run(capsys, tmp_path) == (2, "", f"error: {tmp_path}: is a directory, not a file\n")
+
+
+def test_plan_for_a_robot_the_instance_lacks(capsys, write):
+    plan = write("plan.lp", PLAN_FOR_ROBOT_9)
+    assert run(capsys, SMALL_A, plan) == (
+        2, "", f"error: {plan}:2: the plan moves robot 9, but the instance has robots 1..3 "
+               "(plan and instance do not fit)\n")
+
+
+def test_bad_plan_step(capsys, write):
+    plan = write("plan.lp", "occurs(object(robot,1),action(move,(1,0)),soon).\n")
+    assert run(capsys, SMALL_A, plan) == (
+        2, "", f"error: {plan}:1: the time step of occurs(object(robot,1),action(move,(1,0)),soon) "
+               "must be an integer\n")
+
+
+def test_clingo_output_without_answer(capsys, write):
+    plan = write("out.txt", "clingo version 5.8.3\nSolving...\nUNSATISFIABLE\n")
+    assert run(capsys, SMALL_A, plan) == (
+        2, "", f"error: {plan}: the clingo output holds no answer (clingo reported UNSATISFIABLE)\n")
+
+
+def test_unknown_domain_is_a_usage_error(capsys):
+    with pytest.raises(SystemExit) as exit_:
+        main(["info", str(SMALL_A), "--domain", "z"])
+    assert exit_.value.code == 2
+    assert "unknown domain 'z' (choose one of a, b, c, m, md)" in capsys.readouterr().err
+
+
+def test_console_script_prints_no_traceback(tmp_path):
+    result = subprocess.run([sys.executable, "-m", "asprilo", "info", str(tmp_path / "x.lp")],
+                            capture_output=True, text=True)
+    assert (result.returncode, result.stdout) == (2, "")
+    assert result.stderr == f"error: {tmp_path}/x.lp: no such file\n"

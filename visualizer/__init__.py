@@ -1,0 +1,1 @@
+"""The Qt visualizer and layout editor."""
