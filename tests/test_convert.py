@@ -1,0 +1,119 @@
+"""MovingAI maps, scenarios and LaCAM results <-> asprilo; M <-> Md."""
+
+from __future__ import annotations
+
+import pytest
+
+from asprilo.cli import main
+from asprilo.convert import md_to_m, m_to_md, result_to_plan
+from asprilo.model import Action, Destination, Instance, Robot
+from asprilo.movingai import octile_lengths, parse_map, parse_result, parse_scenario
+from asprilo.reader import read_instance, read_plan
+from asprilo.sources import Source
+
+from conftest import EXAMPLES
+
+MAPS = sorted((EXAMPLES / "movingai").glob("*.map"))
+SCEN = EXAMPLES / "movingai/random-32-32-20-random-1.scen"
+
+
+def convert(*args) -> int:
+    return main(["convert", *map(str, args)])
+
+
+@pytest.mark.parametrize("path", MAPS, ids=lambda p: p.name)
+def test_map_round_trip_is_byte_identical(tmp_path, path):
+    assert convert(path, tmp_path / "floor.lp") == 0
+    assert convert(tmp_path / "floor.lp", tmp_path / "back.map") == 0
+    assert (tmp_path / "back.map").read_bytes() == path.read_bytes()
+
+
+def test_map_cells_become_nodes(tmp_path):
+    convert(EXAMPLES / "movingai/warehouse-10-20-10-2-1.map", tmp_path / "w.lp")
+    instance = read_instance(tmp_path / "w.lp")
+    assert len(instance.nodes) == 5699
+    assert instance.size == (160, 62)  # the map's border row/column are blocked
+    assert (2, 2) in instance.cells and (1, 1) not in instance.cells
+    assert instance.nodes[1 * 161 + 1 + 1] == (2, 2)  # id = y * width + x + 1, 0-based (x, y)
+
+
+def test_octile_lengths_agree_with_the_scenario():
+    grid = parse_map(Source.from_path(EXAMPLES / "movingai/random-32-32-20.map"))
+    tasks = parse_scenario(Source.from_path(SCEN))
+    lengths = octile_lengths(grid, [(t.start, t.goal) for t in tasks])
+    assert len(tasks) == 409
+    assert max(abs(length - t.optimal) for length, t in zip(lengths, tasks)) < 2e-8
+
+
+def test_scenario_to_md_and_back(tmp_path):
+    assert convert(SCEN, tmp_path / "a.lp", "--agents", 50) == 0
+    instance = read_instance(tmp_path / "a.lp")
+    assert (len(instance.robots), len(instance.destinations)) == (50, 50)
+    assert instance.robots[1] == Robot(1, (6, 17)) and instance.destinations[1] == Destination(1, (32, 25))
+    assert convert(tmp_path / "a.lp", tmp_path / "a.scen") == 0
+    original = SCEN.read_text().splitlines()[1:51]
+    written = (tmp_path / "a.scen").read_text().splitlines()
+    assert written[0] == "version 1" and len(written) == 51
+    for mine, theirs in zip(written[1:], original):
+        assert mine.split("\t")[:8] == theirs.split("\t")[:8]
+        assert abs(float(mine.split("\t")[8]) - float(theirs.split("\t")[8])) < 2e-8
+
+
+def test_scenario_to_m(tmp_path):
+    assert convert(SCEN, tmp_path / "m.lp", "--agents", 3, "--goals", "m") == 0
+    instance = read_instance(tmp_path / "m.lp")
+    assert instance.shelves[2].at == (25, 23)
+    assert instance.orders[2].lines == {2: 1} and instance.products[2].stock == {2: 1}
+    assert list(instance.stations) == [1]
+    assert instance.stations[1].at not in {s.at for s in instance.shelves.values()}
+
+
+def test_m_and_md_convert_both_ways_without_loss():
+    m = read_instance(EXAMPLES / "paper-m/2x3x5/x19_y9_n171_r5_s60_ps3_pr60_u60_o5_N001.lp")
+    md = m_to_md(m)
+    assert len(md.destinations) == 5 and all(not order.lines for order in md.orders.values())
+    assert {d.at for d in md.destinations.values()} == {
+        m.shelves[next(iter(m.products[next(iter(o.lines))].stock))].at for o in m.orders.values()}
+    assert md_to_m(md) == m
+    pure = Instance(nodes={1: (1, 1), 2: (2, 1), 3: (3, 1)}, robots={1: Robot(1, (1, 1))},
+                    destinations={4: Destination(4, (3, 1))})
+    as_m = md_to_m(pure)
+    assert (as_m.orders[4].lines, as_m.stations[1].at, as_m.shelves[1].at) == ({1: 1}, (1, 1), (3, 1))
+    assert m_to_md(as_m).destinations == pure.destinations
+
+
+def test_lacam_result_to_plan_and_back(tmp_path, write):
+    instance = write("i.lp", "init(object(node,1),value(at,(1,1))). init(object(node,2),value(at,(2,1))). "
+                             "init(object(node,3),value(at,(2,2))). init(object(robot,1),value(at,(1,1))). "
+                             "init(object(robot,2),value(at,(2,2))). init(object(destination,1),value(at,(2,1))). "
+                             "init(object(destination,2),value(at,(2,2))).")
+    result = write("result.txt", "agents=2\nsolved=1\nsolution=\n0:(0,0),(1,1),\n1:(1,0),(1,1),\n")
+    assert convert(result, tmp_path / "plan.lp", "--instance", instance) == 0
+    assert read_plan(tmp_path / "plan.lp").actions == [Action(1, 1, "move", (1, 0))]
+    assert convert(tmp_path / "plan.lp", tmp_path / "back.txt", "--instance", instance) == 0
+    back = parse_result(Source.from_path(tmp_path / "back.txt"))
+    assert back.configurations == [[(0, 0), (1, 1)], [(1, 0), (1, 1)]]
+    assert (back.fields["soc"], back.fields["makespan"], back.fields["goals"]) == ("1", "1", "(1,0),(1,1),")
+
+
+def test_result_with_a_jump_is_rejected():
+    result = parse_result(Source("r.txt", "0:(0,0),\n1:(1,1),\n"))
+    with pytest.raises(Exception, match=r"agent 0 jumps from \(0, 0\) to \(1, 1\) at step 1"):
+        result_to_plan(result)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("type octile\nheight 2\nwidth 2\nmap\n..\n.\n", "bad.map:6: row of 1 cells, the header says width 2"),
+    ("type octile\nheight x\nwidth 2\nmap\n", "bad.map:2: the header needs integer 'height' and 'width'"),
+    ("height 1\n", "bad.map: the MovingAI header ends without a 'map' line"),
+])
+def test_bad_maps(capsys, write, text, message):
+    path = write("bad.map", text)
+    assert convert(path, path.with_suffix(".lp")) == 2
+    assert capsys.readouterr().err == f"error: {path.parent}/{message}\n"
+    assert not path.with_suffix(".lp").exists()
+
+
+def test_too_many_agents(capsys, tmp_path):
+    assert convert(SCEN, tmp_path / "x.lp", "--agents", 500) == 2
+    assert capsys.readouterr().err == "error: --agents must be between 1 and 409 (the scenario's rows), got 500\n"
