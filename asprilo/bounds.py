@@ -11,7 +11,7 @@ from typing import Iterable, Sequence
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 from scipy.sparse import csr_matrix
-from scipy.sparse.csgraph import maximum_bipartite_matching, shortest_path
+from scipy.sparse.csgraph import shortest_path
 
 from .model import DIRECTIONS, Cell, Instance
 
@@ -75,8 +75,9 @@ def bottleneck_assignment(costs: np.ndarray) -> float:
 
 
 def _matches_all(allowed: np.ndarray) -> bool:
-    matching = maximum_bipartite_matching(csr_matrix(allowed.astype(np.int8)), perm_type="column")
-    return bool((matching >= 0).all())
+    """Whether every row can get its own allowed column (an assignment of cost 0 exists)."""
+    rows, columns = linear_sum_assignment(~allowed)
+    return bool(allowed[rows, columns].all())
 
 
 def min_cost_assignment(costs: np.ndarray) -> float:
