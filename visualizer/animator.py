@@ -1,0 +1,139 @@
+"""Puts a :class:`Track` on a :class:`WarehouseScene` at any time, moving only what changed.
+
+A frame costs one array interpolation and a ``setPos`` per moving item: the scene is
+never rebuilt.  Pickups, putdowns and deliveries show as badges while they happen;
+objects that take part in a rule violation (or robots off the floor) are marked red in
+the states where that happens, so an impossible state is never drawn silently.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from asprilo.model import Action, Robot, Shelf
+from asprilo.simulate import Violation
+
+from . import style
+from .items import Badge, CellMark, RobotItem, ShelfItem
+from .scene import WarehouseScene
+from .style import CELL
+from .track import Track
+
+
+class Animator:
+    """Shows the states of ``track`` on ``scene``."""
+
+    def __init__(self, scene: WarehouseScene, track: Track):
+        self.scene = scene
+        self.track = track
+        for robot in track.robot_ids:  # objects the simulator knows but the scene lacks
+            if robot not in scene.robots:
+                scene.add_robot(Robot(robot, tuple(int(v) for v in track.robot_xy[0, track.robot_index[robot]])))
+        for shelf in track.shelf_ids:
+            if shelf not in scene.shelves:
+                scene.add_shelf(Shelf(shelf, tuple(int(v) for v in track.shelf_xy[0, track.shelf_index[shelf]])))
+        scene.include_cells(track.cells)
+        self.robot_items: list[RobotItem] = [scene.robots[r] for r in track.robot_ids]
+        self.shelf_items: list[ShelfItem] = [scene.shelves[s] for s in track.shelf_ids]
+        self._robot_shown = np.full((len(self.robot_items), 2), np.nan)
+        self._shelf_shown = np.full((len(self.shelf_items), 2), np.nan)
+        self._carrier_shown = np.full(len(self.shelf_items), -2, dtype=np.int32)
+        self._marked_step: int | None = None
+        self._cell_marks: list[CellMark] = []
+        self._badge_step: int | None = None
+        self._badges: list[tuple[Badge, RobotItem]] = []
+        self.highlighted: Violation | None = None
+        self.time = 0.0
+
+    def show(self, time: float) -> None:
+        """Place everything as it is at ``time`` (fractions interpolate between two states)."""
+        track = self.track
+        step, fraction = track.split(time)
+        self.time = step + fraction
+        _move(self.robot_items, track.robot_positions(self.time), self._robot_shown)
+        _move(self.shelf_items, track.shelf_positions(self.time), self._shelf_shown)
+        nearest = step + 1 if fraction >= 0.5 else step
+        self._show_carriers(track.carrier[nearest])
+        self._show_marks(nearest)
+        self._show_badges(step if fraction > 0 else None, fraction)
+
+    def highlight(self, violation: Violation | None) -> None:
+        """Keep the objects of ``violation`` marked whatever the time (``None``: stop)."""
+        self.highlighted = violation
+        self._marked_step = None
+        self._show_marks(self.track.split(self.time)[0])
+
+    # --- the parts of a frame ------------------------------------------------------------
+
+    def _show_carriers(self, carriers: np.ndarray) -> None:
+        for index in np.flatnonzero(carriers != self._carrier_shown).tolist():
+            robot = int(carriers[index])
+            self.shelf_items[index].set_carrier(None if robot < 0 else self.robot_items[robot].colour)
+        self._carrier_shown = carriers.copy()
+
+    def _show_marks(self, step: int) -> None:
+        if step == self._marked_step:
+            return
+        self._marked_step = step
+        track = self.track
+        violations = list(track.violations_at.get(step, []))
+        if self.highlighted is not None:
+            violations.append(self.highlighted)
+        robots = {robot for v in violations for robot in v.robots}
+        robots.update(track.robot_ids[i] for i in np.flatnonzero(track.off_floor[step]).tolist())
+        shelves = {shelf for v in violations for shelf in v.shelves}
+        cells = {cell for v in violations for cell in v.cells}
+        for item in self.robot_items:
+            item.set_flagged(item.ident in robots)
+        for item in self.shelf_items:
+            if item.flagged != (item.ident in shelves):
+                item.set_flagged(item.ident in shelves)
+        for mark in self._cell_marks:
+            self.scene.removeItem(mark)
+        self._cell_marks = [CellMark(style.cell_rect(cell)) for cell in sorted(cells)]
+        for mark in self._cell_marks:
+            self.scene.addItem(mark)
+
+    def _show_badges(self, segment: int | None, fraction: float) -> None:
+        """Badges for the actions of step ``segment + 1`` while moving towards it."""
+        if segment is None or not self.scene.fine:
+            segment = None
+        if segment != self._badge_step:
+            for badge, _robot in self._badges:
+                self.scene.removeItem(badge)
+            self._badges = []
+            if segment is not None:
+                self._badges = [(badge, self.scene.robots[action.robot])
+                                for action in self.track.plan.at_step(segment + 1)
+                                if (badge := _badge(action, self.scene)) is not None]
+                for badge, _robot in self._badges:
+                    self.scene.addItem(badge)
+            self._badge_step = segment
+        for badge, robot in self._badges:
+            badge.show_progress(robot.pos(), fraction)
+
+
+def _move(items: list, cells: np.ndarray, shown: np.ndarray) -> None:
+    """Move the items whose cell differs from the one they show."""
+    changed = np.flatnonzero(np.any(cells != shown, axis=1))
+    if not len(changed):
+        return
+    points = ((cells[changed] - 0.5) * CELL).tolist()
+    for index, (x, y) in zip(changed.tolist(), points):
+        items[index].setPos(x, y)
+    shown[changed] = cells[changed]
+
+
+def _badge(action: Action, scene: WarehouseScene) -> Badge | None:
+    robot = scene.robots.get(action.robot) if action.kind == "robot" else None
+    if robot is None or action.name == "move":
+        return None
+    if action.name == "pickup":
+        return Badge("\u2191 pick up", robot.colour.darker(130))
+    if action.name == "putdown":
+        return Badge("\u2193 put down", robot.colour.darker(130))
+    if action.name == "deliver" and isinstance(action.args, tuple) and len(action.args) >= 2:
+        order, product, *units = action.args
+        amount = f"+{units[0]}" if units else "\u2713"
+        return Badge(f"{amount} \u00d7 product {product}", style.DELIVERY)
+    return Badge(action.name, style.VIOLATION)

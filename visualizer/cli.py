@@ -1,0 +1,114 @@
+"""Show a warehouse and animate a plan on it; or export pictures and animations without a window.
+
+FILE is the instance, then plan files or clingo output (- = standard input).  One file may
+hold both (e.g. clingo output that shows init/2 and occurs/3 atoms).  Without files, piped
+standard input is read.
+
+Examples:
+  viz instance.lp plan.lp
+  python -m clingo instance.lp encoding.lp | viz instance.lp -
+  python -m clingo instance.lp encoding.lp | viz          (output shows init/2 and occurs/3)
+  viz instance.lp plan.lp --export state.png --step 12
+  viz instance.lp plan.lp --export plan.gif --frames 4 --speed 4
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+from asprilo.cli import domain_argument
+from asprilo.errors import InputError
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("files", metavar="FILE", nargs="*", help="INSTANCE [PLAN ...]")
+    parser.add_argument("--domain", type=domain_argument, help="a|b|c|m|md (default: detected)")
+    parser.add_argument("--step", type=int, metavar="K",
+                        help="show the state after step K (pictures: default 0, the initial state)")
+    group = parser.add_argument_group("export without a window")
+    group.add_argument("--export", metavar="OUT",
+                       help="write OUT and exit: .png, .jpg or .svg (one state), .gif or .mp4 (the whole plan)")
+    group.add_argument("--frames", type=int, default=1, metavar="N",
+                       help="animation frames per step; N > 1 adds in-between frames (default 1)")
+    group.add_argument("--speed", type=float, default=2.0, metavar="S",
+                       help="animation speed in steps per second (default 2)")
+    group.add_argument("--cell", type=int, metavar="PX",
+                       help="pixels per cell (default 48, less for big warehouses)")
+
+
+def run(args: argparse.Namespace) -> int:
+    _check_options(args)
+    if args.export:
+        os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")  # never needs a screen
+    from .loading import command_line_inputs, load_scenario
+    instance, plans = command_line_inputs(args.files)
+    scenario = load_scenario(instance, plans, args.domain) if instance else None
+    if args.export:
+        if scenario is None:
+            raise InputError("nothing to export: give an INSTANCE file or pipe facts into viz")
+        return _export(args, scenario)
+    return _show(args, scenario)
+
+
+def _check_options(args: argparse.Namespace) -> None:
+    for option, value, least in (("--frames", args.frames, 1), ("--cell", args.cell, 1), ("--step", args.step, 0)):
+        if value is not None and value < least:
+            raise InputError(f"{option} must be at least {least}, got {value}")
+    if args.speed <= 0:
+        raise InputError(f"--speed must be positive, got {args.speed:g}")
+
+
+def _application():
+    from PyQt5.QtWidgets import QApplication
+    app = QApplication.instance()
+    if app is None:
+        app = QApplication(sys.argv[:1])
+        app.setApplicationName("asprilo viz")
+        app.setOrganizationName("asprilo")
+    return app
+
+
+def _step(args: argparse.Namespace, horizon: int) -> int:
+    step = args.step or 0
+    if step > horizon:
+        raise InputError(f"--step {step} lies beyond the plan, whose last step is {horizon}")
+    return step
+
+
+def _export(args: argparse.Namespace, scenario) -> int:
+    from . import export
+    from .animator import Animator
+    from .scene import WarehouseScene
+    from .track import Track
+
+    export.export_format(args.export)
+    _application()
+    track = Track(scenario.instance, scenario.plan, scenario.domain)
+    scene = WarehouseScene(scenario.instance)
+    animator = Animator(scene, track)
+    if export.export_format(args.export) in export.ANIMATIONS:
+        def progress(done: int, total: int) -> None:
+            if done == total or done % 50 == 0:
+                print(f"\rrendering frame {done}/{total}", end="\n" if done == total else "", file=sys.stderr)
+        frames = export.save_animation(args.export, animator, args.frames, args.speed, args.cell, progress)
+        print(f"wrote {args.export}: {frames} frames", file=sys.stderr)
+    else:
+        animator.show(_step(args, track.horizon))
+        size = export.save_picture(args.export, scene, args.cell)
+        print(f"wrote {args.export}: {size.width()}x{size.height()}", file=sys.stderr)
+    return 0
+
+
+def _show(args: argparse.Namespace, scenario) -> int:
+    app = _application()
+    from .window import MainWindow
+    window = MainWindow()
+    if scenario is not None:
+        window.show_scenario(scenario)
+        window.remember(scenario)
+        if args.step:
+            window.go_to(_step(args, window.track.horizon))
+    window.show()
+    return app.exec_()

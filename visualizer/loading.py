@@ -1,0 +1,98 @@
+"""What the viewer shows: an instance and a plan, read from files, stdin or dropped files.
+
+Sources are read once and kept, so a reload re-reads the files but never standard input
+again, and nothing is ever written next to the user's files.
+"""
+
+from __future__ import annotations
+
+import re
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Iterable
+
+from asprilo.domain import Domain
+from asprilo.errors import InputError
+from asprilo.model import Instance, Plan
+from asprilo.reader import read_instance, read_plan, require_known_robots
+from asprilo.sources import Source, SourceLike, as_sources
+
+_INIT = re.compile(r"\binit\s*\(")
+_OCCURS = re.compile(r"\boccurs\s*\(")
+
+
+@dataclass
+class Scenario:
+    """An instance, the plan shown on it (possibly empty), and where both came from."""
+
+    instance: Instance
+    plan: Plan = field(default_factory=Plan)
+    instance_sources: list[Source] = field(default_factory=list)
+    plan_sources: list[Source] = field(default_factory=list)
+    domain: Domain | None = None  # None: detected from instance and plan
+
+    @property
+    def title(self) -> str:
+        names = [Path(s.name).name for s in self.instance_sources + self.plan_sources]
+        return " + ".join(dict.fromkeys(names)) or "untitled"
+
+    @property
+    def files(self) -> tuple[list[str], list[str]]:
+        """The file paths behind it (standard input left out): for reload and recent files."""
+        def paths(sources: list[Source]) -> list[str]:
+            return [s.name for s in sources if not s.name.startswith("<")]
+        return paths(self.instance_sources), paths(self.plan_sources)
+
+
+def load_scenario(instance: SourceLike | Iterable[SourceLike],
+                  plans: SourceLike | Iterable[SourceLike] = (), domain: Domain | None = None) -> Scenario:
+    """Read an instance and its plan files; without plan files the plan is the instance
+    sources' own ``occurs/3`` atoms (one file or stdin may hold both)."""
+    instance_sources = as_sources(instance)
+    plan_sources = as_sources(plans)
+    the_instance = read_instance(instance_sources)
+    plan_origin = plan_sources or instance_sources
+    the_plan = read_plan(plan_origin)
+    require_known_robots(the_plan, the_instance, plan_origin)
+    return Scenario(the_instance, the_plan, instance_sources, plan_sources, domain)
+
+
+def add_plan(scenario: Scenario, plans: SourceLike | Iterable[SourceLike]) -> Scenario:
+    """The same instance with the plan read from ``plans``."""
+    plan_sources = as_sources(plans)
+    plan = read_plan(plan_sources)
+    require_known_robots(plan, scenario.instance, plan_sources)
+    return Scenario(scenario.instance, plan, scenario.instance_sources, plan_sources, scenario.domain)
+
+
+def reload(scenario: Scenario) -> Scenario:
+    """Read the scenario's files again (text from standard input is reused)."""
+    def fresh(sources: list[Source]) -> list[Source]:
+        return [s if s.name.startswith("<") else Source.from_path(s.name) for s in sources]
+    return load_scenario(fresh(scenario.instance_sources), fresh(scenario.plan_sources), scenario.domain)
+
+
+def sort_files(paths: Iterable[str | Path]) -> tuple[list[Source], list[Source]]:
+    """Split files by content: those with ``init`` facts hold an instance, the rest a plan."""
+    instances, plans = [], []
+    for source in as_sources([str(path) for path in paths]):
+        if _INIT.search(source.text):
+            instances.append(source)
+        elif _OCCURS.search(source.text):
+            plans.append(source)
+        else:
+            raise InputError("holds neither instance facts (init/2) nor plan facts (occurs/3)",
+                             source.name)
+    return instances, plans
+
+
+def command_line_inputs(files: list[str]) -> tuple[list[SourceLike], list[SourceLike]]:
+    """``viz [INSTANCE] [PLAN ...]``; without files, piped standard input holds the instance
+    (and maybe the plan).  Nothing piped in (a terminal, or empty input): nothing to show."""
+    if files:
+        return list(files[:1]), list(files[1:])
+    if sys.stdin is None or sys.stdin.isatty():
+        return [], []
+    piped = Source.from_stdin()
+    return ([piped] if piped.text.strip() else []), []

@@ -1,0 +1,124 @@
+"""A plan's states, computed once by the simulator and kept as arrays for animation.
+
+``Track`` answers everything the viewer asks about time: where each robot and shelf is
+after step t (and in between, interpolated), who carries what, which action a robot does
+at a step, how long it has been idle, and which rules the plan breaks when.
+"""
+
+from __future__ import annotations
+
+from functools import cached_property
+
+import numpy as np
+
+from asprilo.domain import Domain
+from asprilo.model import Action, Cell, Instance, Plan
+from asprilo.simulate import State, Violation, simulate
+
+
+class Track:
+    """States 0..horizon of ``plan`` on ``instance`` (state t = the state after step t)."""
+
+    def __init__(self, instance: Instance, plan: Plan, domain: Domain | None = None):
+        self.instance = instance
+        self.plan = plan
+        self.timeline = simulate(instance, plan, domain)
+        self.domain: Domain = self.timeline.domain
+        self.horizon: int = self.timeline.horizon
+        self.violations: list[Violation] = list(self.timeline.violations)
+        self.states: list[State] = [self.timeline.state(t) for t in range(self.horizon + 1)]
+
+        initial = self.states[0]
+        self.robot_ids: list[int] = sorted(set(instance.robots) | set(initial.robots))
+        self.shelf_ids: list[int] = sorted(set(instance.shelves) | set(initial.shelves))
+        self.robot_index = {robot: i for i, robot in enumerate(self.robot_ids)}
+        self.shelf_index = {shelf: i for i, shelf in enumerate(self.shelf_ids)}
+        self.robot_xy = self._positions(self.robot_ids, lambda state: state.robots)
+        self.shelf_xy = self._positions(self.shelf_ids, lambda state: state.shelves)
+        self.carrier = np.full((self.horizon + 1, len(self.shelf_ids)), -1, dtype=np.int32)
+        for t, state in enumerate(self.states):
+            for robot, shelf in state.carries.items():
+                if shelf in self.shelf_index and robot in self.robot_index:
+                    self.carrier[t, self.shelf_index[shelf]] = self.robot_index[robot]
+
+        self.actions: dict[tuple[int, int], Action] = {
+            (action.step, action.robot): action for action in plan.actions if action.kind == "robot"}
+        self.violations_at: dict[int, list[Violation]] = {}
+        for violation in self.violations:
+            self.violations_at.setdefault(violation.step, []).append(violation)
+
+    def _positions(self, ids: list[int], table) -> np.ndarray:
+        """(horizon+1, len(ids), 2) cell coordinates; an object a state leaves out keeps its place."""
+        xy = np.zeros((self.horizon + 1, len(ids), 2), dtype=np.float64)
+        for t, state in enumerate(self.states):
+            cells = table(state)
+            if t == 0:
+                xy[0] = [cells.get(i, (0, 0)) for i in ids] if ids else xy[0]
+            elif ids:
+                xy[t] = [cells.get(i, previous) for i, previous in zip(ids, xy[t - 1].tolist())]
+        return xy
+
+    # --- time -----------------------------------------------------------------------------
+
+    def clamp(self, time: float) -> float:
+        return min(max(time, 0.0), float(self.horizon))
+
+    def split(self, time: float) -> tuple[int, float]:
+        """``(step, fraction)``: ``time`` lies ``fraction`` of the way from state ``step`` to the next."""
+        time = self.clamp(time)
+        step = min(int(time), self.horizon)
+        return step, (time - step if step < self.horizon else 0.0)
+
+    def robot_positions(self, time: float) -> np.ndarray:
+        """Robot cells at ``time``, interpolated between states (shape (robots, 2))."""
+        step, fraction = self.split(time)
+        return _between(self.robot_xy, step, fraction)
+
+    def shelf_positions(self, time: float) -> np.ndarray:
+        step, fraction = self.split(time)
+        return _between(self.shelf_xy, step, fraction)
+
+    # --- questions per step -----------------------------------------------------------------
+
+    def state(self, step: int) -> State:
+        return self.states[min(max(step, 0), self.horizon)]
+
+    def action(self, robot: int, step: int) -> Action | None:
+        """What ``robot`` does at time step ``step`` (``None``: it waits)."""
+        return self.actions.get((step, robot))
+
+    @cached_property
+    def idle(self) -> np.ndarray:
+        """(horizon+1, robots): steps 1..t at which each robot did nothing."""
+        busy = np.zeros((self.horizon + 1, len(self.robot_ids)), dtype=np.int32)
+        for step, robot in self.actions:
+            if robot in self.robot_index and 1 <= step <= self.horizon:
+                busy[step, self.robot_index[robot]] = 1
+        waiting = 1 - busy
+        waiting[0] = 0
+        return np.cumsum(waiting, axis=0)
+
+    @cached_property
+    def cells(self) -> set[Cell]:
+        """Every cell an object occupies at some step (the floor may not hold them all)."""
+        xy = np.concatenate([self.robot_xy.reshape(-1, 2), self.shelf_xy.reshape(-1, 2)])
+        return {(int(x), int(y)) for x, y in np.unique(xy, axis=0)} if len(xy) else set()
+
+    @cached_property
+    def off_floor(self) -> np.ndarray:
+        """(horizon+1, robots) booleans: the robot stands on a cell that is not a node."""
+        xy = self.robot_xy.astype(np.int64)
+        nodes = np.array(sorted(self.instance.cells), dtype=np.int64).reshape(-1, 2)
+        both = np.concatenate([xy.reshape(-1, 2), nodes])
+        if not len(both):
+            return np.zeros(xy.shape[:2], dtype=bool)
+        low, high = int(both.min()), int(both.max())
+        grid = np.zeros((high - low + 1, high - low + 1), dtype=bool)
+        grid[nodes[:, 1] - low, nodes[:, 0] - low] = True
+        return ~grid[xy[..., 1] - low, xy[..., 0] - low]
+
+
+def _between(xy: np.ndarray, step: int, fraction: float) -> np.ndarray:
+    if fraction == 0.0:
+        return xy[step]
+    return xy[step] + fraction * (xy[step + 1] - xy[step])

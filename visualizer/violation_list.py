@@ -1,0 +1,31 @@
+"""The violations panel: every rule the plan breaks, by step; a click jumps there."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from PyQt5.QtGui import QColor
+
+from asprilo.simulate import Violation
+
+from .tables import CURRENT, StepModel
+from .track import Track
+
+
+class ViolationsModel(StepModel):
+    """One row per violation, as the simulator reports it (the checker's ``err/3`` in the tooltip)."""
+
+    columns = ("Step", "Rule", "What is wrong")
+    dynamic = (0,)
+
+    def build_rows(self, track: Track) -> list[Violation]:
+        return list(track.violations)
+
+    def value(self, row: Violation, column: int) -> Any:
+        return (row.step, f"{row.module}/{row.check}", row.message)[column]
+
+    def tooltip(self, row: Violation, column: int) -> str:
+        return row.atom
+
+    def background(self, row: Violation) -> QColor | None:
+        return CURRENT if row.step == self.step else None
