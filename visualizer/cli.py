@@ -60,10 +60,20 @@ def _check_options(args: argparse.Namespace) -> None:
         raise InputError(f"--speed must be positive, got {args.speed:g}")
 
 
+#: Qt warnings that say nothing useful to a user of the viewer (headless runs print them)
+_QUIET = ("XDG_RUNTIME_DIR not set", "does not support propagateSizeHints")
+
+
 def _application():
+    """The running QApplication, or a new one (keep a reference while Qt objects live)."""
+    from PyQt5.QtCore import qInstallMessageHandler
     from PyQt5.QtWidgets import QApplication
     app = QApplication.instance()
     if app is None:
+        def report(_kind, _context, message: str) -> None:
+            if not any(text in message for text in _QUIET):
+                print(message, file=sys.stderr)
+        qInstallMessageHandler(report)
         app = QApplication(sys.argv[:1])
         app.setApplicationName("asprilo viz")
         app.setOrganizationName("asprilo")
@@ -84,7 +94,7 @@ def _export(args: argparse.Namespace, scenario) -> int:
     from .track import Track
 
     export.export_format(args.export)
-    _application()
+    app = _application()  # noqa: F841 (Qt objects below need it alive)
     track = Track(scenario.instance, scenario.plan, scenario.domain)
     scene = WarehouseScene(scenario.instance)
     animator = Animator(scene, track)
@@ -98,6 +108,7 @@ def _export(args: argparse.Namespace, scenario) -> int:
         animator.show(_step(args, track.horizon))
         size = export.save_picture(args.export, scene, args.cell)
         print(f"wrote {args.export}: {size.width()}x{size.height()}", file=sys.stderr)
+    del animator, scene  # before the application goes
     return 0
 
 

@@ -130,6 +130,9 @@ class WarehouseScene(QGraphicsScene):
     def picture_rect(self, margin: float = 0.25) -> QRectF:
         """The floor and every object position, with ``margin`` cells around: what exports show."""
         width, height = self.floor.size
+        if not width and not self._extra_cells:  # no floor: whatever is drawn
+            bounds = self.itemsBoundingRect()
+            return bounds.adjusted(-margin * CELL, -margin * CELL, margin * CELL, margin * CELL)
         xs = [1, width] + [x for x, _ in self._extra_cells]
         ys = [1, height] + [y for _, y in self._extra_cells]
         left, top = (min(xs) - 1 - margin) * CELL, (min(ys) - 1 - margin) * CELL

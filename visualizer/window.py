@@ -9,10 +9,11 @@ from typing import Iterable
 from PyQt5.QtCore import QPointF, QSettings, Qt
 from PyQt5.QtGui import QKeySequence
 from PyQt5.QtWidgets import (QAction, QActionGroup, QApplication, QDockWidget, QFileDialog,
-                             QGraphicsScene, QInputDialog, QLabel, QMainWindow, QMessageBox,
+                             QInputDialog, QLabel, QMainWindow, QMessageBox,
                              QProgressDialog, QToolBar)
 
 from asprilo.errors import InputError
+from asprilo.model import Instance
 from asprilo.simulate import Violation
 
 from . import export, loading, style
@@ -71,7 +72,7 @@ class MainWindow(QMainWindow):
         self.settings = settings if settings is not None else QSettings("asprilo", "viz")
         self.scenario: Scenario | None = None
         self.track: Track | None = None
-        self.scene: QGraphicsScene | None = None
+        self.scene: WarehouseScene | None = None
         self.animator: Animator | None = None
         self.trails: Trails | None = None
         self.selected: list[int] = []
@@ -236,8 +237,9 @@ class MainWindow(QMainWindow):
         old_scene = self.scene
         if scenario is None:
             self.track = self.animator = self.trails = None
-            self.scene = QGraphicsScene(self)
+            self.scene = WarehouseScene(Instance(), self)
             self.scene.addText("Open an instance (Ctrl+O) or drop files here.", style.font(16, bold=False))
+            self.scene.setSceneRect(self.scene.picture_rect())
             self.view.setScene(self.scene)
             self.setWindowTitle("asprilo viz")
         else:

@@ -1,0 +1,128 @@
+"""Headless export (``viz ... --export``) and the ``viz`` command's handling of bad input."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+
+import pytest  # noqa: E402
+from PIL import Image  # noqa: E402
+
+from asprilo.cli import main  # noqa: E402
+from asprilo.visualizer import style  # noqa: E402
+from asprilo.visualizer.export import animation_times  # noqa: E402
+
+from conftest import OUTCOME, ROOT, SMALL_A, WRONG_OUTCOME  # noqa: E402
+
+pytestmark = pytest.mark.gui
+
+# outcome.txt: an 11x6 floor; 48 px per cell and a quarter cell margin on each side
+WIDTH, HEIGHT = 552, 312
+CAPTION = 24
+
+
+def viz(*args: str) -> int:
+    return main(["viz", *map(str, args)])
+
+
+def test_png_of_a_state(qapp, tmp_path, capsys):
+    out = tmp_path / "state.png"
+    assert viz(OUTCOME, "--export", out, "--step", 8) == 0
+    assert capsys.readouterr().err == f"wrote {out}: {WIDTH}x{HEIGHT}\n"
+    image = Image.open(out).convert("RGB")
+    assert image.size == (WIDTH, HEIGHT)
+    # robot 1 stands on (5,3) at step 8: its colour a little left of the cell's centre
+    x, y = int((5 - 0.5 + 0.25) * 48) - 9, int((3 - 0.5 + 0.25) * 48)
+    colour = style.robot_colour(0)
+    assert image.getpixel((x, y)) == pytest.approx((colour.red(), colour.green(), colour.blue()), abs=3)
+    assert image.getpixel((2, 2)) == (style.BACKGROUND.red(), style.BACKGROUND.green(), style.BACKGROUND.blue())
+
+
+def test_png_cell_size_and_instance_without_plan(qapp, tmp_path):
+    out = tmp_path / "floor.png"
+    assert viz(SMALL_A, "--export", out, "--cell", 20) == 0
+    assert Image.open(out).size == (230, 130)
+
+
+def test_svg_is_vector_drawing(qapp, tmp_path):
+    out = tmp_path / "state.svg"
+    assert viz(OUTCOME, "--export", out, "--step", 29) == 0
+    text = out.read_text()
+    assert text.startswith("<?xml") and "<svg" in text and f'viewBox="0 0 {WIDTH} {HEIGHT}"' in text
+    assert "<image" not in text  # drawn with paths, not pasted pixels
+
+
+@pytest.mark.parametrize("frames, count", [(1, 30), (3, 88)])
+def test_gif_has_a_frame_per_state_and_in_between_frames(qapp, tmp_path, frames, count):
+    out = tmp_path / "plan.gif"
+    assert viz(OUTCOME, "--export", out, "--frames", frames, "--speed", 5) == 0
+    image = Image.open(out)
+    assert image.n_frames == count
+    assert image.size == (WIDTH, HEIGHT + CAPTION)
+    assert image.info["duration"] == round(1000 / (5 * frames) / 10) * 10
+    assert image.info["loop"] == 0
+
+
+def test_animation_times():
+    assert animation_times(2, 1) == [0.0, 1.0, 2.0]
+    assert animation_times(2, 4) == [0.0, 0.25, 0.5, 0.75, 1.0, 1.25, 1.5, 1.75, 2.0]
+    assert animation_times(0, 4) == [0.0]
+
+
+def test_mp4(qapp, tmp_path):
+    av = pytest.importorskip("av")
+    out = tmp_path / "plan.mp4"
+    assert viz(OUTCOME, "--export", out, "--frames", 2) == 0
+    with av.open(str(out)) as container:
+        stream = container.streams.video[0]
+        frames = sum(1 for _ in container.decode(stream))
+        assert (stream.width, stream.height) == (WIDTH, HEIGHT + CAPTION)
+    assert frames == 59
+
+
+@pytest.mark.parametrize("args, message", [
+    (["missing.lp", "--export", "{tmp}/x.png"], "error: missing.lp: no such file\n"),
+    ([OUTCOME, "--export", "{tmp}/x.bmp"],
+     "error: {tmp}/x.bmp: cannot export '.bmp': use .png, .jpg, .svg, .gif or .mp4\n"),
+    ([OUTCOME, "--export", "{tmp}/x.png", "--step", "30"],
+     "error: --step 30 lies beyond the plan, whose last step is 29\n"),
+    ([OUTCOME, "--export", "{tmp}/x.gif", "--frames", "0"], "error: --frames must be at least 1, got 0\n"),
+    ([OUTCOME, "--export", "{tmp}/no/such/folder/x.png"], "error: {tmp}/no/such/folder: the folder does not exist\n"),
+    ([SMALL_A, "{tmp}/bad.lp", "--export", "{tmp}/x.png"], "error: {tmp}/bad.lp:2: syntax error, unexpected EOF\n"),
+    ([SMALL_A, "{tmp}/other.lp", "--export", "{tmp}/x.png"],
+     "error: {tmp}/other.lp:1: the plan moves robot 9, but the instance has robots 1..3 "
+     "(plan and instance do not fit)\n"),
+])
+def test_bad_input_is_one_clear_message_and_exit_2(qapp, tmp_path, capsys, args, message):
+    (tmp_path / "bad.lp").write_text("occurs(object(robot,1),action(move,(1,0)),1)\n")
+    (tmp_path / "other.lp").write_text("occurs(object(robot,9),action(move,(1,0)),1).\n")
+    assert viz(*[str(a).format(tmp=tmp_path) for a in args]) == 2
+    assert capsys.readouterr().err == message.format(tmp=tmp_path)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.lp", "other.lp"]  # nothing written
+
+
+def test_headless_command_reads_piped_input_without_a_screen(tmp_path):
+    """The console command on its own: no display, clingo-style output piped in."""
+    out = tmp_path / "piped.png"
+    text = OUTCOME.read_text().replace("\n", " ")
+    piped = f"clingo version 5.8.0\nReading from stdin\nSolving...\nAnswer: 1\n{text}\nSATISFIABLE\n"
+    env = {key: value for key, value in os.environ.items() if key not in ("QT_QPA_PLATFORM", "DISPLAY")}
+    result = subprocess.run([sys.executable, "-m", "asprilo", "viz", "--export", str(out), "--step", "29"],
+                            input=piped, capture_output=True, text=True, env=env, cwd=ROOT, timeout=120)
+    assert result.returncode == 0, result.stderr
+    assert result.stderr.endswith(f"wrote {out}: {WIDTH}x{HEIGHT}\n")
+    assert Image.open(out).size == (WIDTH, HEIGHT)
+
+
+def test_wrong_outcome_exports_despite_violations(qapp, tmp_path):
+    out = tmp_path / "wrong.png"
+    assert viz(WRONG_OUTCOME, "--export", out, "--step", 23) == 0
+    image = Image.open(out).convert("RGB")
+    # robot 1 is flagged at step 23: a red ring around it on (8,1)
+    x, y = int((8 - 0.5 + 0.25) * 48), int((1 - 0.5 + 0.25) * 48)
+    ring = [image.getpixel((x + dx, y)) for dx in range(-22, -14)]
+    red = (style.VIOLATION.red(), style.VIOLATION.green(), style.VIOLATION.blue())
+    assert any(pixel == pytest.approx(red, abs=12) for pixel in ring)
