@@ -7,6 +7,7 @@ import os
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
+from PyQt5.QtCore import QPointF  # noqa: E402
 
 from asprilo.model import Instance, Plan, Action, Robot, Shelf  # noqa: E402
 from asprilo.reader import read_instance, read_plan  # noqa: E402
@@ -167,3 +168,20 @@ def test_trails_follow_the_path_of_selected_robots(qapp):
     assert not trails._items[3].past.path().isEmpty()
     trails.show([])
     assert not trails._items
+
+
+def test_coarse_detail_draws_resting_shelves_as_one_layer(qapp):
+    instance, plan, scene, track, animator = build(OUTCOME, OUTCOME)
+    timeline = simulate(instance, plan)
+    scene.set_detail(False)
+    for step in (0, 29, 5, 18, 0):  # jumps: shelves were carried away and put down meanwhile
+        animator.show(step)
+        state = timeline.state(step)
+        path = scene.shelf_layer.path()
+        corners = [path.elementAt(i) for i in range(0, path.elementCount(), 5)]  # a rect: 5 elements
+        drawn = {style.cell_at(QPointF(corner.x + 1, corner.y + 1)) for corner in corners}
+        resting = {cell for shelf, cell in state.shelves.items() if shelf not in state.carries.values()}
+        assert drawn == resting, step
+        assert all(item.isVisible() == item.carried for item in scene.shelves.values())
+    scene.set_detail(True)
+    assert not scene.shelf_layer.isVisible() and all(item.isVisible() for item in scene.shelves.values())

@@ -32,12 +32,14 @@ class Animator:
         for shelf in track.shelf_ids:
             if shelf not in scene.shelves:
                 scene.add_shelf(Shelf(shelf, tuple(int(v) for v in track.shelf_xy[0, track.shelf_index[shelf]])))
-        scene.include_cells(track.cells)
+        scene.include_cells(track.bounds)
         self.robot_items: list[RobotItem] = [scene.robots[r] for r in track.robot_ids]
         self.shelf_items: list[ShelfItem] = [scene.shelves[s] for s in track.shelf_ids]
-        self._robot_shown = np.full((len(self.robot_items), 2), np.nan)
-        self._shelf_shown = np.full((len(self.shelf_items), 2), np.nan)
-        self._carrier_shown = np.full(len(self.shelf_items), -2, dtype=np.int32)
+        self._robot_shown = _cells_of(self.robot_items)
+        self._shelf_shown = _cells_of(self.shelf_items)
+        # what the items show now: resting (-1) or carried by someone (-2: look again)
+        self._carrier_shown = np.array([-2 if shelf.carried else -1 for shelf in self.shelf_items],
+                                       dtype=np.int32)
         self._marked_step: int | None = None
         self._cell_marks: list[CellMark] = []
         self._badge_step: int | None = None
@@ -51,9 +53,11 @@ class Animator:
         step, fraction = track.split(time)
         self.time = step + fraction
         _move(self.robot_items, track.robot_positions(self.time), self._robot_shown)
-        _move(self.shelf_items, track.shelf_positions(self.time), self._shelf_shown)
+        moved = _move(self.shelf_items, track.shelf_positions(self.time), self._shelf_shown)
         nearest = step + 1 if fraction >= 0.5 else step
-        self._show_carriers(track.carrier[nearest])
+        carriers = track.carrier[nearest]
+        if self._show_carriers(carriers) or (carriers[moved] < 0).any():
+            self.scene.refresh_shelf_layer()  # a shelf was picked up, put down or moved while resting
         self._show_marks(nearest)
         self._show_badges(step if fraction > 0 else None, fraction)
 
@@ -65,11 +69,14 @@ class Animator:
 
     # --- the parts of a frame ------------------------------------------------------------
 
-    def _show_carriers(self, carriers: np.ndarray) -> None:
-        for index in np.flatnonzero(carriers != self._carrier_shown).tolist():
+    def _show_carriers(self, carriers: np.ndarray) -> bool:
+        """Restyle the shelves whose carrier changed; whether there were any."""
+        changed = np.flatnonzero(carriers != self._carrier_shown).tolist()
+        for index in changed:
             robot = int(carriers[index])
             self.shelf_items[index].set_carrier(None if robot < 0 else self.robot_items[robot].colour)
         self._carrier_shown = carriers.copy()
+        return bool(changed)
 
     def _show_marks(self, step: int) -> None:
         if step == self._marked_step:
@@ -113,15 +120,22 @@ class Animator:
             badge.show_progress(robot.pos(), fraction)
 
 
-def _move(items: list, cells: np.ndarray, shown: np.ndarray) -> None:
-    """Move the items whose cell differs from the one they show."""
+def _cells_of(items: list) -> np.ndarray:
+    """The cells items stand on now, shape (len(items), 2)."""
+    points = [(item.x(), item.y()) for item in items]
+    return np.array(points, dtype=np.float64).reshape(len(items), 2) / CELL + 0.5
+
+
+def _move(items: list, cells: np.ndarray, shown: np.ndarray) -> np.ndarray:
+    """Move the items whose cell differs from the one they show; returns their indices."""
     changed = np.flatnonzero(np.any(cells != shown, axis=1))
     if not len(changed):
-        return
+        return changed
     points = ((cells[changed] - 0.5) * CELL).tolist()
     for index, (x, y) in zip(changed.tolist(), points):
         items[index].setPos(x, y)
     shown[changed] = cells[changed]
+    return changed
 
 
 def _badge(action: Action, scene: WarehouseScene) -> Badge | None:

@@ -8,6 +8,7 @@ Outlines and labels are dropped at coarse detail, when a cell is only a few pixe
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 from PyQt5.QtCore import QPointF, QRectF, Qt
 from PyQt5.QtGui import QBrush, QColor, QPainterPath, QPen, QPolygonF
@@ -26,7 +27,12 @@ Z_DESTINATION, Z_STATION, Z_CARRIED, Z_ROBOT, Z_SHELF, Z_TRAIL, Z_MARK, Z_BADGE 
 
 
 def _pen(colour: QColor, width: float, style_: Qt.PenStyle = Qt.SolidLine) -> QPen:
-    pen = QPen(colour, width, style_)
+    return QPen(_cached_pen(colour.rgba(), width, int(style_)))
+
+
+@lru_cache(maxsize=None)
+def _cached_pen(rgba: int, width: float, style_: int) -> QPen:
+    pen = QPen(QColor.fromRgba(rgba), width, Qt.PenStyle(style_))
     pen.setJoinStyle(Qt.RoundJoin)
     pen.setCapStyle(Qt.RoundCap)
     return pen
@@ -57,9 +63,14 @@ class Label(QGraphicsSimpleTextItem):
 
 
 class ObjectItem:
-    """What every warehouse object item offers: its identity, detail level and red flag."""
+    """What every warehouse object item offers: its identity, detail level and red flag.
+
+    Marks that most objects never need (the red flag, a selection ring, a shadow) are
+    made on first use: a big warehouse has thousands of items.
+    """
 
     kind = ""
+    flag_size = 1.0
 
     def init_object(self, ident: int) -> None:
         self.ident = ident
@@ -72,6 +83,9 @@ class ObjectItem:
 
     def set_flagged(self, flagged: bool) -> None:
         """Mark the object red: it takes part in a rule violation."""
+        if flagged and self.flag is None:
+            self.flag = QGraphicsRectItem(_square(self.flag_size), self)
+            self.flag.setPen(_pen(style.VIOLATION, 0.08 * CELL))
         if self.flag is not None:
             self.flag.setVisible(flagged)
 
@@ -92,23 +106,29 @@ class RobotItem(QGraphicsEllipseItem, ObjectItem):
         self.setBrush(colour)
         self.setZValue(Z_ROBOT)
         self.label = Label(str(ident), 0.3 * CELL, style.ROBOT_TEXT, self, 0.5 * CELL)
-        self.ring = QGraphicsEllipseItem(_square(style.ROBOT_SIZE + 0.22), self)
-        self.ring.setPen(_pen(style.SELECTION, 0.07 * CELL))
-        self.ring.setVisible(False)
-        self.flag = QGraphicsEllipseItem(_square(style.ROBOT_SIZE + 0.12), self)
-        self.flag.setPen(_pen(style.VIOLATION, 0.09 * CELL))
-        self.flag.setVisible(False)
+        self.ring: QGraphicsEllipseItem | None = None
         self.set_detail(True)
 
     def set_detail(self, fine: bool) -> None:
         super().set_detail(fine)
         self.setPen(_pen(style.ROBOT_EDGE, 0.035 * CELL) if fine else NO_PEN)
 
+    def set_flagged(self, flagged: bool) -> None:
+        if flagged and self.flag is None:
+            self.flag = QGraphicsEllipseItem(_square(style.ROBOT_SIZE + 0.12), self)
+            self.flag.setPen(_pen(style.VIOLATION, 0.09 * CELL))
+        super().set_flagged(flagged)
+
     def set_selected(self, selected: bool) -> None:
         """Show the selection ring (selected robots also show their paths)."""
-        self.ring.setVisible(selected)
+        if selected and self.ring is None:
+            self.ring = QGraphicsEllipseItem(_square(style.ROBOT_SIZE + 0.22), self)
+            self.ring.setPen(_pen(style.SELECTION, 0.07 * CELL))
+        if self.ring is not None:
+            self.ring.setVisible(selected)
 
 
+@lru_cache(maxsize=None)
 def _rack_path(size: float) -> QPainterPath:
     """A shelf seen from above: a rounded frame with two slats."""
     box = _square(size)
@@ -121,30 +141,32 @@ def _rack_path(size: float) -> QPainterPath:
     return path
 
 
+@lru_cache(maxsize=None)
+def _block_path(size: float) -> QPainterPath:
+    """A shelf when cells are tiny: a plain square, the cheapest shape to fill."""
+    path = QPainterPath()
+    path.addRect(_square(size))
+    return path
+
+
 class ShelfItem(QGraphicsPathItem, ObjectItem):
     """A shelf: a wooden rack; carried, it is lifted (shadow, larger) and framed in its robot's colour."""
 
     kind = "shelf"
+    flag_size = style.SHELF_SIZE + 0.1
 
     def __init__(self, ident: int):
         super().__init__(_rack_path(style.SHELF_SIZE))
         self.init_object(ident)
         self.setZValue(Z_SHELF)
-        self.shadow = QGraphicsPathItem(self.path(), self)
-        self.shadow.setFlag(QGraphicsItem.ItemStacksBehindParent)
-        self.shadow.setBrush(style.SHADOW)
-        self.shadow.setPen(NO_PEN)
-        self.shadow.setPos(0.05 * CELL, 0.08 * CELL)
-        self.shadow.setVisible(False)
-        self.flag = QGraphicsRectItem(_square(style.SHELF_SIZE + 0.1), self)
-        self.flag.setPen(_pen(style.VIOLATION, 0.08 * CELL))
-        self.flag.setVisible(False)
+        self.shadow: QGraphicsPathItem | None = None
         self.carrier: QColor | None = None
         self.fine = True
-        self.set_detail(True)
+        self._restyle()
 
     def set_detail(self, fine: bool) -> None:
         self.fine = fine
+        self.setPath(_rack_path(style.SHELF_SIZE) if fine else _block_path(style.SHELF_SIZE))
         self._restyle()
 
     def set_carrier(self, colour: QColor | None) -> None:
@@ -152,22 +174,57 @@ class ShelfItem(QGraphicsPathItem, ObjectItem):
         self.carrier = colour
         self.setZValue(Z_SHELF if colour is None else Z_CARRIED)
         self.setScale(1.0 if colour is None else style.CARRIED_SHELF_SIZE / style.SHELF_SIZE)
-        self.shadow.setVisible(colour is not None and self.fine)
         self._restyle()
 
     @property
     def carried(self) -> bool:
         return self.carrier is not None
 
+    def set_flagged(self, flagged: bool) -> None:
+        super().set_flagged(flagged)
+        self._restyle()
+
     def _restyle(self) -> None:
-        self.setBrush(style.SHELF if self.carrier is not None else style.RESTING_SHELF)
-        if self.carrier is not None:
+        carried = self.carrier is not None
+        # at coarse detail resting shelves are drawn by the scene's ShelfLayer
+        self.setVisible(self.fine or carried or self.flagged)
+        self.setBrush(style.SHELF if carried else style.RESTING_SHELF)
+        if carried:
             self.setPen(_pen(self.carrier, (0.1 if self.fine else 0.2) * CELL))
         else:
             self.setPen(_pen(style.SHELF_EDGE, 0.045 * CELL) if self.fine else NO_PEN)
-        self.shadow.setVisible(self.carrier is not None and self.fine)
+        if carried and self.fine and self.shadow is None:
+            self.shadow = QGraphicsPathItem(self.path(), self)
+            self.shadow.setFlag(QGraphicsItem.ItemStacksBehindParent)
+            self.shadow.setBrush(style.SHADOW)
+            self.shadow.setPen(NO_PEN)
+            self.shadow.setPos(0.05 * CELL, 0.08 * CELL)
+        if self.shadow is not None:
+            self.shadow.setVisible(carried and self.fine)
 
 
+class ShelfLayer(QGraphicsPathItem):
+    """All resting shelves as one shape: how they are drawn when cells are a few pixels
+    wide (drawing thousands of tiny items one by one would cost too much per frame)."""
+
+    def __init__(self):
+        super().__init__()
+        self.setBrush(style.SHELF)
+        self.setPen(NO_PEN)
+        self.setZValue(Z_SHELF)
+
+    def show_shelves(self, shelves) -> None:
+        """Draw the shelves among ``shelves`` (ShelfItems) that nobody carries."""
+        box = _square(style.SHELF_SIZE)
+        path = QPainterPath()
+        path.setFillRule(Qt.WindingFill)  # two shelves on one cell (an invalid plan) stay filled
+        for shelf in shelves:
+            if not shelf.carried:
+                path.addRect(box.translated(shelf.pos()))
+        self.setPath(path)
+
+
+@lru_cache(maxsize=None)
 def _stripes() -> QPainterPath:
     """Diagonal bands clipped to a cell: the striped look of a picking station."""
     box = _square(1.0)
@@ -208,9 +265,6 @@ class StationItem(QGraphicsRectItem, ObjectItem):
         box = self.label.mapRectToParent(self.label.boundingRect()).adjusted(-3, -1, 3, 1)
         self.plate.setRect(box)
         self.plate.setPos(-0.48 * CELL + box.width() / 2 + 2, -0.48 * CELL + box.height() / 2 + 2)
-        self.flag = QGraphicsRectItem(_square(1.0), self)
-        self.flag.setPen(_pen(style.VIOLATION, 0.08 * CELL))
-        self.flag.setVisible(False)
 
     def set_detail(self, fine: bool) -> None:
         self.plate.setVisible(fine)

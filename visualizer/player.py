@@ -52,10 +52,11 @@ class Player(QObject):
         """Playing or gliding between two states."""
         return self._timer.isActive()
 
-    def set_horizon(self, horizon: int) -> None:
+    def set_horizon(self, horizon: int, time: float | None = None) -> None:
+        """New states to play: stop, and show ``time`` (default: the time shown, if still there)."""
         self.pause()
         self.horizon = max(0, horizon)
-        self._set_time(min(self.time, self.horizon), force=True)
+        self._set_time(min(self.time if time is None else max(time, 0.0), float(self.horizon)), force=True)
 
     # --- commands ------------------------------------------------------------------------
 

@@ -19,7 +19,7 @@ from PyQt5.QtWidgets import QGraphicsScene
 from asprilo.model import Cell, Destination, Instance, PickingStation, Robot, Shelf
 
 from . import style
-from .items import DestinationItem, ObjectItem, RobotItem, ShelfItem, StationItem
+from .items import DestinationItem, ObjectItem, RobotItem, ShelfItem, ShelfLayer, StationItem
 from .style import CELL
 
 MISSING, STORAGE, HIGHWAY = 0, 1, 2
@@ -29,17 +29,12 @@ class Floor:
     """The floor's cells by kind (missing, storage, highway) over its bounding box."""
 
     def __init__(self, nodes: Iterable[Cell], highways: Iterable[Cell]):
-        nodes, highways = list(nodes), list(highways)
-        cells = [cell for cell in nodes + highways if cell[0] >= 1 and cell[1] >= 1]
-        width = max((x for x, _ in cells), default=0)
-        height = max((y for _, y in cells), default=0)
+        nodes, highways = _cells(nodes), _cells(highways)
+        both = np.concatenate([nodes, highways])
+        width, height = (both.max(axis=0).tolist() if len(both) else (0, 0))
         self.kinds = np.full((height, width), MISSING, dtype=np.uint8)
-        for x, y in nodes:
-            if x >= 1 and y >= 1:
-                self.kinds[y - 1, x - 1] = STORAGE
-        for x, y in highways:
-            if x >= 1 and y >= 1:
-                self.kinds[y - 1, x - 1] = HIGHWAY
+        self.kinds[nodes[:, 1] - 1, nodes[:, 0] - 1] = STORAGE
+        self.kinds[highways[:, 1] - 1, highways[:, 0] - 1] = HIGHWAY
         self.rect = QRectF(0, 0, width * CELL, height * CELL)
         self.image = self._image()
 
@@ -88,6 +83,12 @@ class Floor:
         painter.restore()
 
 
+def _cells(cells: Iterable[Cell]) -> np.ndarray:
+    """Cells as an (n, 2) array, those with coordinates below 1 left out (not drawable)."""
+    array = np.array(list(cells), dtype=np.int64).reshape(-1, 2)
+    return array[(array >= 1).all(axis=1)]
+
+
 class WarehouseScene(QGraphicsScene):
     """Floor, robots, shelves, picking stations and destinations of one instance."""
 
@@ -100,6 +101,9 @@ class WarehouseScene(QGraphicsScene):
         self.stations: dict[int, StationItem] = {}
         self.destinations: dict[int, DestinationItem] = {}
         self.fine = True
+        self.shelf_layer = ShelfLayer()  # resting shelves at coarse detail
+        self.shelf_layer.setVisible(False)
+        self.addItem(self.shelf_layer)
         self._extra_cells: set[Cell] = set()
         self.set_floor(instance.nodes.values(), instance.highways.values())
         for station in instance.stations.values():
@@ -148,7 +152,9 @@ class WarehouseScene(QGraphicsScene):
         return self._place(self.robots, item, robot.at)
 
     def add_shelf(self, shelf: Shelf) -> ShelfItem:
-        return self._place(self.shelves, ShelfItem(shelf.id), shelf.at)
+        item = self._place(self.shelves, ShelfItem(shelf.id), shelf.at)
+        self.refresh_shelf_layer()
+        return item
 
     def add_station(self, station: PickingStation) -> StationItem:
         return self._place(self.stations, StationItem(station.id), station.at)
@@ -159,7 +165,8 @@ class WarehouseScene(QGraphicsScene):
     def _place(self, table: dict, item, cell: Cell):
         if item.ident in table:
             self.removeItem(table.pop(item.ident))
-        item.set_detail(self.fine)
+        if not self.fine:
+            item.set_detail(False)
         item.setPos(style.centre(cell))
         table[item.ident] = item
         self.addItem(item)
@@ -170,6 +177,8 @@ class WarehouseScene(QGraphicsScene):
         table = {"robot": self.robots, "shelf": self.shelves, "station": self.stations,
                  "destination": self.destinations}[kind]
         self.removeItem(table.pop(ident))
+        if kind == "shelf":
+            self.refresh_shelf_layer()
 
     def objects(self) -> Iterator[ObjectItem]:
         for table in (self.stations, self.destinations, self.shelves, self.robots):
@@ -182,3 +191,10 @@ class WarehouseScene(QGraphicsScene):
         self.fine = fine
         for item in self.objects():
             item.set_detail(fine)
+        self.shelf_layer.setVisible(not fine)
+        self.refresh_shelf_layer()
+
+    def refresh_shelf_layer(self) -> None:
+        """Redraw the resting shelves' layer (after shelves were picked up or put down)."""
+        if not self.fine:
+            self.shelf_layer.show_shelves(self.shelves.values())

@@ -7,6 +7,8 @@ downwards, as in SPEC.md.
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 from PyQt5.QtCore import QPointF, QRectF
 from PyQt5.QtGui import QColor, QFont
 
@@ -70,7 +72,12 @@ def cell_at(point: QPointF) -> Cell:
 
 def font(pixel_size: float, bold: bool = True) -> QFont:
     """A UI font with an integer pixel size (PyQt5 rejects floats)."""
+    return QFont(_font(max(1, int(round(pixel_size))), bold))
+
+
+@lru_cache(maxsize=None)
+def _font(pixel_size: int, bold: bool) -> QFont:
     result = QFont("DejaVu Sans")
-    result.setPixelSize(max(1, int(round(pixel_size))))
+    result.setPixelSize(pixel_size)
     result.setBold(bold)
     return result

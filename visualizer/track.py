@@ -33,13 +33,14 @@ class Track:
         self.shelf_ids: list[int] = sorted(set(instance.shelves) | set(initial.shelves))
         self.robot_index = {robot: i for i, robot in enumerate(self.robot_ids)}
         self.shelf_index = {shelf: i for i, shelf in enumerate(self.shelf_ids)}
-        self.robot_xy = self._positions(self.robot_ids, lambda state: state.robots)
-        self.shelf_xy = self._positions(self.shelf_ids, lambda state: state.shelves)
+        self.robot_xy = np.array([[state.robots.get(r, (0, 0)) for r in self.robot_ids]
+                                  for state in self.states], dtype=np.float64).reshape(self.horizon + 1, len(self.robot_ids), 2)
         self.carrier = np.full((self.horizon + 1, len(self.shelf_ids)), -1, dtype=np.int32)
         for t, state in enumerate(self.states):
             for robot, shelf in state.carries.items():
                 if shelf in self.shelf_index and robot in self.robot_index:
                     self.carrier[t, self.shelf_index[shelf]] = self.robot_index[robot]
+        self.shelf_xy = self._shelf_positions()
 
         self.actions: dict[tuple[int, int], Action] = {
             (action.step, action.robot): action for action in plan.actions if action.kind == "robot"}
@@ -47,15 +48,18 @@ class Track:
         for violation in self.violations:
             self.violations_at.setdefault(violation.step, []).append(violation)
 
-    def _positions(self, ids: list[int], table) -> np.ndarray:
-        """(horizon+1, len(ids), 2) cell coordinates; an object a state leaves out keeps its place."""
-        xy = np.zeros((self.horizon + 1, len(ids), 2), dtype=np.float64)
-        for t, state in enumerate(self.states):
-            cells = table(state)
-            if t == 0:
-                xy[0] = [cells.get(i, (0, 0)) for i in ids] if ids else xy[0]
-            elif ids:
-                xy[t] = [cells.get(i, previous) for i, previous in zip(ids, xy[t - 1].tolist())]
+    def _shelf_positions(self) -> np.ndarray:
+        """(horizon+1, shelves, 2): a shelf moves only while carried, so each step looks up
+        just the shelves carried before or after it."""
+        xy = np.zeros((self.horizon + 1, len(self.shelf_ids), 2), dtype=np.float64)
+        initial = self.states[0].shelves
+        if self.shelf_ids:
+            xy[0] = [initial.get(s, (0, 0)) for s in self.shelf_ids]
+        for t in range(1, self.horizon + 1):
+            xy[t] = xy[t - 1]
+            shelves = self.states[t].shelves
+            for index in np.flatnonzero((self.carrier[t - 1] >= 0) | (self.carrier[t] >= 0)).tolist():
+                xy[t, index] = shelves.get(self.shelf_ids[index], xy[t - 1, index])
         return xy
 
     # --- time -----------------------------------------------------------------------------
@@ -99,16 +103,21 @@ class Track:
         return np.cumsum(waiting, axis=0)
 
     @cached_property
-    def cells(self) -> set[Cell]:
-        """Every cell an object occupies at some step (the floor may not hold them all)."""
-        xy = np.concatenate([self.robot_xy.reshape(-1, 2), self.shelf_xy.reshape(-1, 2)])
-        return {(int(x), int(y)) for x, y in np.unique(xy, axis=0)} if len(xy) else set()
+    def bounds(self) -> tuple[Cell, Cell]:
+        """Top-left and bottom-right cell of everything that ever stands somewhere
+        (robots of invalid plans may leave the floor)."""
+        arrays = [xy.reshape(-1, 2) for xy in (self.robot_xy, self.shelf_xy) if xy.size]
+        if not arrays:
+            return (1, 1), (1, 1)
+        low = np.min([xy.min(axis=0) for xy in arrays], axis=0).astype(int).tolist()
+        high = np.max([xy.max(axis=0) for xy in arrays], axis=0).astype(int).tolist()
+        return (low[0], low[1]), (high[0], high[1])
 
     @cached_property
     def off_floor(self) -> np.ndarray:
         """(horizon+1, robots) booleans: the robot stands on a cell that is not a node."""
         xy = self.robot_xy.astype(np.int64)
-        nodes = np.array(sorted(self.instance.cells), dtype=np.int64).reshape(-1, 2)
+        nodes = np.array(list(self.instance.nodes.values()), dtype=np.int64).reshape(-1, 2)
         both = np.concatenate([xy.reshape(-1, 2), nodes])
         if not len(both):
             return np.zeros(xy.shape[:2], dtype=bool)

@@ -259,11 +259,8 @@ class MainWindow(QMainWindow):
         self.docks["violations"].setWindowTitle(
             f"Violations ({len(self.track.violations)})" if self.track else "Violations")
         self.transport.slider.set_marks([v.step for v in self.track.violations] if self.track else [])
-        self.player.set_horizon(horizon)
         self.transport.set_horizon(horizon)
-        self.player.seek(min(time, horizon))
-        self._show_time(self.player.time)
-        self._show_step(self.player.step)
+        self.player.set_horizon(horizon, time)  # shows that time on the new scene and panels
         self.select_robots(self.selected)
         self._show_summary()
 
@@ -357,7 +354,10 @@ class MainWindow(QMainWindow):
     def _describe(self, point: QPointF, objects: list) -> str | None:
         if self.track is None:
             return None
-        return tooltip(self.track, self.player.step, style.cell_at(point), objects)
+        cell, step = style.cell_at(point), self.player.step
+        resting = [("shelf", shelf) for shelf, at in self.track.state(step).shelves.items()
+                   if tuple(at) == cell and ("shelf", shelf) not in objects]  # drawn as one layer when tiny
+        return tooltip(self.track, step, cell, objects + resting)
 
     def _show_summary(self) -> None:
         if self.scenario is None:
