@@ -1,0 +1,191 @@
+"""The exact solver for domains M and Md: anonymous MAPF as maximum flow over time.
+
+Yu & LaValle (2012): robots that are not tied to particular goals can be routed as units of
+flow through the *time-expanded graph* — one copy of the floor per time step 0..H.  Every
+cell copy is split into an ``in`` and an ``out`` node joined by an arc of capacity 1 (at most
+one robot per cell and step); ``out`` of a cell at step t leads to ``in`` of the same cell at
+t+1 (waiting) and, through an *edge gadget*, to ``in`` of each neighbour.  The gadget of an
+edge {u, v} is a pair of nodes a -> b joined by one arc of capacity 1 that both u and v feed
+and that leads to both u and v: two robots can never cross the same edge in one step, so
+swaps are impossible.  A flow of value "number of robots" from the start cells at step 0 to
+the goal cells at step H is a collision-free plan of makespan at most H; maximum flow is
+polynomial, and trying H upwards from a lower bound gives the proven minimal makespan.
+
+Goals are the cells of M's ordered shelves or Md's destinations
+(:func:`asprilo.bounds.goal_cells`).  When there are more robots than goals, the extra
+robots may end anywhere: they drain through an ``idle`` node whose capacity is the surplus,
+which forces every goal cell to be covered.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+from scipy.sparse import csr_matrix
+from scipy.sparse.csgraph import maximum_flow
+
+from asprilo.bounds import Floor, goal_cells, mapf_bounds
+from asprilo.model import Action, Cell, Instance, Plan
+
+
+@dataclass
+class FlowAttempt:
+    """One horizon tried: whether all robots reached the goals, and the seconds it took."""
+
+    horizon: int
+    feasible: bool
+    seconds: float
+    nodes: int
+    arcs: int
+
+
+@dataclass
+class FlowSearch:
+    """The result of :func:`flow_plan`: the plan (or ``None``) and every horizon tried."""
+
+    plan: Plan | None
+    horizon: int | None
+    minimal: bool
+    lower_bound: float
+    attempts: list[FlowAttempt] = field(default_factory=list)
+    stopped: str | None = None  # "time limit" / "cancelled" when the search was cut short
+
+
+class TimeExpandedNetwork:
+    """The flow network of a floor, start cells and goal cells over ``horizon`` steps."""
+
+    def __init__(self, floor: Floor, starts: list[Cell], goals: list[Cell], horizon: int):
+        self.floor, self.starts, self.goals, self.horizon = floor, starts, goals, horizon
+        cells = len(floor.cells)
+        edges = np.array([(i, j) for i, j in zip(*floor.graph.nonzero()) if i < j], dtype=np.int64)
+        edges = edges.reshape(-1, 2)
+        self.layer = 2 * cells + 2 * len(edges)  # in-nodes, out-nodes, gadget a, gadget b
+        layers = horizon + 1
+        self.source = layers * self.layer
+        self.sink, self.idle = self.source + 1, self.source + 2
+        self.size = self.source + 3
+
+        vertex = np.arange(cells)
+        tails, heads, capacities = [], [], []
+
+        def arcs(tail, head, capacity=1):
+            tails.append(np.asarray(tail).ravel())
+            heads.append(np.asarray(head).ravel())
+            capacities.append(np.broadcast_to(capacity, np.asarray(tail).ravel().shape))
+
+        steps = np.arange(layers)[:, None] * self.layer
+        arcs(steps + self.entry(vertex), steps + self.exit(vertex))  # one robot per cell and step
+        moves = steps[:-1]
+        after = moves + self.layer
+        arcs(moves + self.exit(vertex), after + self.entry(vertex))  # wait
+        if len(edges):
+            a = 2 * cells + np.arange(len(edges))
+            b = a + len(edges)
+            u, v = edges[:, 0], edges[:, 1]
+            arcs(moves + self.exit(u), moves + a)
+            arcs(moves + self.exit(v), moves + a)
+            arcs(moves + a, moves + b)  # the edge carries one robot per step, in either direction
+            arcs(moves + b, after + self.entry(u))
+            arcs(moves + b, after + self.entry(v))
+        index = floor.index
+        start_nodes = [self.entry(index[cell]) for cell in starts]
+        arcs([self.source] * len(start_nodes), start_nodes)
+        last = horizon * self.layer
+        goal_set = {index[cell] for cell in goals}
+        arcs([last + self.exit(g) for g in sorted(goal_set)], [self.sink] * len(goal_set))
+        surplus = len(starts) - len(goal_set)
+        if surplus > 0:
+            others = [v for v in range(cells) if v not in goal_set]
+            arcs([last + self.exit(v) for v in others], [self.idle] * len(others))
+            arcs([self.idle], [self.sink], surplus)
+        tail, head = np.concatenate(tails), np.concatenate(heads)
+        capacity = np.concatenate(capacities).astype(np.int32)
+        self.arcs = len(tail)
+        self.graph = csr_matrix((capacity, (tail, head)), shape=(self.size, self.size))
+
+    def entry(self, vertex):
+        return vertex
+
+    def exit(self, vertex):
+        return vertex + len(self.floor.cells)
+
+    def route(self) -> dict[int, list[Cell]] | None:
+        """Each start's cells at steps 0..H, or ``None`` when not every robot gets through."""
+        result = maximum_flow(self.graph, self.source, self.sink)
+        if result.flow_value < len(self.starts):
+            return None
+        flow = result.flow.tocsr()
+        flow.eliminate_zeros()
+        successor: dict[int, int] = {}
+        rows = np.repeat(np.arange(self.size), np.diff(flow.indptr))
+        for tail, head, amount in zip(rows, flow.indices, flow.data):
+            if amount > 0 and tail not in (self.source, self.idle):
+                successor[int(tail)] = int(head)
+        cells = len(self.floor.cells)
+        paths = {}
+        for number, start in enumerate(self.starts):
+            node, path = self.entry(self.floor.index[start]), []
+            while node not in (self.sink, self.idle):
+                local = node % self.layer
+                if local < cells:  # an in-node: the robot stands on this cell at this step
+                    path.append(self.floor.cells[local])
+                node = successor[node]
+            paths[number] = path
+        return paths
+
+
+def plan_of_paths(robots: list[int], paths: dict[int, list[Cell]]) -> Plan:
+    """The move actions that take each robot along its path (standing still = no action)."""
+    actions = []
+    for number, path in paths.items():
+        for step in range(1, len(path)):
+            (x0, y0), (x1, y1) = path[step - 1], path[step]
+            if (x0, y0) != (x1, y1):
+                actions.append(Action(step, robots[number], "move", (x1 - x0, y1 - y0)))
+    return Plan(actions)
+
+
+def flow_plan(instance: Instance, horizon: int | None = None, time_limit: float | None = None,
+              should_stop: Callable[[], bool] = lambda: False,
+              on_attempt: Callable[[FlowAttempt], None] | None = None) -> FlowSearch:
+    """A plan of minimal makespan for an M/Md instance (or the plan for a fixed ``horizon``).
+
+    Without ``horizon`` the search starts at the bottleneck-assignment lower bound and goes
+    up one step at a time; the first feasible horizon is the minimal makespan.
+    """
+    started = time.perf_counter()
+    floor = Floor(instance.cells)
+    robots = sorted(instance.robots)
+    starts = [instance.robots[r].at for r in robots]
+    goals = goal_cells(instance)
+    bound, _ = mapf_bounds(instance, floor)
+    search = FlowSearch(None, None, False, bound)
+    if any(cell not in floor.index for cell in starts + goals) or not np.isfinite(bound):
+        search.minimal = True  # some goal can be reached by no robot: no plan at any horizon
+        return search
+    first = horizon if horizon is not None else int(bound)
+    last = horizon if horizon is not None else int(bound) + len(robots) + len(floor.cells)
+    for current in range(first, last + 1):
+        if should_stop():
+            search.stopped = "cancelled"
+            break
+        if time_limit is not None and time.perf_counter() - started > time_limit:
+            search.stopped = "time limit"
+            break
+        tried = time.perf_counter()
+        network = TimeExpandedNetwork(floor, starts, goals, current)
+        paths = network.route()
+        attempt = FlowAttempt(current, paths is not None, time.perf_counter() - tried,
+                              network.size, network.arcs)
+        search.attempts.append(attempt)
+        if on_attempt is not None:
+            on_attempt(attempt)
+        if paths is not None:
+            search.plan = plan_of_paths(robots, paths)
+            search.horizon = current
+            search.minimal = horizon is None or current <= bound
+            break
+    return search
