@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import os
 import subprocess
 import sys
@@ -115,6 +116,30 @@ def test_headless_command_reads_piped_input_without_a_screen(tmp_path):
     assert result.returncode == 0, result.stderr
     assert result.stderr.endswith(f"wrote {out}: {WIDTH}x{HEIGHT}\n")
     assert Image.open(out).size == (WIDTH, HEIGHT)
+
+
+def test_plan_from_standard_input(qapp, tmp_path, monkeypatch, capsys):
+    plan = "".join(line + " " for line in OUTCOME.read_text().splitlines() if line.startswith("occurs"))
+    monkeypatch.setattr(sys, "stdin", io.StringIO(f"Answer: 1\n{plan}\nSATISFIABLE\n"))
+    out = tmp_path / "end.png"
+    assert viz(SMALL_A, "-", "--export", out, "--step", 29) == 0
+    assert capsys.readouterr().err == f"wrote {out}: {WIDTH}x{HEIGHT}\n"
+
+
+def test_window_mode_checks_its_options_before_showing(qapp, monkeypatch, capsys, tmp_path):
+    from PyQt5.QtCore import QSettings, QStandardPaths
+    from PyQt5.QtWidgets import QApplication
+    default = QStandardPaths.writableLocation(QStandardPaths.GenericConfigLocation)
+    QSettings.setPath(QSettings.NativeFormat, QSettings.UserScope, str(tmp_path))  # not the user's
+    shown = []
+    monkeypatch.setattr(QApplication, "exec_", lambda self: shown.append(True) or 0)
+    assert viz(OUTCOME, "--step", 40) == 2
+    assert capsys.readouterr().err == "error: --step 40 lies beyond the plan, whose last step is 29\n"
+    try:
+        assert viz(OUTCOME, "--step", 5) == 0 and shown == [True]
+    finally:
+        QSettings.setPath(QSettings.NativeFormat, QSettings.UserScope, default)
+    assert "outcome.txt" in (tmp_path / "asprilo" / "viz.conf").read_text()  # remembered there
 
 
 def test_wrong_outcome_exports_despite_violations(qapp, tmp_path):

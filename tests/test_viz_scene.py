@@ -76,6 +76,12 @@ def test_objects_can_be_added_and_removed(qapp):
     scene.remove("robot", 7)
     scene.remove("shelf", 20)
     assert 7 not in scene.robots and 20 not in scene.shelves
+    tag = scene.stations[1].tag                  # the station's tag is drawn above robots
+    assert tag.scene() is scene and tag.zValue() > scene.robots[1].zValue()
+    scene.stations[1].setPos(style.centre((2, 2)))
+    assert style.cell_at(tag.pos()) == (2, 2)    # and follows it
+    scene.remove("station", 1)
+    assert tag.scene() is None
     assert sum(1 for item in scene.items() if getattr(item, "kind", "") == "robot") == 3
 
 

@@ -244,7 +244,11 @@ def _stripes() -> QPainterPath:
 
 
 class StationItem(QGraphicsRectItem, ObjectItem):
-    """A picking station: a striped yellow cell labelled ``PS<id>``."""
+    """A picking station: a striped yellow cell with a ``PS<id>`` tag.
+
+    The tag is an item of its own, drawn above robots and shelves, so a busy station
+    still shows; it follows the station wherever the station is put.
+    """
 
     kind = "station"
 
@@ -254,20 +258,33 @@ class StationItem(QGraphicsRectItem, ObjectItem):
         self.setBrush(style.STATION)
         self.setPen(NO_PEN)
         self.setZValue(Z_STATION)
+        self.setFlag(QGraphicsItem.ItemSendsGeometryChanges)
         stripes = QGraphicsPathItem(_stripes(), self)
         stripes.setBrush(style.STATION_STRIPES)
         stripes.setPen(NO_PEN)
         stripes.setScale(0.96)
-        self.plate = QGraphicsRectItem(self)
-        self.plate.setBrush(QColor(255, 255, 255, 215))
-        self.plate.setPen(NO_PEN)
-        self.label = Label(f"PS{ident}", 0.2 * CELL, style.STATION_TEXT, self.plate)
+        self.tag = QGraphicsRectItem()
+        self.tag.setBrush(QColor(255, 255, 255, 225))
+        self.tag.setPen(_pen(style.STATION_STRIPES, 0.02 * CELL))
+        self.tag.setZValue(Z_MARK)
+        self.label = Label(f"PS{ident}", 0.2 * CELL, style.STATION_TEXT, self.tag)
         box = self.label.mapRectToParent(self.label.boundingRect()).adjusted(-3, -1, 3, 1)
-        self.plate.setRect(box)
-        self.plate.setPos(-0.48 * CELL + box.width() / 2 + 2, -0.48 * CELL + box.height() / 2 + 2)
+        self.tag.setRect(box)
+        self._tag_offset = QPointF(-0.48 * CELL + box.width() / 2 + 2, -0.48 * CELL + box.height() / 2 + 2)
+
+    def itemChange(self, change, value):
+        if change == QGraphicsItem.ItemPositionHasChanged:
+            self.tag.setPos(self.pos() + self._tag_offset)
+        elif change == QGraphicsItem.ItemSceneHasChanged:
+            if self.tag.scene() is not None and self.tag.scene() is not self.scene():
+                self.tag.scene().removeItem(self.tag)
+            if self.scene() is not None and self.tag.scene() is None:
+                self.scene().addItem(self.tag)
+                self.tag.setPos(self.pos() + self._tag_offset)
+        return super().itemChange(change, value)
 
     def set_detail(self, fine: bool) -> None:
-        self.plate.setVisible(fine)
+        self.tag.setVisible(fine)
 
 
 class DestinationItem(QGraphicsEllipseItem, ObjectItem):
@@ -281,8 +298,7 @@ class DestinationItem(QGraphicsEllipseItem, ObjectItem):
         self.setBrush(QColor(style.DESTINATION.red(), style.DESTINATION.green(),
                              style.DESTINATION.blue(), 40))
         self.setZValue(Z_DESTINATION)
-        self.label = Label(f"D{ident}", 0.2 * CELL, style.DESTINATION, self)
-        self.label.centre_at(QPointF(0, 0.3 * CELL))
+        self.label = Label(f"D{ident}", 0.22 * CELL, style.DESTINATION, self)
         self.set_detail(True)
 
     def set_detail(self, fine: bool) -> None:

@@ -143,7 +143,7 @@ class WarehouseScene(QGraphicsScene):
         return QRectF(left, top, (max(xs) + margin) * CELL - left, (max(ys) + margin) * CELL - top)
 
     def _update_rect(self) -> None:
-        self.setSceneRect(self.picture_rect(margin=1.0))
+        self.setSceneRect(self.picture_rect(margin=0.5))
 
     # --- objects ------------------------------------------------------------------------
 

@@ -65,7 +65,7 @@ class WarehouseView(QGraphicsView):
         if self.scene() is None:
             return
         self._fitting = True
-        self.fitInView(self.scene().picture_rect(), Qt.KeepAspectRatio)
+        self.fitInView(self.scene().sceneRect(), Qt.KeepAspectRatio)
         self._zoomed()
 
     def centre_on_cell(self, cell: tuple[int, int]) -> None:

@@ -184,7 +184,7 @@ class MainWindow(QMainWindow):
         self.tabifyDockWidget(docks["robots"], docks["plan"])
         docks["orders"].raise_()
         docks["robots"].raise_()
-        self.resizeDocks([docks["orders"]], [520], Qt.Horizontal)
+        self.resizeDocks([docks["orders"]], [560], Qt.Horizontal)
         return docks
 
     # --- opening files ---------------------------------------------------------------------
@@ -482,19 +482,22 @@ class MainWindow(QMainWindow):
     # --- recent files, drag and drop, closing --------------------------------------------------
 
     def recent(self) -> list[dict]:
-        entries = self.settings.value("recent", []) or []
-        if isinstance(entries, str):
-            entries = [entries]
-        return [json.loads(entry) for entry in entries]
+        """Recently opened files, newest first: ``{"instance": [paths], "plans": [paths]}``."""
+        try:
+            entries = json.loads(str(self.settings.value("recent", "[]")))
+        except ValueError:
+            return []
+        return [e for e in entries if isinstance(e, dict) and {"instance", "plans"} <= set(e)]
 
     def remember(self, scenario: Scenario) -> None:
+        """Put the scenario's files first in the recent files (standard input is not kept)."""
         instances, plans = scenario.files
         if not instances:
             return
         entry = {"instance": [str(Path(p).resolve()) for p in instances],
                  "plans": [str(Path(p).resolve()) for p in plans]}
         entries = [entry] + [e for e in self.recent() if e != entry]
-        self.settings.setValue("recent", [json.dumps(e) for e in entries[:RECENT_LIMIT]])
+        self.settings.setValue("recent", json.dumps(entries[:RECENT_LIMIT]))
 
     def _fill_recent(self) -> None:
         self.recent_menu.clear()
