@@ -84,6 +84,16 @@ def test_mp4(qapp, tmp_path):
     assert frames == 59
 
 
+def test_mp4_without_pyav_says_what_to_install(qapp, tmp_path, monkeypatch, capsys):
+    from asprilo.visualizer import export
+    real = export.importlib.util.find_spec
+    monkeypatch.setattr(export.importlib.util, "find_spec", lambda name: None if name == "av" else real(name))
+    assert viz(OUTCOME, "--export", tmp_path / "plan.mp4") == 2
+    assert capsys.readouterr().err == (f"error: {tmp_path / 'plan.mp4'}: MP4 export needs PyAV "
+                                       "(pip install av); .gif works without it\n")
+    assert list(tmp_path.iterdir()) == []
+
+
 @pytest.mark.parametrize("args, message", [
     (["missing.lp", "--export", "{tmp}/x.png"], "error: missing.lp: no such file\n"),
     ([OUTCOME, "--export", "{tmp}/x.bmp"],

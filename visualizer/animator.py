@@ -41,6 +41,7 @@ class Animator:
         self._carrier_shown = np.array([-2 if shelf.carried else -1 for shelf in self.shelf_items],
                                        dtype=np.int32)
         self._marked_step: int | None = None
+        self._flagged: list = []  # items marked red now
         self._cell_marks: list[CellMark] = []
         self._badge_step: int | None = None
         self._badges: list[tuple[Badge, RobotItem]] = []
@@ -90,11 +91,13 @@ class Animator:
         robots.update(track.robot_ids[i] for i in np.flatnonzero(track.off_floor[step]).tolist())
         shelves = {shelf for v in violations for shelf in v.shelves}
         cells = {cell for v in violations for cell in v.cells}
-        for item in self.robot_items:
-            item.set_flagged(item.ident in robots)
-        for item in self.shelf_items:
-            if item.flagged != (item.ident in shelves):
-                item.set_flagged(item.ident in shelves)
+        flagged = set(self._flagged)
+        self._flagged = [self.scene.robots[r] for r in robots if r in self.scene.robots]
+        self._flagged += [self.scene.shelves[s] for s in shelves if s in self.scene.shelves]
+        for item in flagged.difference(self._flagged):
+            item.set_flagged(False)
+        for item in self._flagged:
+            item.set_flagged(True)
         for mark in self._cell_marks:
             self.scene.removeItem(mark)
         self._cell_marks = [CellMark(style.cell_rect(cell)) for cell in sorted(cells)]

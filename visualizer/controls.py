@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-from PyQt5.QtCore import QPoint, QRect, Qt
+from PyQt5.QtCore import QPoint, Qt
 from PyQt5.QtGui import QPainter, QPen
 from PyQt5.QtWidgets import (QAction, QComboBox, QHBoxLayout, QLabel, QSlider, QSpinBox, QStyle,
                              QStyleOptionSlider, QToolButton, QWidget)

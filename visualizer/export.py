@@ -6,6 +6,7 @@ an interrupted export never leaves half a file.  MP4 needs PyAV (``pip install a
 
 from __future__ import annotations
 
+import importlib.util
 import math
 import os
 import tempfile
@@ -152,12 +153,8 @@ def save_animation(path: str | Path, animator: Animator, frames_per_step: int = 
     suffix = export_format(path)
     if suffix not in ANIMATIONS:
         raise InputError(f"{suffix} is a picture format; animations are .gif or .mp4", str(path))
-    if suffix == ".mp4":
-        try:
-            import av  # noqa: F401
-        except ImportError:
-            raise InputError("MP4 export needs PyAV (pip install av); .gif works without it",
-                             str(path)) from None
+    if suffix == ".mp4" and importlib.util.find_spec("av") is None:
+        raise InputError("MP4 export needs PyAV (pip install av); .gif works without it", str(path))
     scene, horizon = animator.scene, animator.track.horizon
     cell_px = cell_px or default_cell_px(scene)
     times = animation_times(horizon, frames_per_step)

@@ -8,9 +8,9 @@ from typing import Iterable
 
 from PyQt5.QtCore import QPointF, QSettings, Qt
 from PyQt5.QtGui import QKeySequence
-from PyQt5.QtWidgets import (QAction, QActionGroup, QApplication, QDockWidget, QFileDialog,
+from PyQt5.QtWidgets import (QAction, QApplication, QDockWidget, QFileDialog,
                              QInputDialog, QLabel, QMainWindow, QMessageBox,
-                             QProgressDialog, QToolBar)
+                             QProgressDialog, QSizePolicy, QToolBar)
 
 from asprilo.errors import InputError
 from asprilo.model import Instance
@@ -100,6 +100,7 @@ class MainWindow(QMainWindow):
         self.panels["violations"].row_activated.connect(self.show_violation)
         self.panels["robots"].table.selectionModel().selectionChanged.connect(self._robots_picked)
         self.status = QLabel(self)
+        self.status.setSizePolicy(QSizePolicy.Ignored, QSizePolicy.Preferred)  # clipped, never overlapping
         self.problems = QLabel(self)
         self.statusBar().addWidget(self.status, 1)
         self.statusBar().addPermanentWidget(self.problems)
