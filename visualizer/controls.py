@@ -83,7 +83,6 @@ class TransportBar(QWidget):
         self.slider.valueChanged.connect(self._slider_moved)
         layout.addWidget(self.slider, 1)
         self.label = QLabel(self)
-        self.label.setMinimumWidth(self.label.fontMetrics().horizontalAdvance("state after step 0000 of 0000"))
         layout.addWidget(self.label)
         layout.addWidget(QLabel("go to", self))
         self.spin = QSpinBox(self)
@@ -112,7 +111,9 @@ class TransportBar(QWidget):
             widget.blockSignals(True)
             widget.setRange(0, horizon)
             widget.blockSignals(False)
-        self.setEnabled(True)
+        # a fixed width: the text changes every frame and must not shake the window's layout
+        texts = (time_text(0, horizon), time_text(horizon, horizon), time_text(horizon - 0.5, horizon))
+        self.label.setFixedWidth(max(self.label.fontMetrics().horizontalAdvance(t) for t in texts) + 8)
         self._show_time(self.player.time)
         self._show_step(self.player.step)
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import gc
 import json
 from pathlib import Path
 from typing import Iterable
@@ -234,6 +235,7 @@ class MainWindow(QMainWindow):
         """Build scene, states and panels for ``scenario`` (``None``: the empty window)."""
         time = self.player.time if keep_time else 0.0
         self.player.pause()
+        gc.unfreeze()  # what the last scenario froze may now be collected
         self.scenario = scenario
         old_scene = self.scene
         if scenario is None:
@@ -264,6 +266,9 @@ class MainWindow(QMainWindow):
         self.player.set_horizon(horizon, time)  # shows that time on the new scene and panels
         self.select_robots(self.selected)
         self._show_summary()
+        # Exempt the scenario's many long-lived objects from the garbage collector's full
+        # passes: over a big warehouse one takes ~0.1 s and would stall the animation.
+        gc.freeze()
 
     # --- following the time ------------------------------------------------------------------
 
