@@ -9,7 +9,7 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 import pytest  # noqa: E402
 
 from asprilo.reader import read_instance, read_plan  # noqa: E402
-from asprilo.visualizer.describe import action_text, tooltip  # noqa: E402
+from asprilo.visualizer.describe import action_text, actions_text, tooltip  # noqa: E402
 from asprilo.visualizer.inventory import InventoryModel  # noqa: E402
 from asprilo.visualizer.orders import OrdersModel  # noqa: E402
 from asprilo.visualizer.plan_list import PlanModel  # noqa: E402
@@ -158,3 +158,5 @@ def test_action_texts():
     assert action_text(Action(1, 1, "move", (0, -1))) == "move up"
     assert action_text(Action(1, 1, "deliver", (2, 5))) == "deliver product 5 to order 2"
     assert action_text(Action(1, 1, "jump", (1, 2))) == "jump(1,2)"
+    assert actions_text([]) == "wait"
+    assert actions_text([Action(1, 1, "move", (1, 0)), Action(1, 1, "pickup")]) == "move right + pick up"

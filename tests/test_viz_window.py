@@ -225,7 +225,7 @@ def test_reload_rereads_files_and_keeps_the_step(window, tmp_path):
     window.go_to(10)
     instance.write_text(OUTCOME.read_text().replace("init(object(robot,1),value(at,(1,6))).",
                                                     "init(object(robot,1),value(at,(1,5)))."))
-    qt_reload = window.actions["reload"]
+    qt_reload = window.commands["reload"]
     qt_reload.trigger()
     assert window.player.step == 10
     assert window.track.state(0).robots[1] == (1, 5)

@@ -47,6 +47,7 @@ class Animator:
         self._badges: list[tuple[Badge, RobotItem]] = []
         self.highlighted: Violation | None = None
         self.time = 0.0
+        self._nearest = 0  # the state nearest to the time shown
 
     def show(self, time: float) -> None:
         """Place everything as it is at ``time`` (fractions interpolate between two states)."""
@@ -55,18 +56,18 @@ class Animator:
         self.time = step + fraction
         _move(self.robot_items, track.robot_positions(self.time), self._robot_shown)
         moved = _move(self.shelf_items, track.shelf_positions(self.time), self._shelf_shown)
-        nearest = step + 1 if fraction >= 0.5 else step
-        carriers = track.carrier[nearest]
+        self._nearest = step + 1 if fraction >= 0.5 else step
+        carriers = track.carrier[self._nearest]
         if self._show_carriers(carriers) or (carriers[moved] < 0).any():
             self.scene.refresh_shelf_layer()  # a shelf was picked up, put down or moved while resting
-        self._show_marks(nearest)
+        self._show_marks(self._nearest)
         self._show_badges(step if fraction > 0 else None, fraction)
 
     def highlight(self, violation: Violation | None) -> None:
         """Keep the objects of ``violation`` marked whatever the time (``None``: stop)."""
         self.highlighted = violation
         self._marked_step = None
-        self._show_marks(self.track.split(self.time)[0])
+        self._show_marks(self._nearest)
 
     # --- the parts of a frame ------------------------------------------------------------
 
@@ -114,7 +115,7 @@ class Animator:
             self._badges = []
             if segment is not None:
                 self._badges = [(badge, self.scene.robots[action.robot])
-                                for action in self.track.plan.at_step(segment + 1)
+                                for action in self.track.actions_at(segment + 1)
                                 if (badge := _badge(action, self.scene)) is not None]
                 for badge, _robot in self._badges:
                     self.scene.addItem(badge)

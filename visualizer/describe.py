@@ -37,6 +37,11 @@ def action_text(action: Action | None) -> str:
     return f"{action.name}{format_value(args) if args != () else ''}"
 
 
+def actions_text(actions: list[Action]) -> str:
+    """What a robot does at a step: ``wait``, one action, or several joined by ``+``."""
+    return " + ".join(action_text(action) for action in actions) or "wait"
+
+
 def _lines(title: str, rows: list[str]) -> str:
     return f"<b>{escape(title)}</b>" + "".join(f"<br>{escape(row)}" for row in rows)
 
@@ -49,9 +54,9 @@ def robot_lines(track: Track, robot: int, step: int) -> list[str]:
     rows = [f"at {cell_text(cell)}" + ("  — not a node!" if track.off_floor[step, index] else ""),
             f"carries shelf {shelf}" if shelf is not None else "carries nothing"]
     if step >= 1:
-        rows.append(f"step {step}: {action_text(track.action(robot, step))}")
+        rows.append(f"step {step}: {actions_text(track.actions(robot, step))}")
     if step < track.horizon:
-        rows.append(f"next (step {step + 1}): {action_text(track.action(robot, step + 1))}")
+        rows.append(f"next (step {step + 1}): {actions_text(track.actions(robot, step + 1))}")
     rows.append(f"idle {int(track.idle[step, index])} of {step} steps")
     return rows
 

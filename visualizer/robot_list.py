@@ -6,7 +6,7 @@ from typing import Any
 
 from PyQt5.QtGui import QColor
 
-from .describe import action_text, cell_text
+from .describe import actions_text, cell_text
 from .tables import PROBLEM, StepModel
 from .track import Track
 
@@ -30,9 +30,9 @@ class RobotsModel(StepModel):
         if column == 2:
             return track.state(step).carries.get(robot)
         if column == 3:
-            return action_text(track.action(robot, step)) if step >= 1 else ""
+            return actions_text(track.actions(robot, step)) if step >= 1 else ""
         if column == 4:
-            return action_text(track.action(robot, step + 1)) if step < track.horizon else ""
+            return actions_text(track.actions(robot, step + 1)) if step < track.horizon else ""
         return int(track.idle[step, track.robot_index[robot]])
 
     def text(self, robot: int, column: int) -> str:

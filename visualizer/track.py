@@ -33,8 +33,8 @@ class Track:
         self.shelf_ids: list[int] = sorted(set(instance.shelves) | set(initial.shelves))
         self.robot_index = {robot: i for i, robot in enumerate(self.robot_ids)}
         self.shelf_index = {shelf: i for i, shelf in enumerate(self.shelf_ids)}
-        self.robot_xy = np.array([[state.robots.get(r, (0, 0)) for r in self.robot_ids]
-                                  for state in self.states], dtype=np.float64).reshape(self.horizon + 1, len(self.robot_ids), 2)
+        self.robot_xy = np.array([[state.robots.get(r, (0, 0)) for r in self.robot_ids] for state in self.states],
+                                 dtype=np.float64).reshape(self.horizon + 1, len(self.robot_ids), 2)
         self.carrier = np.full((self.horizon + 1, len(self.shelf_ids)), -1, dtype=np.int32)
         for t, state in enumerate(self.states):
             for robot, shelf in state.carries.items():
@@ -42,8 +42,10 @@ class Track:
                     self.carrier[t, self.shelf_index[shelf]] = self.robot_index[robot]
         self.shelf_xy = self._shelf_positions()
 
-        self.actions: dict[tuple[int, int], Action] = {
-            (action.step, action.robot): action for action in plan.actions if action.kind == "robot"}
+        self._actions: dict[tuple[int, int], list[Action]] = {}
+        for action in plan.actions:
+            if action.kind == "robot":
+                self._actions.setdefault((action.step, action.robot), []).append(action)
         self.violations_at: dict[int, list[Violation]] = {}
         for violation in self.violations:
             self.violations_at.setdefault(violation.step, []).append(violation)
@@ -87,15 +89,24 @@ class Track:
     def state(self, step: int) -> State:
         return self.states[min(max(step, 0), self.horizon)]
 
-    def action(self, robot: int, step: int) -> Action | None:
-        """What ``robot`` does at time step ``step`` (``None``: it waits)."""
-        return self.actions.get((step, robot))
+    def actions(self, robot: int, step: int) -> list[Action]:
+        """What ``robot`` does at time step ``step``: nothing (it waits), one action, or
+        several (an invalid plan)."""
+        return self._actions.get((step, robot), [])
+
+    def actions_at(self, step: int) -> list[Action]:
+        """The plan's actions at time step ``step``."""
+        return self._by_step.get(step, [])
+
+    @cached_property
+    def _by_step(self) -> dict[int, list[Action]]:
+        return self.plan.by_step()
 
     @cached_property
     def idle(self) -> np.ndarray:
         """(horizon+1, robots): steps 1..t at which each robot did nothing."""
         busy = np.zeros((self.horizon + 1, len(self.robot_ids)), dtype=np.int32)
-        for step, robot in self.actions:
+        for step, robot in self._actions:
             if robot in self.robot_index and 1 <= step <= self.horizon:
                 busy[step, self.robot_index[robot]] = 1
         waiting = 1 - busy

@@ -83,9 +83,9 @@ class MainWindow(QMainWindow):
         self.view.describe = self._describe
         self.view.clicked.connect(self._clicked)
         self.setCentralWidget(self.view)
-        self.actions = self._make_actions()
+        self.commands = self._make_actions()
         self._make_menus()
-        self.transport = TransportBar(self.player, self.actions, self)
+        self.transport = TransportBar(self.player, self.commands, self)
         bar = QToolBar("Playback", self)
         bar.setObjectName("playback")
         bar.setMovable(False)
@@ -130,7 +130,7 @@ class MainWindow(QMainWindow):
             "forward": self.player.step_forward, "back": self.player.step_back,
             "start": self.player.to_start, "end": self.player.to_end, "goto": self.ask_go_to,
             "faster": self.player.faster, "slower": self.player.slower,
-            "loop": lambda: self.player.set_loop(self.actions["loop"].isChecked()),
+            "loop": lambda: self.player.set_loop(self.commands["loop"].isChecked()),
             "shortcuts": self.show_shortcuts,
         }
         actions = {}
@@ -154,22 +154,22 @@ class MainWindow(QMainWindow):
         menus = self.menuBar()
         file = menus.addMenu("&File")
         for name in ("open", "open_plan", "reload"):
-            file.addAction(self.actions[name])
+            file.addAction(self.commands[name])
         self.recent_menu = file.addMenu("Recent &files")
         self.recent_menu.aboutToShow.connect(self._fill_recent)
         file.addSeparator()
-        file.addAction(self.actions["export_picture"])
-        file.addAction(self.actions["export_animation"])
+        file.addAction(self.commands["export_picture"])
+        file.addAction(self.commands["export_animation"])
         file.addSeparator()
-        file.addAction(self.actions["quit"])
+        file.addAction(self.commands["quit"])
         view = menus.addMenu("&View")
         for name in ("zoom_in", "zoom_out", "fit", None, "paths", "whole_paths", "select_all", "select_none"):
-            view.addSeparator() if name is None else view.addAction(self.actions[name])
+            view.addSeparator() if name is None else view.addAction(self.commands[name])
         self.panels_menu = view.addMenu("&Panels")
         play = menus.addMenu("&Play")
         for name in ("play", "forward", "back", "start", "end", "goto", None, "faster", "slower", "loop"):
-            play.addSeparator() if name is None else play.addAction(self.actions[name])
-        menus.addMenu("&Help").addAction(self.actions["shortcuts"])
+            play.addSeparator() if name is None else play.addAction(self.commands[name])
+        menus.addMenu("&Help").addAction(self.commands["shortcuts"])
 
     def _make_docks(self) -> dict[str, QDockWidget]:
         titles = {"orders": "Orders", "inventory": "Inventory", "robots": "Robots", "plan": "Plan",
@@ -288,7 +288,7 @@ class MainWindow(QMainWindow):
 
     def _show_playing(self, playing: bool) -> None:
         icon = "SP_MediaPause" if playing else "SP_MediaPlay"
-        self.actions["play"].setIcon(self.style().standardIcon(getattr(self.style(), icon)))
+        self.commands["play"].setIcon(self.style().standardIcon(getattr(self.style(), icon)))
 
     def go_to(self, step: int) -> None:
         """Stop playing and show the state after ``step``."""
@@ -351,8 +351,8 @@ class MainWindow(QMainWindow):
     def _show_trails(self) -> None:
         if self.trails is None:
             return
-        shown = self.selected if self.actions["paths"].isChecked() else []
-        mode = PathMode.WHOLE if self.actions["whole_paths"].isChecked() else PathMode.REMAINING
+        shown = self.selected if self.commands["paths"].isChecked() else []
+        mode = PathMode.WHOLE if self.commands["whole_paths"].isChecked() else PathMode.REMAINING
         self.trails.show(shown, self.player.step, mode)
 
     # --- what the window says ------------------------------------------------------------------
