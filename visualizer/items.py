@@ -156,17 +156,17 @@ class ShelfItem(QGraphicsPathItem, ObjectItem):
     flag_size = style.SHELF_SIZE + 0.1
 
     def __init__(self, ident: int):
-        super().__init__(_rack_path(style.SHELF_SIZE))
+        super().__init__()
         self.init_object(ident)
         self.setZValue(Z_SHELF)
         self.shadow: QGraphicsPathItem | None = None
         self.carrier: QColor | None = None
         self.fine = True
+        self._look: tuple | None = None  # (fine, carrier) the item is styled for
         self._restyle()
 
     def set_detail(self, fine: bool) -> None:
         self.fine = fine
-        self.setPath(_rack_path(style.SHELF_SIZE) if fine else _block_path(style.SHELF_SIZE))
         self._restyle()
 
     def set_carrier(self, colour: QColor | None) -> None:
@@ -186,8 +186,14 @@ class ShelfItem(QGraphicsPathItem, ObjectItem):
 
     def _restyle(self) -> None:
         carried = self.carrier is not None
-        # at coarse detail resting shelves are drawn by the scene's ShelfLayer
-        self.setVisible(self.fine or carried or self.flagged)
+        # at coarse detail resting shelves are drawn by the scene's ShelfLayer instead
+        visible = self.fine or carried or self.flagged
+        self.setVisible(visible)
+        look = (self.fine, self.carrier.rgba() if carried else None)
+        if not visible or look == self._look:
+            return
+        self._look = look
+        self.setPath(_rack_path(style.SHELF_SIZE) if self.fine else _block_path(style.SHELF_SIZE))
         self.setBrush(style.SHELF if carried else style.RESTING_SHELF)
         if carried:
             self.setPen(_pen(self.carrier, (0.1 if self.fine else 0.2) * CELL))
