@@ -93,12 +93,12 @@ def _export(args: argparse.Namespace, scenario) -> int:
     from .scene import WarehouseScene
     from .track import Track
 
-    export.export_format(args.export)
+    suffix = export.export_format(args.export)  # a bad name fails before any work
     app = _application()  # noqa: F841 (Qt objects below need it alive)
     track = Track(scenario.instance, scenario.plan, scenario.domain)
     scene = WarehouseScene(scenario.instance)
     animator = Animator(scene, track)
-    if export.export_format(args.export) in export.ANIMATIONS:
+    if suffix in export.ANIMATIONS:
         def progress(done: int, total: int) -> None:
             if done == total or done % 50 == 0:
                 print(f"\rrendering frame {done}/{total}", end="\n" if done == total else "", file=sys.stderr)

@@ -60,6 +60,17 @@ def caption_height(cell_px: int) -> int:
     return max(18, cell_px // 2)
 
 
+@contextmanager
+def _detail_for(scene: WarehouseScene, cell_px: int) -> Iterator[None]:
+    """Give the scene the look that suits ``cell_px`` while exporting, then the one it had."""
+    fine = scene.fine
+    scene.set_detail(cell_px >= style.FINE_DETAIL_PX)
+    try:
+        yield
+    finally:
+        scene.set_detail(fine)
+
+
 def render(scene: WarehouseScene, cell_px: int, caption: str | None = None) -> QImage:
     """The scene as an image, ``cell_px`` pixels per cell, with an optional caption line below."""
     size = image_size(scene, cell_px, caption is not None)
@@ -74,11 +85,8 @@ def render(scene: WarehouseScene, cell_px: int, caption: str | None = None) -> Q
 def _paint(painter: QPainter, scene: WarehouseScene, cell_px: int, width: int, height: int,
            caption: str | None) -> None:
     painter.setRenderHints(QPainter.Antialiasing | QPainter.TextAntialiasing)
-    fine = scene.fine
-    scene.set_detail(cell_px >= style.FINE_DETAIL_PX)
     floor_height = height - (caption_height(cell_px) if caption is not None else 0)
     scene.render(painter, QRectF(0, 0, width, floor_height), scene.picture_rect(), Qt.IgnoreAspectRatio)
-    scene.set_detail(fine)
     if caption is not None:
         painter.setPen(style.CAPTION)
         painter.setFont(style.font(caption_height(cell_px) * 0.6))
@@ -116,7 +124,7 @@ def save_picture(path: str | Path, scene: WarehouseScene, cell_px: int | None = 
         raise InputError(f"{suffix} is an animation format; pictures are .png, .jpg or .svg", str(path))
     cell_px = cell_px or default_cell_px(scene)
     size = image_size(scene, cell_px)
-    with _atomic(path) as temporary:
+    with _atomic(path) as temporary, _detail_for(scene, cell_px):
         if suffix == ".svg":
             _save_svg(temporary, scene, cell_px, size)
         elif not render(scene, cell_px).save(temporary, "JPEG" if suffix != ".png" else "PNG"):
@@ -169,7 +177,7 @@ def save_animation(path: str | Path, animator: Animator, frames_per_step: int = 
                 progress(number + 1, len(times))
 
     try:
-        with _atomic(path) as temporary:
+        with _atomic(path) as temporary, _detail_for(scene, cell_px):
             if suffix == ".gif":
                 _write_gif(temporary, frames(), frame_ms)
             else:

@@ -215,7 +215,7 @@ class ShelfLayer(QGraphicsPathItem):
 
     def __init__(self):
         super().__init__()
-        self.setBrush(style.SHELF)
+        self.setBrush(style.RESTING_SHELF)  # see-through, as the single shelves
         self.setPen(NO_PEN)
         self.setZValue(Z_SHELF)
 

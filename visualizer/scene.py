@@ -45,7 +45,7 @@ class Floor:
 
     def _image(self) -> QImage:
         """One pixel per cell, for drawing the floor when cells are tiny."""
-        palette = np.array([style.MISSING_HATCH.rgba(), style.STORAGE.rgba(), style.HIGHWAY.rgba()],
+        palette = np.array([style.MISSING_NODE.rgba(), style.STORAGE.rgba(), style.HIGHWAY.rgba()],
                            dtype=np.uint32)
         pixels = np.ascontiguousarray(palette[self.kinds])
         height, width = self.kinds.shape
@@ -71,7 +71,7 @@ class Floor:
         painter.fillRect(QRectF(x0 * CELL, y0 * CELL, (x1 - x0) * CELL, (y1 - y0) * CELL), style.GRID_LINE)
         window = self.kinds[y0:y1, x0:x1]
         gap = 0.035 * CELL
-        for kind, colour, inset in ((MISSING, style.MISSING_HATCH, 0.0), (STORAGE, style.STORAGE, gap),
+        for kind, colour, inset in ((MISSING, style.MISSING_NODE, 0.0), (STORAGE, style.STORAGE, gap),
                                     (HIGHWAY, style.HIGHWAY, gap)):
             ys, xs = np.nonzero(window == kind)
             if not len(xs):

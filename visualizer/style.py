@@ -22,7 +22,7 @@ FINE_DETAIL_PX = 12.0
 
 # the floor
 BACKGROUND = QColor("#dfe3e8")      # around the floor and where nodes are missing
-MISSING_HATCH = QColor("#c9ced6")
+MISSING_NODE = QColor("#c9ced6")
 STORAGE = QColor("#fbfbfc")
 HIGHWAY = QColor("#d8cdf2")         # the paper's purple highways, softened
 GRID_LINE = QColor("#c3c8d0")
