@@ -43,7 +43,7 @@ def test_png_of_a_state(qapp, tmp_path, capsys):
 
 
 def test_png_cell_size_and_instance_without_plan(qapp, tmp_path):
-    out = tmp_path / "floor.png"
+    out = tmp_path / "new" / "floor.png"  # folders are made as needed
     assert viz(SMALL_A, "--export", out, "--cell", 20) == 0
     assert Image.open(out).size == (230, 130)
 
@@ -101,7 +101,6 @@ def test_mp4_without_pyav_says_what_to_install(qapp, tmp_path, monkeypatch, caps
     ([OUTCOME, "--export", "{tmp}/x.png", "--step", "30"],
      "error: --step 30 lies beyond the plan, whose last step is 29\n"),
     ([OUTCOME, "--export", "{tmp}/x.gif", "--frames", "0"], "error: --frames must be at least 1, got 0\n"),
-    ([OUTCOME, "--export", "{tmp}/no/such/folder/x.png"], "error: {tmp}/no/such/folder: the folder does not exist\n"),
     ([SMALL_A, "{tmp}/bad.lp", "--export", "{tmp}/x.png"], "error: {tmp}/bad.lp:2: syntax error, unexpected EOF\n"),
     ([SMALL_A, "{tmp}/other.lp", "--export", "{tmp}/x.png"],
      "error: {tmp}/other.lp:1: the plan moves robot 9, but the instance has robots 1..3 "

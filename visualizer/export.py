@@ -1,23 +1,24 @@
 """Pictures (PNG, JPEG, SVG) and animations (GIF, MP4) of the scene, with or without a window.
 
-Every file is written to a temporary name beside the target and renamed at the end, so
+Files are rendered in memory and written atomically (``asprilo.writer.write_bytes``), so
 an interrupted export never leaves half a file.  MP4 needs PyAV (``pip install av``).
 """
 
 from __future__ import annotations
 
 import importlib.util
+import io
 import math
-import os
-import tempfile
 from contextlib import contextmanager
+from fractions import Fraction
 from pathlib import Path
 from typing import Callable, Iterator
 
-from PyQt5.QtCore import QRectF, QSize, Qt
+from PyQt5.QtCore import QBuffer, QIODevice, QRectF, QSize, Qt
 from PyQt5.QtGui import QImage, QPainter
 
 from asprilo.errors import InputError
+from asprilo.writer import write_bytes
 
 from . import style
 from .animator import Animator
@@ -101,22 +102,6 @@ def step_caption(step: float, horizon: int) -> str:
     return f"step {whole} / {horizon}"
 
 
-@contextmanager
-def _atomic(path: str | Path) -> Iterator[str]:
-    """A temporary path beside ``path`` that replaces it once the block succeeds."""
-    path = Path(path)
-    if not path.parent.is_dir():
-        raise InputError("the folder does not exist", str(path.parent))
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.stem}.", suffix=path.suffix)
-    os.close(handle)
-    try:
-        yield temporary
-        os.chmod(temporary, 0o644)
-        os.replace(temporary, path)
-    finally:
-        Path(temporary).unlink(missing_ok=True)
-
-
 def save_picture(path: str | Path, scene: WarehouseScene, cell_px: int | None = None) -> QSize:
     """Write the scene as it stands to a PNG, JPEG or SVG file; returns the picture's size."""
     suffix = export_format(path)
@@ -124,18 +109,27 @@ def save_picture(path: str | Path, scene: WarehouseScene, cell_px: int | None = 
         raise InputError(f"{suffix} is an animation format; pictures are .png, .jpg or .svg", str(path))
     cell_px = cell_px or default_cell_px(scene)
     size = image_size(scene, cell_px)
-    with _atomic(path) as temporary, _detail_for(scene, cell_px):
+    with _detail_for(scene, cell_px):
         if suffix == ".svg":
-            _save_svg(temporary, scene, cell_px, size)
-        elif not render(scene, cell_px).save(temporary, "JPEG" if suffix != ".png" else "PNG"):
-            raise InputError("could not be written", str(path))
+            data = _svg(scene, cell_px, size)
+        else:
+            data = _encoded(render(scene, cell_px), "PNG" if suffix == ".png" else "JPEG")
+    write_bytes(path, data)
     return size
 
 
-def _save_svg(path: str, scene: WarehouseScene, cell_px: int, size: QSize) -> None:
+def _encoded(image: QImage, form: str) -> bytes:
+    buffer = QBuffer()
+    buffer.open(QIODevice.WriteOnly)
+    image.save(buffer, form)
+    return bytes(buffer.data())
+
+
+def _svg(scene: WarehouseScene, cell_px: int, size: QSize) -> bytes:
     from PyQt5.QtSvg import QSvgGenerator
+    buffer = QBuffer()
     generator = QSvgGenerator()
-    generator.setFileName(path)
+    generator.setOutputDevice(buffer)
     generator.setSize(size)
     generator.setResolution(96)  # so that viewers show it at its pixel size
     generator.setViewBox(QRectF(0, 0, size.width(), size.height()))
@@ -144,6 +138,7 @@ def _save_svg(path: str, scene: WarehouseScene, cell_px: int, size: QSize) -> No
     painter.fillRect(QRectF(0, 0, size.width(), size.height()), style.BACKGROUND)
     _paint(painter, scene, cell_px, size.width(), size.height(), None)
     painter.end()
+    return bytes(buffer.data())
 
 
 def animation_times(horizon: int, frames_per_step: int) -> list[float]:
@@ -177,13 +172,11 @@ def save_animation(path: str | Path, animator: Animator, frames_per_step: int = 
                 progress(number + 1, len(times))
 
     try:
-        with _atomic(path) as temporary, _detail_for(scene, cell_px):
-            if suffix == ".gif":
-                _write_gif(temporary, frames(), frame_ms)
-            else:
-                _write_mp4(temporary, frames(), frame_ms)
+        with _detail_for(scene, cell_px):
+            data = (_gif if suffix == ".gif" else _mp4)(frames(), frame_ms)
     finally:
         animator.show(shown)
+    write_bytes(path, data)
     return len(times)
 
 
@@ -195,19 +188,21 @@ def _pillow(image: QImage):
                             image.bytesPerLine(), 1).convert("RGB")
 
 
-def _write_gif(path: str, frames: Iterator[QImage], frame_ms: float) -> None:
+def _gif(frames: Iterator[QImage], frame_ms: float) -> bytes:
     pictures = [_pillow(frame).quantize(colors=255, method=2, dither=0) for frame in frames]
     durations = [max(20, int(round(frame_ms / 10)) * 10)] * len(pictures)
     durations[-1] += 1000  # hold the final state a moment before looping
-    pictures[0].save(path, format="GIF", save_all=True, append_images=pictures[1:],
+    out = io.BytesIO()
+    pictures[0].save(out, format="GIF", save_all=True, append_images=pictures[1:],
                      duration=durations, loop=0, optimize=False, disposal=1)
+    return out.getvalue()
 
 
-def _write_mp4(path: str, frames: Iterator[QImage], frame_ms: float) -> None:
+def _mp4(frames: Iterator[QImage], frame_ms: float) -> bytes:
     import av
-    from fractions import Fraction
     rate = Fraction(round(1000.0 / frame_ms * 100), 100)
-    with av.open(path, mode="w", format="mp4") as container:
+    out = io.BytesIO()
+    with av.open(out, mode="w", format="mp4") as container:
         stream = None
         for frame in frames:
             picture = _pillow(frame)
@@ -222,3 +217,4 @@ def _write_mp4(path: str, frames: Iterator[QImage], frame_ms: float) -> None:
         if stream is not None:
             for packet in stream.encode():
                 container.mux(packet)
+    return out.getvalue()
