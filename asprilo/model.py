@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from collections import defaultdict
 from dataclasses import dataclass, field
-from typing import Any, Iterator
+from typing import Any, Iterator, NamedTuple
 
 Cell = tuple[int, int]
 
@@ -136,8 +136,7 @@ class Instance:
                 f"_ps{c['stations']}_pr{c['products']}_u{c['units']}_o{c['orders']}_N{k}.lp")
 
 
-@dataclass(frozen=True, order=True)
-class Action:
+class Action(NamedTuple):
     """``occurs(object(Kind,Robot),action(Name,Args),Step)``.
 
     ``args`` is the action's argument term as a Python value: a tuple such as ``(1,0)`` or
@@ -160,7 +159,7 @@ class Plan:
     actions: list[Action] = field(default_factory=list)
 
     def __post_init__(self) -> None:
-        self.actions = sorted(set(self.actions), key=_action_key)
+        self.actions = sorted(dict.fromkeys(self.actions), key=_action_key)
 
     @property
     def horizon(self) -> int:
@@ -181,5 +180,9 @@ class Plan:
 
 
 def _action_key(action: Action) -> tuple:
-    robot = (0, action.robot, "") if isinstance(action.robot, int) else (1, 0, str(action.robot))
-    return (action.step, action.kind != "robot", action.kind, robot, action.name, repr(action.args))
+    """Order by step, then robot; actions that tie keep the order they were given in."""
+    step, robot, name, _args, kind = action
+    if kind == "robot" and type(robot) is int:
+        return (step, 0, "", 0, robot, name)
+    return (step, kind != "robot", kind, 1 if type(robot) is not int else 0,
+            robot if type(robot) is int else str(robot), name)

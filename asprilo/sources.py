@@ -145,7 +145,7 @@ def _init_fact(match: re.Match) -> tuple:
 
 def _occurs_fact(match: re.Match) -> tuple:
     kind, ident, name, args, step = match.groups()
-    values = tuple(int(v) for v in args.split(",")) if args.strip() else ()
+    values = tuple(map(int, args.split(","))) if args.strip() else ()
     return (kind, int(ident), name, values, int(step))
 
 
