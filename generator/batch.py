@@ -1,0 +1,174 @@
+"""YAML batch files (``gen -j FILE``): many runs from one preset tree.
+
+    global_settings: { '-N': 30, '-H': true }       # options of every run
+    run_configs:                                     # the tree of runs
+      1x2x4:                                         # a key is a directory level
+        args: { '-x': 11, '-y': 6, ... }             # a preset for everything below
+        r02: { args: { '-r': 2, '-o': 2 } }          # a leaf: one run, in 1x2x4/r02/
+        r05:
+          args:                                      # a list at a leaf: one run each
+            - { '-r': 5, '-o': 5 }
+            - { '-r': 5, '-o': 10, '-f': 'more-orders-' }
+        conf: { args: {...}, ... }                   # a sub-configuration without a directory level
+
+Nested nodes inherit their parents' args; only leaves run.  Keys are option flags (or field
+names); values are checked as on the command line.  Errors name the file and line.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, Iterator
+
+import yaml
+
+from asprilo.errors import InputError
+
+from .config import parse_values
+
+_NAME = re.compile(r"^[\w.+=@-]+$")
+
+
+@dataclass(frozen=True)
+class Run:
+    """One run of a batch: its directory below the output directory and its option values."""
+
+    path: tuple[str, ...]
+    index: int  # position among the runs of one leaf (several when args is a list)
+    values: dict[str, Any]
+    line: int
+
+    @property
+    def directory(self) -> str:
+        return "/".join(self.path)
+
+
+class _Mapping(dict):
+    """A YAML mapping that remembers the line of each key."""
+
+    line: int = 0
+    key_lines: dict
+
+
+class _Loader(yaml.SafeLoader):
+    pass
+
+
+def _construct_mapping(loader: _Loader, node: yaml.MappingNode) -> _Mapping:
+    loader.flatten_mapping(node)
+    mapping = _Mapping()
+    mapping.line = node.start_mark.line + 1
+    mapping.key_lines = {}
+    for key_node, value_node in node.value:
+        key = loader.construct_object(key_node, deep=True)
+        line = key_node.start_mark.line + 1
+        if not isinstance(key, (str, int)):
+            raise InputError(f"a key must be a name, got {key!r}", loader.name, line)
+        if key in mapping:
+            raise InputError(f"duplicate key {key!r}", loader.name, line)
+        mapping[key] = loader.construct_object(value_node, deep=True)
+        mapping.key_lines[key] = line
+    return mapping
+
+
+_Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _construct_mapping)
+
+
+def load_batch(path: str | Path) -> list[Run]:
+    """Read a batch file into its runs (leaves), each with its merged option values."""
+    path = Path(path)
+    if not path.is_file():
+        raise InputError("no such file" if not path.exists() else "is not a file", str(path))
+    text = path.read_text(encoding="utf-8")
+    loader = _Loader(text)
+    loader.name = str(path)
+    try:
+        document = loader.get_single_data()
+    except yaml.YAMLError as error:
+        mark = getattr(error, "problem_mark", None)
+        problem = getattr(error, "problem", None) or str(error)
+        raise InputError(f"not valid YAML: {problem}", str(path), mark.line + 1 if mark else None) from None
+    finally:
+        loader.dispose()
+    return list(_Batch(path).runs(document))
+
+
+class _Batch:
+    def __init__(self, path: Path):
+        self.path = path
+        self.name = str(path)
+
+    def fail(self, message: str, line: int | None) -> InputError:
+        return InputError(message, self.name, line)
+
+    def runs(self, document: Any) -> Iterator[Run]:
+        if not isinstance(document, _Mapping):
+            raise self.fail("a batch file is a mapping with global_settings and run_configs", 1)
+        for key in document:
+            if key not in ("global_settings", "run_configs"):
+                raise self.fail(f"unknown key {key!r} (expected global_settings, run_configs)",
+                                document.key_lines[key])
+        if "run_configs" not in document:
+            raise self.fail("no run_configs", document.line)
+        settings = document.get("global_settings") or {}
+        line = document.key_lines.get("global_settings", document.line)
+        preset = self.options(settings, line)
+        tree = document["run_configs"]
+        if not isinstance(tree, _Mapping):
+            raise self.fail("run_configs must be a mapping", document.key_lines["run_configs"])
+        yield from self.walk(tree, (), preset)
+
+    def options(self, args: Any, line: int) -> dict[str, Any]:
+        if not isinstance(args, dict):
+            raise self.fail(f"args must be a mapping of options, got {args!r}", line)
+        try:
+            values = parse_values(args)
+        except InputError as error:
+            line = getattr(args, "key_lines", {}).get(_first_bad_key(args, error), line)
+            raise error.at(self.name, line) from None
+        if "templates" in values:  # template files are relative to the batch file
+            values["templates"] = tuple(t if t == "-" else str(self.path.parent / t) for t in values["templates"])
+        return values
+
+    def walk(self, node: Any, path: tuple[str, ...], inherited: dict[str, Any]) -> Iterator[Run]:
+        line = getattr(node, "line", None)
+        if not isinstance(node, _Mapping):
+            raise self.fail(f"{'/'.join(path) or 'run_configs'}: expected a mapping "
+                            f"(args, conf or sub-directories), got {node!r}", line)
+        children = {key: value for key, value in node.items() if key not in ("args", "conf")}
+        confs = node.get("conf")
+        confs = [] if confs is None else confs if isinstance(confs, list) else [confs]
+        args = node.get("args", {})
+        args_line = node.key_lines.get("args", line)
+        leaf = not children and not confs
+        if isinstance(args, list):
+            if not leaf:
+                raise self.fail("a list of args (one run each) belongs to a leaf, not to a node "
+                                "with sub-configurations", args_line)
+            for index, item in enumerate(args):
+                values = {**inherited, **self.options(item, getattr(item, "line", args_line))}
+                yield Run(path, index, values, getattr(item, "line", args_line))
+            return
+        values = {**inherited, **self.options(args or {}, args_line)}
+        if leaf:
+            yield Run(path, 0, values, line)
+            return
+        for conf in confs:
+            yield from self.walk(conf, path, values)
+        for key, child in children.items():
+            name = str(key)
+            if not _NAME.match(name) or name in (".", ".."):
+                raise self.fail(f"{name!r} cannot name a directory", node.key_lines[key])
+            if child is None:
+                raise self.fail(f"{'/'.join(path + (name,))} is empty", node.key_lines[key])
+            yield from self.walk(child, path + (name,), values)
+
+
+def _first_bad_key(args: dict, error: InputError) -> Any:
+    """The key of ``args`` that an error message is about (its flag is quoted in the message)."""
+    for key in args:
+        if str(key) in error.message:
+            return key
+    return None
