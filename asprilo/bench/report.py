@@ -1,0 +1,183 @@
+"""Tables and plots of benchmark results, shaped like the paper's (Table 2 and the appendix).
+
+Average run times count every unsolved run (time-out, mem-out, no known makespan,
+invalid plan, error) at the time limit; the number in parentheses counts the unsolved
+runs, and ``!N`` flags N of them that failed (invalid plan or error) rather than ran out of
+time or memory.  ``*`` marks the best encoding of each domain and instance set: fewest
+unsolved runs, then least average time.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+from collections import defaultdict
+from dataclasses import dataclass
+from pathlib import Path
+from statistics import mean
+from typing import Iterable
+
+FAILED = ("invalid", "error")
+
+
+@dataclass
+class Cell:
+    """The runs of one (domain, encoding) on one group of instances."""
+
+    times: list[float]
+    unsolved: int
+    failed: int
+
+    @property
+    def average(self) -> float:
+        return mean(self.times) if self.times else 0.0
+
+    def text(self, best: bool = False) -> str:
+        seconds = f"{self.average:.1f}" if self.average < 10 else f"{self.average:.0f}"
+        flag = f" !{self.failed}" if self.failed else ""
+        return f"{seconds}({self.unsolved}){flag}{'*' if best else ''}"
+
+
+def _cell(records: list[dict]) -> Cell:
+    times = [r["time"] if r["status"] == "solved" else r["time_limit"] for r in records]
+    unsolved = sum(r["status"] != "solved" for r in records)
+    return Cell(times, unsolved, sum(r["status"] in FAILED for r in records))
+
+
+def _ordered(values: Iterable, order: list) -> list:
+    present = set(values)
+    return [v for v in order if v in present] + sorted(present - set(order), key=str)
+
+
+def _rows(records: list[dict]) -> list[tuple[str, str]]:
+    seen: dict[tuple[str, str], None] = {}
+    for record in records:
+        seen[(record["label"], record["encoding"])] = None
+    return list(seen)
+
+
+def _table(header: list[str], rows: list[list[str]]) -> str:
+    widths = [max(len(row[i]) for row in [header, *rows]) for i in range(len(header))]
+    lines = ["  ".join(text.ljust(width) for text, width in zip(row, widths)).rstrip()
+             for row in [header, *rows]]
+    lines.insert(1, "  ".join("-" * width for width in widths))
+    return "\n".join(lines)
+
+
+def _makespans(records: list[dict], label: str, sets: list[str]) -> str:
+    parts = []
+    for name in sets:
+        spans = {(r["instance"], r["horizon"]) for r in records
+                 if r["label"] == label and r["set"] == name and r.get("horizon") is not None}
+        parts.append(f"{mean(h for _i, h in spans):.0f}" if spans else "-")
+    return "/".join(parts)
+
+
+def grouped_table(records: list[dict], column_of, columns: list, caption: str) -> str:
+    """Rows (domain, encoding), one column per value of ``column_of(record)``."""
+    groups: dict[tuple, list[dict]] = defaultdict(list)
+    for record in records:
+        groups[(record["label"], record["encoding"], column_of(record))].append(record)
+    rows = _rows(records)
+    cells = {key: _cell(runs) for key, runs in groups.items()}
+    best = set()
+    for label in {label for label, _e in rows}:
+        for column in columns:
+            candidates = [(cells[(label, e, column)].unsolved, cells[(label, e, column)].average, e)
+                          for l, e in rows if l == label and (label, e, column) in cells]
+            if len(candidates) > 1:
+                best.add((label, min(candidates)[2], column))
+    sets = _ordered({r["set"] for r in records}, [])
+    body, previous = [], None
+    for label, encoding in rows:
+        first = label != previous
+        previous = label
+        makespan = _makespans(records, label, sets) if first else ""
+        body.append([label if first else "", makespan, encoding] +
+                    [cells[(label, encoding, c)].text((label, encoding, c) in best)
+                     if (label, encoding, c) in cells else "-" for c in columns])
+    header = ["domain", "makespan", "encoding", *map(str, columns)]
+    return f"{caption}\n\n{_table(header, body)}"
+
+
+def summary(records: list[dict], set_order: list[str] | None = None) -> str:
+    """The paper's summary table: average time (unsolved runs) per domain x encoding x set."""
+    sets = _ordered({r["set"] for r in records}, set_order or [])
+    return grouped_table(records, lambda r: r["set"], sets,
+                         "Average run time in seconds (unsolved runs); unsolved runs count at the time limit")
+
+
+def by_robots(records: list[dict], set_order: list[str] | None = None) -> list[str]:
+    """One table per instance set with a column per robot count (the paper's appendix)."""
+    tables = []
+    for name in _ordered({r["set"] for r in records}, set_order or []):
+        runs = [r for r in records if r["set"] == name]
+        counts = sorted({r["robots"] for r in runs})
+        tables.append(grouped_table(runs, lambda r: r["robots"], counts,
+                                    f"Instance set {name}: average run time (unsolved runs) by number of robots"))
+    return tables
+
+
+CSV_FIELDS = ["key", "set", "instance", "robots", "domain", "label", "encoding", "assign", "status",
+              "time", "time_limit", "memory_mb", "horizon", "ground_time", "solve_time", "rules", "atoms",
+              "choices", "conflicts", "error"]
+
+
+def to_csv(records: list[dict]) -> str:
+    stream = io.StringIO()
+    writer = csv.DictWriter(stream, CSV_FIELDS, extrasaction="ignore", lineterminator="\n")
+    writer.writeheader()
+    for record in records:
+        writer.writerow(record)
+    return stream.getvalue()
+
+
+def plot(records: list[dict], folder: Path, set_order: list[str] | None = None) -> list[Path]:
+    """A cactus plot (solved runs over time, one line per encoding, one panel per domain)
+    and a plot of average time by number of robots (one panel per instance set)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    written = []
+    labels = _ordered({r["label"] for r in records}, [])
+    figure, axes = plt.subplots(1, len(labels), figsize=(4.5 * len(labels), 3.8), squeeze=False)
+    for axis, label in zip(axes[0], labels):
+        for _l, encoding in [row for row in _rows(records) if row[0] == label]:
+            times = sorted(r["time"] for r in records
+                           if r["label"] == label and r["encoding"] == encoding and r["status"] == "solved")
+            axis.step(range(1, len(times) + 1), times, where="post", label=encoding)
+        axis.set(title=label, xlabel="solved runs", ylabel="time (s)")
+        axis.grid(alpha=0.3)
+        axis.legend(fontsize="small")
+    figure.tight_layout()
+    written.append(_save(figure, folder / "cactus.png"))
+    plt.close(figure)
+
+    sets = _ordered({r["set"] for r in records}, set_order or [])
+    figure, axes = plt.subplots(1, len(sets), figsize=(4.5 * len(sets), 3.8), squeeze=False)
+    for axis, name in zip(axes[0], sets):
+        runs = [r for r in records if r["set"] == name]
+        for label, encoding in _rows(runs):
+            points = defaultdict(list)
+            for r in runs:
+                if (r["label"], r["encoding"]) == (label, encoding):
+                    points[r["robots"]].append(r["time"] if r["status"] == "solved" else r["time_limit"])
+            robots = sorted(points)
+            axis.plot(robots, [mean(points[n]) for n in robots], marker="o", label=f"{label} {encoding}")
+        axis.set(title=name, xlabel="robots", ylabel="average time (s)")
+        axis.grid(alpha=0.3)
+        axis.legend(fontsize="x-small")
+    figure.tight_layout()
+    written.append(_save(figure, folder / "time-by-robots.png"))
+    plt.close(figure)
+    return written
+
+
+def _save(figure, path: Path) -> Path:
+    """Save a figure atomically (render to memory, then replace the file)."""
+    from ..writer import write_bytes
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", dpi=110)
+    write_bytes(path, buffer.getvalue())
+    return path

@@ -1,0 +1,55 @@
+"""The results file of a benchmark run: one JSON object per line, appended as runs finish.
+
+Each line is written with a single ``write`` and flushed to disk, so a runner killed at any
+moment leaves every finished run on record; a torn last line is ignored when reading.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+
+RESULTS = "results.jsonl"
+
+#: statuses of a run; only "solved" counts as solved
+STATUSES = ("solved", "timeout", "memout", "invalid", "error", "no-makespan")
+
+
+def run_key(instance_set: str, instance: str, label: str, encoding: str) -> str:
+    """The identity of a run: the same key is never run twice in one results file."""
+    return f"{instance_set}/{instance}/{label}/{encoding}"
+
+
+def load_results(directory: str | Path) -> list[dict]:
+    """All complete records of ``directory/results.jsonl`` (none if it does not exist)."""
+    path = Path(directory) / RESULTS
+    if not path.exists():
+        return []
+    records = []
+    for line in path.read_text(encoding="utf-8").splitlines():
+        try:
+            record = json.loads(line)
+        except ValueError:
+            continue  # a line torn by a killed runner
+        if isinstance(record, dict) and "key" in record:
+            records.append(record)
+    return records
+
+
+def append_result(directory: str | Path, record: dict) -> None:
+    """Append one record durably."""
+    path = Path(directory) / RESULTS
+    line = json.dumps(record, sort_keys=True) + "\n"
+    with open(path, "a", encoding="utf-8") as stream:
+        if stream.tell() > 0 and not _ends_with_newline(path):
+            line = "\n" + line  # after a torn line, start afresh
+        stream.write(line)
+        stream.flush()
+        os.fsync(stream.fileno())
+
+
+def _ends_with_newline(path: Path) -> bool:
+    with open(path, "rb") as stream:
+        stream.seek(-1, os.SEEK_END)
+        return stream.read(1) == b"\n"
