@@ -69,6 +69,17 @@ class Animator:
         self._marked_step = None
         self._show_marks(self._nearest)
 
+    def detach(self) -> None:
+        """Take back the marks and badges this animator put on the scene (before another
+        animator takes over the same scene)."""
+        for item in self._flagged:
+            item.set_flagged(False)
+        for mark in self._cell_marks:
+            self.scene.removeItem(mark)
+        for badge, _robot in self._badges:
+            self.scene.removeItem(badge)
+        self._flagged, self._cell_marks, self._badges = [], [], []
+
     # --- the parts of a frame ------------------------------------------------------------
 
     def _show_carriers(self, carriers: np.ndarray) -> bool:

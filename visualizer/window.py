@@ -21,6 +21,7 @@ from . import export, loading, style
 from .animator import Animator
 from .controls import TransportBar
 from .describe import tooltip
+from .editor import EDIT_ACTIONS, Editor
 from .inventory import InventoryModel
 from .loading import Scenario
 from .orders import OrdersModel
@@ -30,6 +31,7 @@ from .player import Player
 from .robot_list import RobotsModel
 from .scene import WarehouseScene
 from .tables import TablePanel
+from .tools import TOOLS
 from .track import Track
 from .view import WarehouseView
 from .violation_list import ViolationsModel
@@ -84,6 +86,7 @@ class MainWindow(QMainWindow):
         self.view.clicked.connect(self._clicked)
         self.setCentralWidget(self.view)
         self.commands = self._make_actions()
+        self.editor = Editor(self)
         self._make_menus()
         self.transport = TransportBar(self.player, self.commands, self)
         bar = QToolBar("Playback", self)
@@ -97,6 +100,9 @@ class MainWindow(QMainWindow):
                        "plan": TablePanel(PlanModel(), "filter actions"),
                        "violations": TablePanel(ViolationsModel(), "filter violations")}
         self.docks = self._make_docks()
+        self.docks["order_editor"] = self.editor.install(self.menus, self.commands["export_picture"])
+        self.tabifyDockWidget(self.docks["inventory"], self.docks["order_editor"])
+        self.docks["orders"].raise_()
         self.panels["plan"].row_activated.connect(lambda action: self.go_to(action.step))
         self.panels["violations"].row_activated.connect(self.show_violation)
         self.panels["robots"].table.selectionModel().selectionChanged.connect(self._robots_picked)
@@ -170,6 +176,7 @@ class MainWindow(QMainWindow):
         for name in ("play", "forward", "back", "start", "end", "goto", None, "faster", "slower", "loop"):
             play.addSeparator() if name is None else play.addAction(self.commands[name])
         menus.addMenu("&Help").addAction(self.commands["shortcuts"])
+        self.menus = {"file": file, "view": view, "play": play}
 
     def _make_docks(self) -> dict[str, QDockWidget]:
         titles = {"orders": "Orders", "inventory": "Inventory", "robots": "Robots", "plan": "Plan",
@@ -219,6 +226,8 @@ class MainWindow(QMainWindow):
         return self._load(lambda: loading.reload(self.scenario), keep_time=True)
 
     def _load(self, read, keep_time: bool = False) -> bool:
+        if not self.editor.confirm_discard():
+            return False
         QApplication.setOverrideCursor(Qt.WaitCursor)
         try:
             scenario = read()
@@ -244,17 +253,38 @@ class MainWindow(QMainWindow):
             self.scene.addText("Open an instance (Ctrl+O) or drop files here.", style.font(16, bold=False))
             self.scene.setSceneRect(self.scene.picture_rect())
             self.view.setScene(self.scene)
-            self.setWindowTitle("asprilo viz")
         else:
-            self.track = Track(scenario.instance, scenario.plan, scenario.domain)
             self.scene = WarehouseScene(scenario.instance, self)
-            self.animator = Animator(self.scene, self.track)
-            self.trails = Trails(self.scene, self.track)
+            self._animate(scenario)
             self.view.setScene(self.scene)
             self.view.fit()
-            self.setWindowTitle(f"{scenario.title} — asprilo viz")
         if old_scene is not None:
             old_scene.deleteLater()
+        self.editor.follow(scenario)
+        self._show_states(time)
+        # Exempt the scenario's many long-lived objects from the garbage collector's full
+        # passes: over a big warehouse one takes ~0.1 s and would stall the animation.
+        gc.freeze()
+
+    def show_changes(self, time: float = 0.0) -> None:
+        """Compute the states again after the instance or the plan changed (an edit, a plan
+        from the solver or the online link); scene, zoom and selection stay."""
+        if self.scenario is None:
+            return
+        if self.animator is not None:
+            self.animator.detach()
+        if self.trails is not None:
+            self.trails.show([])
+        self._animate(self.scenario)
+        self._show_states(time)
+
+    def _animate(self, scenario: Scenario) -> None:
+        self.track = Track(scenario.instance, scenario.plan, scenario.domain)
+        self.animator = Animator(self.scene, self.track)
+        self.trails = Trails(self.scene, self.track)
+
+    def _show_states(self, time: float) -> None:
+        """Panels, slider, title and status for the current track, showing ``time``."""
         self.selected = [r for r in self.selected if self.track and r in self.track.robot_index]
         for panel in self.panels.values():
             panel.set_track(self.track)
@@ -265,10 +295,16 @@ class MainWindow(QMainWindow):
         self.transport.set_horizon(horizon)
         self.player.set_horizon(horizon, time)  # shows that time on the new scene and panels
         self.select_robots(self.selected)
+        self.show_title()
         self._show_summary()
-        # Exempt the scenario's many long-lived objects from the garbage collector's full
-        # passes: over a big warehouse one takes ~0.1 s and would stall the animation.
-        gc.freeze()
+
+    def show_title(self) -> None:
+        """``name — asprilo viz``, with a ``*`` while edits are unsaved."""
+        if self.scenario is None:
+            self.setWindowTitle("asprilo viz")
+            return
+        star = "*" if self.editor.document.modified else ""
+        self.setWindowTitle(f"{star}{self.scenario.title} — asprilo viz")
 
     # --- following the time ------------------------------------------------------------------
 
@@ -399,8 +435,11 @@ class MainWindow(QMainWindow):
         box.open()
 
     def show_shortcuts(self) -> None:
+        entries = list(ACTIONS.values()) + [(text, (key,)) for text, key in EDIT_ACTIONS.values() if key]
+        entries += [(tool.text + " tool", (tool.key,)) for tool in TOOLS]
+        entries += [("&Undo", ("Ctrl+Z",)), ("&Redo", ("Ctrl+Shift+Z", "Ctrl+Y"))]
         rows = "".join(f"<tr><td>{text.replace('&', '').rstrip('…')}</td><td><b>{', '.join(keys)}</b></td></tr>"
-                       for text, keys in ACTIONS.values())
+                       for text, keys in entries)
         box = QMessageBox(QMessageBox.Information, "Keyboard shortcuts",
                           f"<table cellspacing=4>{rows}</table>"
                           "<p>Mouse: wheel zooms, drag pans, click selects a robot "
@@ -525,6 +564,9 @@ class MainWindow(QMainWindow):
         self.open_dropped(paths)
 
     def closeEvent(self, event) -> None:
+        if not self.editor.confirm_discard():
+            event.ignore()
+            return
         self.player.pause()
         self.settings.setValue("window/geometry", self.saveGeometry())
         self.settings.setValue("window/state", self.saveState())
