@@ -19,6 +19,9 @@ from dataclasses import dataclass
 #: seconds a child gets beyond its own time limit to stop cleanly before it is killed
 GRACE = 5.0
 
+#: process ids of the children running now (their process groups are killed on interrupt)
+RUNNING: set[int] = set()
+
 
 @dataclass
 class Outcome:
@@ -38,12 +41,15 @@ def run_limited(job: dict, time_limit: float, memory_mb: int | None) -> Outcome:
     child = subprocess.Popen([sys.executable, "-m", "asprilo.bench.worker", json.dumps(job)],
                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                              start_new_session=True)
+    RUNNING.add(child.pid)
     try:
         out, err = child.communicate(timeout=time_limit + GRACE)
     except subprocess.TimeoutExpired:
-        os.killpg(child.pid, signal.SIGKILL)
+        _kill(child.pid)
         child.communicate()
         return Outcome("timeout", time.perf_counter() - started, {})
+    finally:
+        RUNNING.discard(child.pid)
     wall = time.perf_counter() - started
     report = _last_json(out)
     if child.returncode == 0 and report:
@@ -53,6 +59,19 @@ def run_limited(job: dict, time_limit: float, memory_mb: int | None) -> Outcome:
     lines = [line for line in err.splitlines() if line.strip()]
     detail = lines[-1] if lines else f"exit status {child.returncode}"
     return Outcome("error", wall, report, detail)
+
+
+def _kill(pid: int) -> None:
+    try:
+        os.killpg(pid, signal.SIGKILL)
+    except ProcessLookupError:
+        pass
+
+
+def kill_running() -> None:
+    """Kill every child still running (when the runner is interrupted)."""
+    for pid in list(RUNNING):
+        _kill(pid)
 
 
 def _last_json(text: str) -> dict:

@@ -73,7 +73,8 @@ def _makespans(records: list[dict], label: str, sets: list[str]) -> str:
     return "/".join(parts)
 
 
-def grouped_table(records: list[dict], column_of, columns: list, caption: str) -> str:
+def grouped_table(records: list[dict], column_of, columns: list, caption: str,
+                  set_order: list[str] | None = None) -> str:
     """Rows (domain, encoding), one column per value of ``column_of(record)``."""
     groups: dict[tuple, list[dict]] = defaultdict(list)
     for record in records:
@@ -87,7 +88,7 @@ def grouped_table(records: list[dict], column_of, columns: list, caption: str) -
                           for l, e in rows if l == label and (label, e, column) in cells]
             if len(candidates) > 1:
                 best.add((label, min(candidates)[2], column))
-    sets = _ordered({r["set"] for r in records}, [])
+    sets = _ordered({r["set"] for r in records}, set_order or [])
     body, previous = [], None
     for label, encoding in rows:
         first = label != previous
@@ -104,7 +105,8 @@ def summary(records: list[dict], set_order: list[str] | None = None) -> str:
     """The paper's summary table: average time (unsolved runs) per domain x encoding x set."""
     sets = _ordered({r["set"] for r in records}, set_order or [])
     return grouped_table(records, lambda r: r["set"], sets,
-                         "Average run time in seconds (unsolved runs); unsolved runs count at the time limit")
+                         "Average run time in seconds (unsolved runs); unsolved runs count at the time limit",
+                         sets)
 
 
 def by_robots(records: list[dict], set_order: list[str] | None = None) -> list[str]:

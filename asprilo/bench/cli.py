@@ -1,0 +1,94 @@
+"""Run benchmark suites and report on them.
+
+  asprilo bench SUITE.yml [-o DIR] [--jobs N] [--time-limit S] [--memory-limit MB]
+      make the suite's instances, find their minimal makespans, run every (instance,
+      domain, encoding, assignment) under OS-enforced limits, check every plan, append
+      one JSON line per run to DIR/results.jsonl and print the summary table;
+      rerunning resumes where a previous run stopped
+  asprilo bench report DIR
+      print the paper's summary table and the tables by robot count, and write
+      DIR/report/{summary.txt,results.csv,cactus.png,time-by-robots.png}; reads
+      results.jsonl, or the output of potassco's benchmark-tool under DIR/output
+  asprilo bench export-btool SUITE.yml DIR
+      write a runscript, a run template and a result parser for potassco's
+      benchmark-tool (btool), to run the suite on a cluster
+
+Examples:
+  asprilo bench benchmarks/smoke.yml -o out/smoke
+  asprilo bench benchmarks/paper.yml -o out/paper --jobs 2 --time-limit 60
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from ..errors import InputError
+from ..writer import write_text
+from . import btool, report
+from .results import load_results
+from .runner import Runner
+from .suite import load_suite
+
+SUITE_ORDER = "suite.json"
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("words", nargs="+", metavar="SUITE.yml | report DIR | export-btool SUITE.yml DIR")
+    parser.add_argument("-o", "--output", metavar="DIR", help="output folder (default: out/<suite name>)")
+    parser.add_argument("--jobs", type=int, default=1, metavar="N", help="runs at the same time (default 1)")
+    parser.add_argument("--time-limit", type=float, metavar="S", help="seconds per run (default: the suite's)")
+    parser.add_argument("--memory-limit", type=int, metavar="MB", help="MB per run (default: the suite's)")
+
+
+def run(args: argparse.Namespace) -> int:
+    words = args.words
+    if words[0] == "report":
+        if len(words) != 2:
+            raise InputError("usage: asprilo bench report DIR")
+        return _report(Path(words[1]))
+    if words[0] == "export-btool":
+        if len(words) != 3:
+            raise InputError("usage: asprilo bench export-btool SUITE.yml DIR")
+        suite = load_suite(words[1])
+        runner = _runner(suite, Path(words[2]) / "prepared", args)
+        runscript = btool.export(suite, words[2], runner)
+        print(f"wrote {runscript}; on the cluster: cd {words[2]} && btool gen {runscript.relative_to(Path(words[2]).resolve())}")
+        return 0
+    if len(words) != 1:
+        raise InputError("give one suite file (or: report DIR, export-btool SUITE.yml DIR)")
+    suite = load_suite(words[0])
+    folder = Path(args.output or Path("out") / suite.name)
+    runner = _runner(suite, folder, args)
+    folder.mkdir(parents=True, exist_ok=True)
+    write_text(folder / SUITE_ORDER, json.dumps({"name": suite.name, "sets": [s.name for s in suite.sets]}) + "\n")
+    runner.run()
+    return _report(folder)
+
+
+def _runner(suite, folder: Path, args: argparse.Namespace) -> Runner:
+    if args.jobs < 1:
+        raise InputError(f"--jobs must be at least 1, got {args.jobs}")
+    if args.time_limit is not None and args.time_limit <= 0:
+        raise InputError(f"--time-limit must be positive, got {args.time_limit}")
+    return Runner(suite, folder, args.jobs, args.time_limit, args.memory_limit)
+
+
+def _report(folder: Path) -> int:
+    if not folder.is_dir():
+        raise InputError("no such folder", str(folder))
+    records = load_results(folder) or btool.read_results(folder)
+    if not records:
+        raise InputError("no results here (neither results.jsonl nor benchmark-tool output)", str(folder))
+    order_file = folder / SUITE_ORDER
+    order = json.loads(order_file.read_text())["sets"] if order_file.exists() else None
+    text = "\n\n".join([report.summary(records, order), *report.by_robots(records, order)])
+    print(text)
+    out = folder / "report"
+    write_text(out / "summary.txt", text + "\n")
+    write_text(out / "results.csv", report.to_csv(records))
+    for path in report.plot(records, out, order):
+        print(f"wrote {path}", file=sys.stderr)
+    return 0

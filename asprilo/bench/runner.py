@@ -1,0 +1,225 @@
+"""Run a benchmark suite: make the instances, find their minimal makespans, run every
+(instance, domain, encoding, assignment) under limits, check every plan, record results.
+
+Output folder::
+
+    DIR/instances/<batch>/...     instances made from the suite's gen batch files
+    DIR/makespans.json            minimal makespan per instance and domain (null: unknown)
+    DIR/results.jsonl             one line per finished run (see asprilo.bench.results)
+
+Rerunning resumes: instances that exist are kept, known makespans are reused and finished
+runs are skipped.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+import time
+from concurrent.futures import ThreadPoolExecutor, as_completed
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Iterable, TextIO
+
+from ..cli import main as asprilo_main
+from ..domain import Domain
+from ..errors import InputError
+from ..reader import read_instance, read_plan
+from ..sources import Source
+from ..writer import write_text
+from .limits import kill_running, run_limited
+from .results import append_result, load_results, run_key
+from .suite import RunSpec, Suite, existing_files
+
+MAKESPANS = "makespans.json"
+
+
+@dataclass(frozen=True)
+class Instance:
+    """An instance file of a set, with the robot count the reports group by."""
+
+    set: str
+    path: Path
+    name: str      # its path relative to the output folder (or as given), for keys and reports
+    robots: int
+
+
+def new_record(instance: Instance, spec: RunSpec, horizon: int | None, time_limit: float) -> dict:
+    """The record of a run before it runs (``no-makespan`` when there is no horizon to run at)."""
+    record = {"key": run_key(instance.set, instance.name, spec.label, spec.encoding),
+              "set": instance.set, "instance": instance.name, "robots": instance.robots,
+              "domain": spec.domain.value, "label": spec.label, "encoding": spec.encoding,
+              "assign": spec.assign, "time_limit": time_limit, "horizon": horizon}
+    if horizon is None:
+        record.update(status="no-makespan", time=time_limit,
+                      error="the minimal makespan is unknown (its search timed out)")
+    return record
+
+
+def run_job(path: Path, spec: RunSpec, horizon: int) -> dict:
+    return {"kind": "run", "instance": str(path), "domain": spec.domain.value, "encoding": spec.encoding,
+            "assign": spec.assign, "horizon": horizon}
+
+
+def complete(record: dict, path: Path, status: str, wall: float, report: dict, detail: str = "") -> dict:
+    """Fill in a run's record from what its child process did, checking the plan it found."""
+    limit = record["time_limit"]
+    record = {**record, "time": min(wall, limit), "memory_mb": report.get("memory_mb"),
+              **{key: report.get("stats", {}).get(key)
+                 for key in ("ground_time", "solve_time", "rules", "atoms", "choices", "conflicts")}}
+    if status != "done":
+        return {**record, "status": status, "time": limit if status != "error" else record["time"],
+                "error": detail}
+    if report["status"] == "limit":
+        return {**record, "status": "timeout", "time": limit}
+    if report["status"] != "found" or not report.get("plan"):
+        return {**record, "status": "error",
+                "error": report.get("message") or f"no plan at the minimal makespan {record['horizon']}"}
+    return {**record, "time": report["time"], **check_plan(path, record["domain"], report["plan"])}
+
+
+def check_plan(path: Path, domain: str, plan_text: str) -> dict:
+    """Check a run's plan with the ASP checker: ``solved`` with its metrics, or ``invalid``."""
+    from asprilo.checker import check
+    report = check(read_instance(path), read_plan(Source("plan", plan_text)), Domain(domain))
+    if report.valid:
+        return {"status": "solved", "metrics": report.metrics}
+    return {"status": "invalid", "error": "; ".join(error.atom for error in report.errors[:5])}
+
+
+class Progress:
+    """``[done/total]`` with solved, time-outs and failures, elapsed time and an estimate."""
+
+    def __init__(self, total: int, what: str, stream: TextIO):
+        self.total, self.what, self.stream = total, what, stream
+        self.done = self.solved = self.timeouts = self.failures = 0
+        self.started = time.perf_counter()
+        self.live = stream.isatty()
+
+    def update(self, status: str) -> None:
+        self.done += 1
+        self.solved += status in ("solved", "found")
+        self.timeouts += status in ("timeout", "memout", "no-makespan", "limit")
+        self.failures += status in ("invalid", "error")
+        elapsed = time.perf_counter() - self.started
+        left = elapsed / self.done * (self.total - self.done)
+        line = (f"{self.what} [{self.done}/{self.total}] solved {self.solved}, time-outs {self.timeouts}, "
+                f"failures {self.failures} | elapsed {_clock(elapsed)}, left ~{_clock(left)}")
+        if self.live:
+            self.stream.write("\r" + line + ("\n" if self.done == self.total else ""))
+        else:
+            self.stream.write(line + "\n")
+        self.stream.flush()
+
+
+def _clock(seconds: float) -> str:
+    seconds = int(seconds)
+    return f"{seconds // 3600}:{seconds // 60 % 60:02d}:{seconds % 60:02d}"
+
+
+class Runner:
+    def __init__(self, suite: Suite, folder: str | Path, jobs: int = 1, time_limit: float | None = None,
+                 memory_limit: int | None = None, stream: TextIO = sys.stderr):
+        self.suite = suite
+        self.folder = Path(folder)
+        self.jobs = max(1, jobs)
+        self.time_limit = time_limit or suite.time_limit
+        self.memory_limit = memory_limit if memory_limit is not None else suite.memory_limit
+        self.stream = stream
+
+    # --- instances -----------------------------------------------------------------------
+
+    def instances(self) -> list[Instance]:
+        """Every instance of the suite, generating what is missing."""
+        found = []
+        for instance_set in self.suite.sets:
+            if instance_set.batch is not None:
+                target = self.folder / "instances" / instance_set.batch.stem
+                self.stream.write(f"instances: {instance_set.batch.name} -> {target}\n")
+                code = asprilo_main(["gen", "-j", str(instance_set.batch), "-d", str(target), "--skip-existing"])
+                if code != 0:
+                    raise InputError(f"generating the instances of set '{instance_set.name}' failed",
+                                     str(instance_set.batch))
+                root = target / instance_set.select
+                paths = sorted(root.rglob("*.lp"))
+                if not paths:
+                    raise InputError(f"instances.{instance_set.name}: the batch made no .lp file under "
+                                     f"{instance_set.select!r}", str(self.suite.path))
+            else:
+                paths = existing_files(self.suite, instance_set)
+            for path in paths:
+                try:
+                    name = str(path.resolve().relative_to(self.folder.resolve()))
+                except ValueError:
+                    name = str(path)
+                found.append(Instance(instance_set.name, path, name, len(read_instance(path).robots)))
+        return found
+
+    # --- minimal makespans ---------------------------------------------------------------
+
+    def makespans(self, instances: list[Instance]) -> dict[str, dict[str, int | None]]:
+        """Minimal makespan of every instance for every domain (and assignment) the runs use."""
+        path = self.folder / MAKESPANS
+        known: dict[str, dict[str, int | None]] = json.loads(path.read_text()) if path.exists() else {}
+        wanted = {(spec.domain, spec.assign, spec.label) for spec in self.suite.runs}
+        todo = [(instance, domain, assign, label) for instance in instances
+                for domain, assign, label in sorted(wanted, key=lambda w: w[2])
+                if label not in known.get(instance.name, {})]
+        if todo:
+            progress = Progress(len(todo), "makespans", self.stream)
+
+            def compute(item):
+                instance, domain, assign, label = item
+                outcome = run_limited({"kind": "makespan", "instance": str(instance.path), "domain": domain.value,
+                                       "assign": assign}, self.suite.makespan_time_limit, self.memory_limit)
+                report = outcome.report
+                minimal = report.get("horizon") if report.get("status") == "found" and report.get("minimal") else None
+                return item, minimal, outcome.status if outcome.status != "done" else report.get("status", "error")
+
+            for (instance, _d, _a, label), minimal, status in self._parallel(compute, todo):
+                known.setdefault(instance.name, {})[label] = minimal
+                write_text(path, json.dumps(known, indent=1, sort_keys=True) + "\n")
+                progress.update(status)
+        return known
+
+    # --- runs ----------------------------------------------------------------------------
+
+    def run(self) -> list[dict]:
+        """Run everything not yet recorded; return all records of the folder."""
+        self.folder.mkdir(parents=True, exist_ok=True)
+        instances = self.instances()
+        makespans = self.makespans(instances)
+        finished = {record["key"] for record in load_results(self.folder)}
+        todo = [(instance, spec) for instance in instances for spec in self.suite.runs
+                if run_key(instance.set, instance.name, spec.label, spec.encoding) not in finished]
+        skipped = len(instances) * len(self.suite.runs) - len(todo)
+        if skipped:
+            self.stream.write(f"resuming: {skipped} runs already recorded\n")
+        progress = Progress(len(todo), "runs", self.stream)
+        for record in self._parallel(lambda item: self._run_one(*item, makespans), todo):
+            append_result(self.folder, record)
+            progress.update(record["status"])
+        return load_results(self.folder)
+
+    def _run_one(self, instance: Instance, spec: RunSpec, makespans: dict) -> dict:
+        horizon = makespans.get(instance.name, {}).get(spec.label)
+        record = new_record(instance, spec, horizon, self.time_limit)
+        if horizon is None:
+            return record
+        outcome = run_limited(run_job(instance.path, spec, horizon), self.time_limit, self.memory_limit)
+        return complete(record, instance.path, outcome.status, outcome.wall, outcome.report, outcome.detail)
+
+    def _parallel(self, work: Callable, items: Iterable) -> Iterable:
+        items = list(items)
+        if not items:
+            return
+        with ThreadPoolExecutor(self.jobs) as pool:
+            futures = [pool.submit(work, item) for item in items]
+            try:
+                for future in as_completed(futures):
+                    yield future.result()
+            except BaseException:
+                for future in futures:
+                    future.cancel()
+                kill_running()
+                raise

@@ -1,0 +1,65 @@
+"""The child process of a benchmark run: ``python -m asprilo.bench.worker JOB_JSON``.
+
+It limits its own address space, reads the instance, runs the solver and prints one JSON
+line: what the solver found, its statistics, the plan, and its own peak memory.  Jobs:
+
+- ``{"kind": "makespan", ...}``: the minimal makespan of an instance in a domain (with or
+  without task assignment): the flow solver for M/Md, else an incremental search;
+- ``{"kind": "run", ...}``: one benchmark run at a given horizon.
+"""
+
+from __future__ import annotations
+
+import json
+import resource
+import sys
+import time
+
+
+def _limit_memory(memory_mb: int | None) -> None:
+    if memory_mb:
+        size = memory_mb * 2**20
+        resource.setrlimit(resource.RLIMIT_AS, (size, size))
+
+
+def _peak_mb() -> float:
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+
+def run(job: dict) -> dict:
+    """Do one job and return its report."""
+    from asprilo.encodings import solve
+    from asprilo.writer import format_plan
+
+    started = time.perf_counter()
+    if job["kind"] == "makespan":
+        flow = job["domain"] in ("m", "md") and not job.get("assign")
+        outcome = solve(job["instance"], domain=job["domain"], encoding=job.get("encoding", "plain"),
+                        assign=job.get("assign", False), time_limit=job["time_limit"],
+                        method="flow" if flow else "asp")
+    else:
+        outcome = solve(job["instance"], domain=job["domain"], encoding=job["encoding"],
+                        horizon=job["horizon"], assign=job.get("assign", False),
+                        time_limit=job["time_limit"])
+    seconds = time.perf_counter() - started
+    return {
+        "status": outcome.status.value,
+        "time": seconds,
+        "horizon": outcome.horizon,
+        "minimal": outcome.minimal,
+        "plan": format_plan(outcome.plan) if outcome.plan is not None else None,
+        "stats": outcome.stats,
+        "memory_mb": _peak_mb(),
+        "message": outcome.message,
+    }
+
+
+def main() -> int:
+    job = json.loads(sys.argv[1])
+    _limit_memory(job.get("memory_mb"))
+    print(json.dumps(run(job)), flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,102 @@
+"""Benchmark suites, the results file and the report tables (no solving here)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from asprilo.bench import report
+from asprilo.bench.results import append_result, load_results
+from asprilo.bench.suite import load_suite
+from asprilo.domain import Domain
+from asprilo.errors import InputError
+
+
+def record(key, label="M", encoding="plain", status="solved", time=1.0, robots=2, set_="small", horizon=6):
+    return {"key": key, "set": set_, "instance": key, "robots": robots, "domain": "m", "label": label,
+            "encoding": encoding, "assign": label.endswith("_a"), "status": status, "time": time,
+            "time_limit": 60.0, "horizon": horizon}
+
+
+def test_suite_expands_every_combination(write):
+    write("batch.yml", "run_configs: {}\n")
+    path = write("suite.yml", """
+name: demo
+time_limit: 30
+memory_limit: 1024
+instances:
+  small: {batch: batch.yml, select: 1x2x4}
+  tiny: {files: ["*.lp"]}
+runs:
+  - {domain: m, encoding: [plain, split], assign: [false, true]}
+  - {domain: [a, b]}
+""")
+    suite = load_suite(path)
+    assert (suite.name, suite.time_limit, suite.memory_limit) == ("demo", 30.0, 1024)
+    assert [s.name for s in suite.sets] == ["small", "tiny"]
+    assert [(r.domain, r.encoding, r.assign) for r in suite.runs] == [
+        (Domain.M, "plain", False), (Domain.M, "plain", True), (Domain.M, "split", False),
+        (Domain.M, "split", True), (Domain.A, "plain", False), (Domain.B, "plain", False)]
+    assert suite.runs[1].label == "M_a"
+
+
+@pytest.mark.parametrize("text, message", [
+    ("runs: [\n  - a\n", "suite.yml:2: bad YAML: expected the node content, but found '-'"),
+    ("instances: {x: {files: [a]}}\nruns: [{domain: z}]\n",
+     "suite.yml: runs[0].domain: unknown domain 'z' (choose one of a, b, c, m, md)"),
+    ("instances: {}\nruns: []\n",
+     "suite.yml: instances: must map set names to {batch: FILE, select: DIR} or {files: [GLOB, ...]}"),
+    ("instances: {x: {batch: nope.yml}}\nruns: [{domain: m}]\n", "suite.yml: instances.x.batch: no such file"),
+    ("time_limit: -1\n", "suite.yml: time_limit: must be a positive number of seconds"),
+    ("colour: red\n", "suite.yml: colour: unknown key"),
+])
+def test_bad_suites(write, text, message):
+    path = write("suite.yml", text)
+    with pytest.raises(InputError) as error:
+        load_suite(path)
+    assert str(error.value).startswith(f"{path.parent}/{message}")
+
+
+def test_results_survive_a_torn_line(tmp_path):
+    append_result(tmp_path, record("a"))
+    with open(tmp_path / "results.jsonl", "a") as stream:
+        stream.write('{"key": "b", "sta')  # a runner killed while writing
+    append_result(tmp_path, record("c"))
+    assert [r["key"] for r in load_results(tmp_path)] == ["a", "c"]
+
+
+def test_summary_table_counts_unsolved_runs_at_the_limit():
+    records = [record("1", time=2.0), record("2", time=4.0),
+               record("3", encoding="split", status="timeout", time=60.0),
+               record("4", encoding="split", time=1.0),
+               record("5", label="A", encoding="plain", status="invalid", time=3.0, horizon=20),
+               record("6", label="A", encoding="plain", status="solved", time=5.0, horizon=20, set_="medium")]
+    text = report.summary(records, ["small", "medium"])
+    assert text.splitlines()[2:] == [
+        "domain  makespan  encoding  small     medium",
+        "------  --------  --------  --------  ------",
+        "M       6/-       plain     3.0(0)*   -",
+        "                  split     30(1)     -",
+        "A       20/20     plain     60(1) !1  5.0(0)",
+    ]
+
+
+def test_tables_by_robot_count_and_csv():
+    records = [record("1", robots=2, time=1.0), record("2", robots=5, time=3.0)]
+    (table,) = report.by_robots(records)
+    assert table.splitlines()[2:] == [
+        "domain  makespan  encoding  2       5",
+        "------  --------  --------  ------  ------",
+        "M       6         plain     1.0(0)  3.0(0)",
+    ]
+    rows = report.to_csv(records).splitlines()
+    assert rows[0].startswith("key,set,instance,robots,domain,label,encoding,assign,status,time")
+    assert rows[1].startswith("1,small,1,2,m,M,plain,False,solved,1.0,60.0,")
+
+
+def test_plots_are_written(tmp_path):
+    records = [record("1"), record("2", encoding="split", status="timeout", time=60.0)]
+    paths = report.plot(records, tmp_path)
+    assert [p.name for p in paths] == ["cactus.png", "time-by-robots.png"]
+    assert all(p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" for p in paths)
