@@ -23,6 +23,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "gen": ("asprilo.generator.cli", "generate instances: random, structured (-H), templates (-T), YAML batches (-j)"),
     "viz": ("asprilo.visualizer.cli", "show a warehouse, animate a plan, export pictures and animations"),
     "convert": ("asprilo.convert", "convert between asprilo, MovingAI maps/scenarios, LaCAM results, M and Md"),
+    "serve": ("asprilo.serve", "serve the online link: a solver that re-plans, or a simulator releasing orders"),
 }
 
 

@@ -55,6 +55,7 @@ class Editor(QObject):
         self.document.changed.connect(self._changed)
         self.document.stack.cleanChanged.connect(lambda _clean: window.show_title())
         self.last_message: str | None = None  # the last refusal (tests and status bar)
+        self.locked: str | None = None  # why edits are refused for now (an online session)
         self.palette = ToolPalette(window)
         self.palette.tool_changed.connect(self._tool_changed)
         self.orders = OrderEditor(self.document, self.perform)
@@ -111,10 +112,18 @@ class Editor(QObject):
     def follow(self, scenario: Scenario | None) -> None:
         """A scenario was opened (or the window emptied): edit its instance from now on."""
         self.document.reset(scenario.instance if scenario else Instance(), _own_file(scenario))
-        for name in ("save", "save_as", "save_template", "resize"):
+        for name in ("save", "save_as", "save_template"):
             self.commands[name].setEnabled(scenario is not None)
-        self.palette.setEnabled(scenario is not None)
+        self.lock(self.locked)
         self._refresh_orders()
+
+    def lock(self, reason: str | None) -> None:
+        """Refuse edits, saying ``reason``, until called with ``None``."""
+        self.locked = reason
+        editable = reason is None and self.window.scenario is not None
+        self.palette.setEnabled(editable)
+        self.commands["resize"].setEnabled(editable)
+        self.orders.setEnabled(editable)
 
     def confirm_discard(self) -> bool:
         """Whether unsaved edits may go (asks when there are any)."""
@@ -129,6 +138,9 @@ class Editor(QObject):
     def perform(self, make: Callable[[], Edit]) -> bool:
         """Make an edit of the instance and push it on the undo stack, or say why not."""
         if self.window.scenario is None:
+            return False
+        if self.locked is not None:
+            self.refuse(self.locked)
             return False
         try:
             edit = make()

@@ -31,6 +31,7 @@ class Scenario:
     instance_sources: list[Source] = field(default_factory=list)
     plan_sources: list[Source] = field(default_factory=list)
     domain: Domain | None = None  # None: detected from instance and plan
+    unfinished: bool = False  # the plan still grows (an online session): no goal check yet
 
     @property
     def title(self) -> str:

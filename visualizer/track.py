@@ -17,15 +17,20 @@ from asprilo.simulate import State, Violation, simulate
 
 
 class Track:
-    """States 0..horizon of ``plan`` on ``instance`` (state t = the state after step t)."""
+    """States 0..horizon of ``plan`` on ``instance`` (state t = the state after step t).
 
-    def __init__(self, instance: Instance, plan: Plan, domain: Domain | None = None):
+    ``unfinished``: the plan is still growing (an online session), so the goal is not
+    checked at its last step yet.
+    """
+
+    def __init__(self, instance: Instance, plan: Plan, domain: Domain | None = None, unfinished: bool = False):
         self.instance = instance
         self.plan = plan
         self.timeline = simulate(instance, plan, domain)
         self.domain: Domain = self.timeline.domain
         self.horizon: int = self.timeline.horizon
-        self.violations: list[Violation] = list(self.timeline.violations)
+        self.violations: list[Violation] = [v for v in self.timeline.violations
+                                            if not (unfinished and v.module == "goal")]
         self.states: list[State] = [self.timeline.state(t) for t in range(self.horizon + 1)]
 
         initial = self.states[0]

@@ -23,6 +23,7 @@ from .controls import TransportBar
 from .describe import tooltip
 from .editor import EDIT_ACTIONS, Editor
 from .inventory import InventoryModel
+from .live import LiveControl
 from .loading import Scenario
 from .orders import OrdersModel
 from .paths import PathMode, Trails
@@ -87,6 +88,7 @@ class MainWindow(QMainWindow):
         self.setCentralWidget(self.view)
         self.commands = self._make_actions()
         self.editor = Editor(self)
+        self.live = LiveControl(self)
         self._make_menus()
         self.transport = TransportBar(self.player, self.commands, self)
         bar = QToolBar("Playback", self)
@@ -101,6 +103,7 @@ class MainWindow(QMainWindow):
                        "violations": TablePanel(ViolationsModel(), "filter violations")}
         self.docks = self._make_docks()
         self.docks["order_editor"] = self.editor.install(self.menus, self.commands["export_picture"])
+        self.live.install(self.menus)
         self.tabifyDockWidget(self.docks["inventory"], self.docks["order_editor"])
         self.docks["orders"].raise_()
         self.panels["plan"].row_activated.connect(lambda action: self.go_to(action.step))
@@ -175,8 +178,9 @@ class MainWindow(QMainWindow):
         play = menus.addMenu("&Play")
         for name in ("play", "forward", "back", "start", "end", "goto", None, "faster", "slower", "loop"):
             play.addSeparator() if name is None else play.addAction(self.commands[name])
-        menus.addMenu("&Help").addAction(self.commands["shortcuts"])
-        self.menus = {"file": file, "view": view, "play": play}
+        help_ = menus.addMenu("&Help")
+        help_.addAction(self.commands["shortcuts"])
+        self.menus = {"file": file, "view": view, "play": play, "help": help_}
 
     def _make_docks(self) -> dict[str, QDockWidget]:
         titles = {"orders": "Orders", "inventory": "Inventory", "robots": "Robots", "plan": "Plan",
@@ -279,7 +283,7 @@ class MainWindow(QMainWindow):
         self._show_states(time)
 
     def _animate(self, scenario: Scenario) -> None:
-        self.track = Track(scenario.instance, scenario.plan, scenario.domain)
+        self.track = Track(scenario.instance, scenario.plan, scenario.domain, scenario.unfinished)
         self.animator = Animator(self.scene, self.track)
         self.trails = Trails(self.scene, self.track)
 
@@ -568,6 +572,7 @@ class MainWindow(QMainWindow):
             event.ignore()
             return
         self.player.pause()
+        self.live.disconnect()
         self.settings.setValue("window/geometry", self.saveGeometry())
         self.settings.setValue("window/state", self.saveState())
         super().closeEvent(event)

@@ -1,0 +1,172 @@
+"""Serve the online link: a solver that plans step by step and re-plans when orders arrive,
+or a simulator that releases an instance's orders over time.  The visualizer connects to
+both (Online > Connect…) and plays what they say; see visualizer/README.md for the protocol.
+
+Examples:
+  asprilo serve solver --port 5000
+  asprilo serve simulator instance.lp --port 5001 --every 4        (one order every 4 steps)
+  asprilo serve simulator instance.lp --at 3:2 --at 8:3,4          (order 2 at step 3, 3 and 4 at step 8)
+  asprilo serve solver --port 0                                     (any free port; the port is printed)
+
+Both listen on 127.0.0.1 (loopback) by default, serve one visualizer at a time and run
+until interrupted (Ctrl+C), or for one session with --once.
+"""
+
+from __future__ import annotations
+
+import argparse
+import select
+import socket
+import sys
+import threading
+from typing import Callable
+
+from .cli import domain_argument
+from .errors import InputError
+from .online import OnlinePlanner, Schedule, encodings_planner, parse_arrivals
+from .protocol import DONE, END, RESET, Channel, Message, action_facts
+
+DEFAULT_PORTS = {"solver": 5000, "simulator": 5001}
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    roles = parser.add_subparsers(dest="role", metavar="ROLE", required=True)
+    solver = roles.add_parser("solver", help="plan with the reference encodings, re-plan when the world changes")
+    solver.add_argument("--domain", type=domain_argument, help="a|b|c|m|md (default: detected)")
+    solver.add_argument("--encoding", default="plain", help="reference encoding (default plain)")
+    solver.add_argument("--time-limit", type=float, default=60.0, metavar="S",
+                        help="seconds per (re-)planning (default 60)")
+    simulator = roles.add_parser("simulator", help="release the orders of an instance over time")
+    simulator.add_argument("instance", metavar="INSTANCE", help="the warehouse and all its orders")
+    simulator.add_argument("--at", action="append", default=[], metavar="STEP:ORDER[,ORDER...]",
+                           help="these orders arrive at STEP (repeatable); the others are known at step 0")
+    simulator.add_argument("--every", type=int, metavar="K",
+                           help="orders arrive one by one in id order: the first at step 0, then one every K steps")
+    for name, role in (("solver", solver), ("simulator", simulator)):
+        role.add_argument("--host", default="127.0.0.1", help="address to listen on (default 127.0.0.1)")
+        role.add_argument("--port", type=int, default=DEFAULT_PORTS[name],
+                          help="port (default %(default)s; 0: any free port, printed on start)")
+        role.add_argument("--once", action="store_true", help="serve one session, then exit")
+
+
+def run(args: argparse.Namespace) -> int:
+    if args.role == "solver":
+        def log(text: str) -> None:
+            print(f"solver: {text}", file=sys.stderr, flush=True)
+        online = OnlinePlanner(encodings_planner(args.encoding, args.time_limit), args.domain, log)
+        session = lambda channel: solver_session(channel, online)  # noqa: E731
+    else:
+        schedule = _schedule(args)
+        session = lambda channel: simulator_session(channel, schedule, _log("simulator"))  # noqa: E731
+    listener = listen(args.host, args.port)
+    host, port = listener.getsockname()[:2]
+    print(f"asprilo serve {args.role}: listening on {host}:{port}", flush=True)
+    try:
+        serve(listener, session, once=args.once)
+    except KeyboardInterrupt:
+        print(f"asprilo serve {args.role}: stopped", file=sys.stderr)
+    finally:
+        listener.close()
+    return 0
+
+
+def _log(role: str) -> Callable[[str], None]:
+    return lambda text: print(f"{role}: {text}", file=sys.stderr, flush=True)
+
+
+def _schedule(args: argparse.Namespace) -> Schedule:
+    from .reader import read_instance
+    instance = read_instance(args.instance)
+    if args.every is not None:
+        if args.every < 1 or args.at:
+            raise InputError("--every needs K >= 1 and goes without --at")
+        return Schedule.every(instance, args.every)
+    try:
+        return Schedule(instance, parse_arrivals(args.at))
+    except InputError as error:
+        raise InputError(error.message, args.instance) from None
+
+
+# --- sockets ------------------------------------------------------------------------------------
+
+def listen(host: str, port: int) -> socket.socket:
+    """A listening TCP socket (``port`` 0: any free port)."""
+    try:
+        listener = socket.create_server((host, port), reuse_port=False)
+    except OSError as error:
+        raise InputError(f"cannot listen on {host}:{port}: {error.strerror or error}") from None
+    return listener
+
+
+def serve(listener: socket.socket, session: Callable[[Channel], None], once: bool = False,
+          stop: threading.Event | None = None) -> None:
+    """Serve one connection at a time until ``stop`` is set (or after one with ``once``)."""
+    listener.settimeout(0.2)
+    while stop is None or not stop.is_set():
+        try:
+            connection, _address = listener.accept()
+        except TimeoutError:
+            continue
+        channel = Channel(connection, timeout=None)  # the visualizer may pause as long as it likes
+        try:
+            session(channel)
+        except (OSError, InputError) as error:
+            print(f"session ended: {error}", file=sys.stderr, flush=True)
+        finally:
+            channel.close()
+        if once:
+            return
+
+
+def solver_session(channel: Channel, online: OnlinePlanner) -> None:
+    """Answer every ``%$done(T).`` with the actions of step T+1 (see :class:`OnlinePlanner`)."""
+    online.reset()
+    while (message := channel.receive()) is not None:
+        if message.control == RESET:
+            online.reset()
+            continue
+        online.learn(message.facts)
+        if message.control == DONE:
+            actions = _while_connected(channel, online, lambda: online.next_actions(message.step))
+            if actions is None:
+                return
+            channel.send(Message(action_facts(actions)))
+
+
+def _while_connected(channel: Channel, online: OnlinePlanner, work: Callable):
+    """Run ``work`` in a thread; stop it (``None``) if the visualizer hangs up meanwhile."""
+    outcome: dict = {}
+
+    def target() -> None:
+        try:
+            outcome["result"] = work()
+        except BaseException as error:  # handed to the session's thread
+            outcome["error"] = error
+
+    worker = threading.Thread(target=target, daemon=True)
+    worker.start()
+    while worker.is_alive():
+        readable, _, _ = select.select([channel.connection], [], [], 0.1)
+        if readable and not channel.connection.recv(1, socket.MSG_PEEK):
+            online.cancel.set()
+            worker.join()
+            return None
+    if "error" in outcome:
+        raise outcome["error"]
+    return outcome.get("result")
+
+
+def simulator_session(channel: Channel, schedule: Schedule, log: Callable[[str], None]) -> None:
+    """The world on ``%$RESET.``; on ``%$done(T).`` the orders arriving at T; ``%$end.`` when no more will."""
+    while (message := channel.receive()) is not None:
+        if message.control == RESET:
+            channel.send(Message(schedule.world(), END if schedule.last == 0 else None))
+            log("new session: sent the world at step 0")
+        elif message.control == DONE:
+            step = message.step
+            facts = schedule.arriving(step)
+            if facts:
+                arrived = sorted(o for o, t in schedule.arrivals.items() if t == step)
+                log(f"step {step}: " + (f"order {arrived[0]} arrives" if len(arrived) == 1 else
+                                        f"orders {', '.join(map(str, arrived))} arrive"))
+            channel.send(Message(facts, END if step >= schedule.last else None))

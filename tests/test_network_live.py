@@ -1,0 +1,109 @@
+"""The window's online link (offscreen): solver and simulator servers on 127.0.0.1 ephemeral
+ports, orders arriving while the robots are under way, and links that fail."""
+
+from __future__ import annotations
+
+import os
+
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+
+import socket  # noqa: E402
+import threading  # noqa: E402
+
+import pytest  # noqa: E402
+from PyQt5.QtCore import QSettings  # noqa: E402
+
+from asprilo.online import OnlinePlanner, Schedule, encodings_planner  # noqa: E402
+from asprilo.serve import listen, serve, simulator_session, solver_session  # noqa: E402
+from asprilo.visualizer import network  # noqa: E402
+from asprilo.visualizer.window import MainWindow  # noqa: E402
+
+from test_serve import ORDER_2, TINY, WAIT, tiny  # noqa: E402
+
+pytestmark = pytest.mark.gui
+
+
+@pytest.fixture
+def window(qtbot, tmp_path_factory):
+    settings = QSettings(str(tmp_path_factory.mktemp("settings") / "viz.ini"), QSettings.IniFormat)
+    window = MainWindow(settings)
+    qtbot.addWidget(window)
+    window.show()
+    qtbot.waitExposed(window)
+    window.player.set_speed(64)
+    return window
+
+
+@pytest.fixture
+def servers():
+    """Solver and simulator (order 2 arrives at step 3) in threads, on ephemeral ports."""
+    stop = threading.Event()
+    solver, simulator = listen("127.0.0.1", 0), listen("127.0.0.1", 0)
+    online = OnlinePlanner(encodings_planner(time_limit=WAIT))
+    schedule = Schedule(tiny(), {2: 3})
+    threads = [threading.Thread(target=serve, args=(solver, lambda c: solver_session(c, online)),
+                                kwargs={"stop": stop}, daemon=True),
+               threading.Thread(target=serve, args=(simulator, lambda c: simulator_session(c, schedule, print)),
+                                kwargs={"stop": stop}, daemon=True)]
+    for thread in threads:
+        thread.start()
+    yield solver.getsockname()[1], simulator.getsockname()[1], online
+    stop.set()
+    for thread in threads:
+        thread.join(WAIT)
+    solver.close()
+    simulator.close()
+
+
+def test_orders_arrive_and_robots_are_replanned_live(window, qtbot, servers):
+    solver_port, simulator_port, online = servers
+    session = window.live.connect_to("127.0.0.1", solver_port, simulator_port)
+    assert not window.editor.palette.isEnabled()  # the world belongs to the session
+    seen_orders: dict[int, list[int]] = {}
+    window.player.step_changed.connect(
+        lambda step: seen_orders.setdefault(step, sorted(window.scenario.instance.orders)))
+    qtbot.waitUntil(lambda: window.live.session is None, timeout=int(WAIT * 1000))
+    assert window.live.last_reason.startswith("the solver has nothing more to do after step")
+    assert online.facts[-1] == ORDER_2  # the simulator's order reached the solver ...
+    # ... and the window once state 3 was shown (robots can act on it from step 4 on)
+    assert seen_orders[3] == [1] and seen_orders[4] == [1, 2]
+    plan = window.scenario.plan
+    assert plan.actions == session.actions and window.track.horizon == plan.horizon
+    deliveries = [a for a in plan.actions if a.name == "deliver" and a.args[0] == 2]
+    assert deliveries and min(a.step for a in deliveries) >= 4
+    assert not window.track.violations  # valid, and every order complete (the goal is checked now)
+    assert window.track.state(plan.horizon).open_lines == {}
+    assert window.player.time == plan.horizon
+    assert window.editor.palette.isEnabled()
+    assert "Online session ended" in window.statusBar().currentMessage()
+
+
+def test_solver_alone_plans_for_the_instance_shown(window, qtbot, servers, write):
+    solver_port, _simulator_port, _online = servers
+    window.open_files([str(write("tiny.lp", TINY))])
+    assert window.live.connect_to("127.0.0.1", solver_port) is not None
+    qtbot.waitUntil(lambda: window.live.session is None, timeout=int(WAIT * 1000))
+    assert window.live.last_reason.startswith("the solver has nothing more to do after step")
+    assert window.track.horizon >= 4 and not window.track.violations
+    assert {a.args[0] for a in window.scenario.plan.actions if a.name == "deliver"} == {1, 2}
+
+
+def test_links_that_fail_end_the_session_with_a_message(window, qtbot, monkeypatch):
+    closed = socket.socket()
+    closed.bind(("127.0.0.1", 0))
+    port = closed.getsockname()[1]
+    closed.close()  # nobody listens there
+    window.editor.new_instance(2, 2)
+    window.live.connect_to("127.0.0.1", port)
+    qtbot.waitUntil(lambda: window.live.session is None, timeout=int(WAIT * 1000))
+    assert window.live.last_reason == f"the solver at 127.0.0.1:{port}: Connection refused"
+    silent = listen("127.0.0.1", 0)  # accepts connections, never answers
+    silent_port = silent.getsockname()[1]
+    monkeypatch.setattr(network, "SOLVER_SECONDS", 0.5)
+    try:
+        window.live.connect_to("127.0.0.1", silent_port)
+        qtbot.waitUntil(lambda: window.live.session is None, timeout=int(WAIT * 1000))
+    finally:
+        silent.close()
+    assert window.live.last_reason == f"the solver at 127.0.0.1:{silent_port} did not answer within 0.5 s"
+    assert window.editor.palette.isEnabled()

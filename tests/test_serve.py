@@ -1,0 +1,203 @@
+"""The online link without a window: messages, the re-planning solver, the order simulator,
+and both servers on 127.0.0.1 ephemeral ports driven by a plain socket client."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import threading
+
+import pytest
+
+from asprilo.errors import InputError
+from asprilo.model import Action, Instance, Plan
+from asprilo.online import OnlinePlanner, Schedule, encodings_planner, parse_arrivals, world_at
+from asprilo.protocol import (DONE, END, RESET, Channel, Message, done, parse, read_actions, read_world,
+                              reset)
+from asprilo.reader import read_instance
+from asprilo.serve import listen, serve, simulator_session, solver_session
+from asprilo.simulate import simulate
+from asprilo.sources import Source
+
+#: 4x3: a highway row in the middle, picking station 1 top right; robot 1 starts carrying
+#: shelf 1 (1 unit of product 1), shelf 2 holds 3 units of product 2
+TINY = """
+init(object(node,1),value(at,(1,1))). init(object(node,2),value(at,(2,1))). init(object(node,3),value(at,(3,1))).
+init(object(node,4),value(at,(4,1))). init(object(node,5),value(at,(1,2))). init(object(node,6),value(at,(2,2))).
+init(object(node,7),value(at,(3,2))). init(object(node,8),value(at,(4,2))). init(object(node,9),value(at,(1,3))).
+init(object(node,10),value(at,(2,3))). init(object(node,11),value(at,(3,3))). init(object(node,12),value(at,(4,3))).
+init(object(highway,5),value(at,(1,2))). init(object(highway,6),value(at,(2,2))).
+init(object(highway,7),value(at,(3,2))). init(object(highway,8),value(at,(4,2))).
+init(object(pickingStation,1),value(at,(4,1))).
+init(object(robot,1),value(at,(1,1))). init(object(robot,1),value(carries,1)).
+init(object(robot,2),value(at,(2,3))).
+init(object(shelf,1),value(at,(1,1))). init(object(shelf,2),value(at,(3,3))).
+init(object(product,1),value(on,(1,1))). init(object(product,2),value(on,(2,3))).
+init(object(order,1),value(line,(1,1))). init(object(order,1),value(pickingStation,1)).
+init(object(order,2),value(line,(2,2))). init(object(order,2),value(pickingStation,1)).
+"""
+ORDER_2 = "init(object(order,2),value(line,(2,2))). init(object(order,2),value(pickingStation,1))."
+WAIT = 30.0  # seconds any network wait may take at most
+
+
+def tiny() -> Instance:
+    return read_instance(Source("tiny.lp", TINY))
+
+
+# --- messages -----------------------------------------------------------------------------------------
+
+def test_messages_are_lines_of_facts_with_a_control_word_last():
+    assert reset().text() == "%$RESET.\n"
+    assert done(3).text() == "%$done(3).\n"
+    assert Message("a. b.", DONE, 7).text() == "a. b. %$done(7).\n"
+    assert Message("", END).text() == "%$end.\n"
+    assert Message("").text() == "\n"
+    assert parse("init(a,b). %$done(12).\r\n") == Message("init(a,b).", DONE, 12)
+    assert parse("%$RESET.") == Message("", RESET)
+    assert parse("occurs(x,y,1).\n") == Message("occurs(x,y,1).")
+    for bad, words in (("%$done.", "malformed control word '%$done.'"),
+                       ("%$RESET(2).", "malformed control word '%$RESET(2).'"),
+                       ("a. %$stop.", "unknown control word in 'a. %$stop.'")):
+        with pytest.raises(InputError) as error:
+            parse(bad)
+        assert error.value.message == words
+
+
+def test_facts_of_several_messages_make_one_world():
+    world = read_world([Schedule(tiny(), {2: 3}).world(), ORDER_2])
+    assert world == tiny()
+    assert read_actions("") == []
+    assert read_actions("occurs(object(robot,1),action(move,(1,0)),4).") == [Action(4, 1, "move", (1, 0))]
+
+
+# --- the simulator's schedule ---------------------------------------------------------------------------
+
+def test_schedule_releases_orders_at_their_steps():
+    schedule = Schedule(tiny(), parse_arrivals(["3:2"]))
+    assert schedule.arrivals == {1: 0, 2: 3} and schedule.last == 3
+    assert "order,2" not in schedule.world() and "order,1" in schedule.world()
+    assert [schedule.arriving(t) for t in range(5)] == ["", "", "", ORDER_2, ""]
+    assert Schedule.every(tiny(), 4).arrivals == {1: 0, 2: 4}
+    with pytest.raises(InputError, match="the instance has no order 9"):
+        Schedule(tiny(), {9: 1})
+    with pytest.raises(InputError, match="expected STEP:ORDER"):
+        parse_arrivals(["x:1"])
+
+
+# --- the re-planning solver, with a planner that records what it is asked --------------------------------
+
+def test_world_at_a_step_is_an_instance_of_its_own():
+    instance = tiny()
+    plan = Plan([Action(1, 1, "move", (1, 0)), Action(1, 2, "move", (1, 0)), Action(2, 2, "pickup"),
+                 Action(2, 1, "move", (1, 0)), Action(3, 1, "move", (1, 0)), Action(4, 1, "deliver", (1, 1, 1))])
+    now = world_at(instance, simulate(instance, plan).state(4))
+    assert {r.id: (r.at, r.carries) for r in now.robots.values()} == {1: ((4, 1), 1), 2: ((3, 3), 2)}
+    assert {s.id: s.at for s in now.shelves.values()} == {1: (4, 1), 2: (3, 3)}
+    assert {p.id: p.stock for p in now.products.values()} == {2: {2: 3}}  # product 1 is used up
+    assert {o.id: (o.lines, o.station) for o in now.orders.values()} == {2: ({2: 2}, 1)}
+
+
+def test_online_planner_replans_from_the_state_reached_when_facts_arrive():
+    asked: list[tuple[int, dict]] = []
+
+    def planner(instance, domain, cancel):
+        asked.append((len(asked), {r: robot.at for r, robot in instance.robots.items()},
+                      sorted(instance.orders)))
+        return Plan([Action(1, 1, "move", (1, 0)), Action(2, 1, "move", (1, 0))])
+
+    online = OnlinePlanner(planner)
+    online.learn(Schedule(tiny(), {2: 3}).world())
+    assert online.next_actions(0) == [Action(1, 1, "move", (1, 0))]
+    assert online.next_actions(1) == [Action(2, 1, "move", (1, 0))]
+    assert online.next_actions(2) == []
+    online.learn(ORDER_2)
+    assert online.next_actions(3) == [Action(4, 1, "move", (1, 0))]
+    assert online.next_actions(3) == [Action(4, 1, "move", (1, 0))]  # asked again: the same answer
+    assert asked == [(0, {1: (1, 1), 2: (2, 3)}, [1]), (1, {1: (3, 1), 2: (2, 3)}, [1, 2])]
+    online.reset()
+    assert online.next_actions(0) == [] and len(asked) == 2  # nothing known: nothing planned
+
+
+# --- both servers on loopback, a plain client -----------------------------------------------------------
+
+@pytest.fixture
+def servers():
+    """A solver and a simulator (order 2 arrives at step 3) on ephemeral loopback ports."""
+    stop = threading.Event()
+    solver, simulator = listen("127.0.0.1", 0), listen("127.0.0.1", 0)
+    online = OnlinePlanner(encodings_planner(time_limit=WAIT))
+    schedule = Schedule(tiny(), {2: 3})
+    threads = [threading.Thread(target=serve, args=(solver, lambda c: solver_session(c, online)),
+                                kwargs={"stop": stop}, daemon=True),
+               threading.Thread(target=serve, args=(simulator, lambda c: simulator_session(c, schedule, print)),
+                                kwargs={"stop": stop}, daemon=True)]
+    for thread in threads:
+        thread.start()
+    yield solver.getsockname()[1], simulator.getsockname()[1]
+    stop.set()
+    for thread in threads:
+        thread.join(WAIT)
+    solver.close()
+    simulator.close()
+
+
+def test_an_order_injected_at_step_3_is_delivered(servers):
+    solver_port, simulator_port = servers
+    solver = Channel.connect("127.0.0.1", solver_port, timeout=WAIT)
+    simulator = Channel.connect("127.0.0.1", simulator_port, timeout=WAIT)
+    simulator.send(reset())
+    world = simulator.receive()
+    assert world.control is None and "order,2" not in world.facts
+    solver.send(reset())
+    solver.send(Message(world.facts))
+    actions: list[Action] = []
+    arrivals: dict[int, str] = {}
+    ended = False
+    for step in range(40):
+        simulator.send(done(step))
+        news = simulator.receive()
+        ended = ended or news.control == END
+        if news.facts:
+            arrivals[step] = news.facts
+        solver.send(Message(news.facts, DONE, step))
+        answer = read_actions(solver.receive().facts)
+        assert all(action.step == step + 1 for action in answer)
+        if ended and not answer:
+            break
+        actions += answer
+    solver.close()
+    simulator.close()
+    assert arrivals == {3: ORDER_2}
+    plan = Plan(actions)
+    timeline = simulate(tiny(), plan)
+    assert timeline.valid, [v.message for v in timeline.violations]
+    deliveries = [a for a in actions if a.name == "deliver" and a.args[0] == 2]
+    assert deliveries and min(a.step for a in deliveries) > 4
+    assert sum(a.args[2] for a in deliveries) == 2
+    assert timeline.state(plan.horizon).open_lines == {}
+
+
+def test_serve_command_prints_its_port_and_rejects_bad_input(tmp_path):
+    process = subprocess.Popen([sys.executable, "-m", "asprilo", "serve", "solver", "--port", "0", "--once"],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        line = process.stdout.readline()
+        assert line.startswith("asprilo serve solver: listening on 127.0.0.1:")
+        port = int(line.rsplit(":", 1)[1])
+        channel = Channel.connect("127.0.0.1", port, timeout=WAIT)
+        channel.send(reset())
+        channel.send(done(0))
+        assert channel.receive() == Message("")  # nothing known, nothing to do
+        channel.close()
+        assert process.wait(WAIT) == 0
+    finally:
+        process.kill()
+        process.communicate()
+    instance = tmp_path / "tiny.lp"
+    instance.write_text(TINY)
+    for args, message in ((["simulator", str(instance), "--at", "3:9"], f"error: {instance}: the instance has no order 9"),
+                          (["simulator", str(tmp_path / "none.lp")], f"error: {tmp_path / 'none.lp'}: no such file"),
+                          (["simulator", str(instance), "--every", "0"], "error: --every needs K >= 1")):
+        result = subprocess.run([sys.executable, "-m", "asprilo", "serve", *args, "--port", "0"],
+                                capture_output=True, text=True, timeout=WAIT)
+        assert result.returncode == 2 and result.stderr.startswith(message), result.stderr
