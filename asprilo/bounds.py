@@ -114,3 +114,44 @@ def mapf_bounds(instance: Instance, floor: Floor | None = None) -> tuple[float, 
     starts = [robot.at for _id, robot in sorted(instance.robots.items())]
     costs = floor.distances(goals, starts)
     return bottleneck_assignment(costs), min_cost_assignment(costs)
+
+
+def delivery_makespan_bound(instance: Instance, floor: Floor | None = None) -> float:
+    """An admissible makespan bound for A, B and C: the largest, over open order lines, of
+    the fewest steps any robot needs to bring a shelf holding the product to the order's
+    picking station (reach the shelf, pick it up, carry it there, deliver); ``inf`` when
+    some line cannot be served at all, 0 when there is nothing to deliver.
+
+    Every line needs one delivery at least, and the shelf it comes from has to travel
+    from where it starts to the station after a robot reached and lifted it (a shelf a
+    robot starts with needs no pickup); other robots and shelves are ignored.
+    """
+    floor = floor or Floor(instance.cells)
+    carried = {r.carries: r.at for r in instance.robots.values() if r.carries is not None}
+    shelf_cells = {s.id: s.at for s in instance.shelves.values()}
+    shelf_cells.update(carried)
+    robot_cells = [r.at for r in instance.robots.values()]
+    lines = [(order, product) for order in instance.orders.values()
+             for product, units in order.lines.items() if units is None or units > 0]
+    if not lines:
+        return 0.0
+    shelves = sorted({shelf for _order, product in lines if product in instance.products
+                      for shelf in instance.products[product].stock if shelf in shelf_cells})
+    stations = sorted({s.at for s in instance.stations.values()})
+    column = {cell: i for i, cell in enumerate(stations)}
+    sources = [shelf_cells[s] for s in shelves]
+    to_stations = floor.distances(sources, stations)
+    to_robots = floor.distances(sources, robot_cells).min(axis=1, initial=INFINITE)
+    row = {shelf: i for i, shelf in enumerate(shelves)}
+    bound = 0.0
+    for order, product in lines:
+        station = instance.stations.get(order.station)
+        best = INFINITE
+        if station is not None and station.at in column and product in instance.products:
+            for shelf in instance.products[product].stock:
+                if shelf not in row:
+                    continue
+                fetch = 0.0 if shelf in carried else to_robots[row[shelf]] + 1
+                best = min(best, fetch + to_stations[row[shelf], column[station.at]] + 1)
+        bound = max(bound, best)
+    return float(bound)

@@ -20,6 +20,7 @@ from .errors import InputError
 #: name -> (module, one-line summary); a command is listed here once it works.
 COMMANDS: dict[str, tuple[str, str]] = {
     "info": ("asprilo.info", "summarise an instance (and plan): counts, domain, horizon"),
+    "check": ("asprilo.checker.cli", "check a plan with the ASP checker: violations in plain words, metrics, bounds"),
     "gen": ("asprilo.generator.cli", "generate instances: random, structured (-H), templates (-T), YAML batches (-j)"),
     "viz": ("asprilo.visualizer.cli", "show a warehouse, animate a plan, export pictures and animations"),
     "convert": ("asprilo.convert", "convert between asprilo, MovingAI maps/scenarios, LaCAM results, M and Md"),

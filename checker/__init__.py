@@ -1,1 +1,27 @@
-"""The modular plan checker: logic programs per domain and the diagnostics built on them."""
+"""The modular plan checker (SPEC.md §4-5): logic programs per domain and the diagnostics
+and metrics built on them.
+
+    from asprilo.checker import check
+    report = check(instance, plan)          # domain detected when not given
+    report.valid, report.errors[0].atom, report.errors[0].message, report.metrics
+
+Each broken rule is an atom ``err(Module,Check,Params)`` derived by the logic program of
+one concern (``checker/<Module>.lp``); see ``checker/README.md`` for every check.
+"""
+
+from __future__ import annotations
+
+from asprilo.domain import Domain, detect_domain
+from asprilo.model import Instance, Plan
+
+from .programs import err_atoms
+from .report import Report, build_report
+
+__all__ = ["check", "Report"]
+
+
+def check(instance: Instance, plan: Plan, domain: Domain | None = None) -> Report:
+    """Check ``plan`` on ``instance`` with the ASP checker of ``domain``."""
+    domain = domain or detect_domain(instance, plan)
+    atoms, statistics = err_atoms(instance, plan, domain)
+    return build_report(instance, plan, domain, atoms, statistics.as_dict())

@@ -1,0 +1,118 @@
+"""What ``check`` returns: the verdict, the diagnostics in plain words, and the plan's metrics."""
+
+from __future__ import annotations
+
+import math
+from collections import Counter
+from dataclasses import dataclass, field
+from typing import Any
+
+import clingo
+
+from asprilo.bounds import Floor, delivery_makespan_bound, mapf_bounds
+from asprilo.domain import Domain
+from asprilo.model import Instance, Plan
+from asprilo.reader import value_of
+from asprilo.simulate import Timeline, Violation, simulate
+
+
+@dataclass
+class Report:
+    """The checker's verdict on a plan.
+
+    ``errors`` are :class:`~asprilo.simulate.Violation` objects built from the checker's
+    ``err/3`` atoms (``.atom`` is the exact atom), sorted by step, module, check, params.
+    """
+
+    domain: Domain
+    horizon: int
+    errors: list[Violation]
+    metrics: dict[str, Any] = field(default_factory=dict)
+    statistics: dict[str, float | int] = field(default_factory=dict)  # clingo's, for benchmarks
+
+    @property
+    def valid(self) -> bool:
+        return not self.errors
+
+    def as_json(self) -> dict[str, Any]:
+        """The object ``check --json`` prints."""
+        return {
+            "valid": self.valid,
+            "domain": self.domain.value,
+            "horizon": self.horizon,
+            "errors": [{"atom": e.atom, "module": e.module, "check": e.check, "params": _json(e.params),
+                        "step": e.step, "message": e.message} for e in self.errors],
+            "metrics": self.metrics,
+        }
+
+
+def _json(value: Any) -> Any:
+    return [_json(v) for v in value] if isinstance(value, tuple) else value
+
+
+def diagnostics(atoms: list[clingo.Symbol], timeline: Timeline | None) -> list[Violation]:
+    """``err(Module,Check,Params)`` atoms as violations in plain words (``timeline``, the
+    replay of the same plan, supplies the words: positions, quantities, names)."""
+    errors = []
+    for atom in atoms:
+        module, check, params = (value_of(argument) for argument in atom.arguments)
+        params = params if isinstance(params, tuple) else (params,)
+        errors.append(timeline.explain(module, check, params))
+    return sorted(errors, key=lambda e: e.sort_key)
+
+
+# --- metrics -----------------------------------------------------------------------------
+
+def metrics(instance: Instance, plan: Plan, domain: Domain, errors: list[Violation]) -> dict[str, Any]:
+    """Horizon, actions by name, sum of costs, idle steps, what the plan fulfils, lower
+    bounds and the ratios plan/bound (``None`` where a bound is 0 or infinite)."""
+    horizon = max(plan.horizon, 0)
+    acting = {(a.robot, a.step) for a in plan.actions
+              if a.kind == "robot" and a.robot in instance.robots and 1 <= a.step}
+    last_step: dict[Any, int] = {}
+    for robot, step in acting:
+        last_step[robot] = max(step, last_step.get(robot, 0))
+    sum_of_costs = sum(last_step.values())
+    result: dict[str, Any] = {
+        "horizon": horizon,
+        "actions": dict(sorted(Counter(a.name for a in plan.actions).items())),
+        "sum_of_costs": sum_of_costs,
+        "idle_steps": len(instance.robots) * horizon - len(acting),
+    }
+    if domain is Domain.MD:
+        missed = {e.params[0] for e in errors if e.check == "unoccupiedDestination"}
+        result["destinations"] = len(instance.destinations)
+        result["destinations_reached"] = len(instance.destinations) - len(missed)
+    else:
+        missed = {e.params[0] for e in errors if e.check == "unfilledOrder"}
+        result["orders"] = len(instance.orders)
+        result["orders_fulfilled"] = len(set(instance.orders) - missed)
+    floor = Floor(instance.cells)
+    if domain.delivers:
+        result["makespan_bound"] = _number(delivery_makespan_bound(instance, floor))
+    else:
+        makespan, total = mapf_bounds(instance, floor)
+        result["makespan_bound"] = _number(makespan)
+        result["sum_of_costs_bound"] = _number(total)
+        result["sum_of_costs_ratio"] = _ratio(sum_of_costs, total)
+    result["makespan_ratio"] = _ratio(horizon, result["makespan_bound"])
+    return result
+
+
+def _number(value: float) -> int | None:
+    """A bound as JSON shows it: an integer, or ``None`` when no plan can reach the goal."""
+    return int(value) if math.isfinite(value) else None
+
+
+def _ratio(value: float, bound: float | None) -> float | None:
+    if bound is None or not math.isfinite(bound) or bound <= 0:
+        return None
+    return round(value / bound, 3)
+
+
+def build_report(instance: Instance, plan: Plan, domain: Domain, atoms: list[clingo.Symbol],
+                 statistics: dict[str, float | int]) -> Report:
+    """The report for a plan whose checker derived ``atoms``."""
+    timeline = simulate(instance, plan, domain) if atoms else None
+    errors = diagnostics(atoms, timeline)
+    return Report(domain, max(plan.horizon, 0), errors, metrics(instance, plan, domain, errors), statistics)
