@@ -12,7 +12,7 @@ from PyQt5.QtCore import QEvent, QPointF, QSettings, Qt  # noqa: E402
 from PyQt5.QtGui import QMouseEvent  # noqa: E402
 from PyQt5.QtWidgets import QApplication, QMessageBox  # noqa: E402
 
-from asprilo.reader import read_instance  # noqa: E402
+from asprilo.reader import read_instance, read_plan  # noqa: E402
 from asprilo.visualizer import edits, style  # noqa: E402
 from asprilo.visualizer.dialogs import GenerateDialog, SizeDialog, StockDialog  # noqa: E402
 from asprilo.visualizer.window import MainWindow  # noqa: E402
@@ -260,3 +260,17 @@ def test_unsaved_edits_are_not_dropped_without_asking(window, monkeypatch):
     assert list(window.editor.document.instance.robots) == [1]
     monkeypatch.setattr(QMessageBox, "question", lambda *args: QMessageBox.Discard)
     assert window.open_files([str(SMALL_A)])
+
+
+def test_saving_mid_animation_writes_the_initial_state(window, qtbot, tmp_path):
+    window.open_files([str(OUTCOME)])
+    window.player.set_speed(64)
+    window.player.play()
+    qtbot.waitUntil(lambda: window.player.time > 10, timeout=5000)
+    assert window.editor.save_as(tmp_path / "saved.lp")
+    assert window.player.time > 10  # saving does not stop the animation
+    assert read_instance(tmp_path / "saved.lp") == read_instance(OUTCOME)
+    text = (tmp_path / "saved.lp").read_text()
+    assert text.startswith("%" * 60 + "\n% asprilo viz ") and "occurs(" not in text
+    assert window.windowTitle() == "saved.lp + outcome.txt — asprilo viz"  # the plan still comes from there
+    assert window.reload() and len(window.scenario.plan) == len(read_plan(OUTCOME))

@@ -35,12 +35,15 @@ class Document(QObject):
     """The instance being edited (always its initial state), its history and its file."""
 
     changed = pyqtSignal(object)  # the Edit just done or undone
+    modified_changed = pyqtSignal()
 
     def __init__(self, parent: QObject | None = None):
         super().__init__(parent)
         self.instance = Instance()
         self.stack = QUndoStack(self)
+        self.stack.cleanChanged.connect(self._clean_changed)
         self.path: Path | None = None
+        self.modified = False  # unsaved edits (kept here: the stack may be gone when asked)
 
     def reset(self, instance: Instance, path: str | Path | None = None) -> None:
         """Edit ``instance`` from now on (a new history, nothing unsaved)."""
@@ -49,9 +52,9 @@ class Document(QObject):
         self.stack.clear()
         self.stack.setClean()
 
-    @property
-    def modified(self) -> bool:
-        return not self.stack.isClean()
+    def _clean_changed(self, clean: bool) -> None:
+        self.modified = not clean
+        self.modified_changed.emit()
 
     def perform(self, edit: Edit) -> bool:
         """Do ``edit`` as one undoable step; ``False`` when it changes nothing."""

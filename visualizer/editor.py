@@ -53,7 +53,7 @@ class Editor(QObject):
         self.view = window.view
         self.document = Document(self)
         self.document.changed.connect(self._changed)
-        self.document.stack.cleanChanged.connect(lambda _clean: window.show_title())
+        self.document.modified_changed.connect(window.show_title)
         self.last_message: str | None = None  # the last refusal (tests and status bar)
         self.locked: str | None = None  # why edits are refused for now (an online session)
         self.palette = ToolPalette(window)
@@ -95,7 +95,7 @@ class Editor(QObject):
         edit.addAction(self.commands["undo"])
         edit.addAction(self.commands["redo"])
         edit.addSeparator()
-        tools = edit.addMenu("&Tools")
+        tools = edit.addMenu("Edit &tool")
         for action in self.palette.group.actions():
             tools.addAction(action)
         edit.addAction(self.commands["resize"])
@@ -388,6 +388,8 @@ class Editor(QObject):
             return False
         scenario = self.window.scenario
         if scenario is not None:
+            if len(scenario.plan) and not scenario.plan_sources:
+                scenario.plan_sources = scenario.instance_sources  # the plan still comes from there
             scenario.instance_sources = [Source(str(path), self.document.text())]
             self.window.remember(scenario)
         self.window.show_title()

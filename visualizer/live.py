@@ -131,6 +131,7 @@ class LiveControl(QObject):
             session.deleteLater()
         self.disconnect_action.setEnabled(False)
         self.window.editor.lock(None)
+        self.window.tools.update_actions()
         if self.scenario is not None and self.window.scenario is self.scenario:
             self.scenario.unfinished = False  # the goal is checked now
             self.window.show_changes(self.window.player.time)

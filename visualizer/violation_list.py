@@ -21,6 +21,12 @@ class ViolationsModel(StepModel):
     def build_rows(self, track: Track) -> list[Violation]:
         return list(track.violations)
 
+    def set_rows(self, violations: list[Violation]) -> None:
+        """Show these violations (e.g. the ASP checker's) instead of the replay's."""
+        self.beginResetModel()
+        self.rows = list(violations)
+        self.endResetModel()
+
     def value(self, row: Violation, column: int) -> Any:
         return (row.step, f"{row.module}/{row.check}", row.message)[column]
 

@@ -22,6 +22,7 @@ from .animator import Animator
 from .controls import TransportBar
 from .describe import tooltip
 from .editor import EDIT_ACTIONS, Editor
+from .gui_jobs import GuiTools
 from .inventory import InventoryModel
 from .live import LiveControl
 from .loading import Scenario
@@ -104,6 +105,8 @@ class MainWindow(QMainWindow):
         self.docks = self._make_docks()
         self.docks["order_editor"] = self.editor.install(self.menus, self.commands["export_picture"])
         self.live.install(self.menus)
+        self.tools = GuiTools(self)
+        self.tools.install(self.menus)
         self.tabifyDockWidget(self.docks["inventory"], self.docks["order_editor"])
         self.docks["orders"].raise_()
         self.panels["plan"].row_activated.connect(lambda action: self.go_to(action.step))
@@ -301,6 +304,7 @@ class MainWindow(QMainWindow):
         self.select_robots(self.selected)
         self.show_title()
         self._show_summary()
+        self.tools.update_actions()
 
     def show_title(self) -> None:
         """``name — asprilo viz``, with a ``*`` while edits are unsaved."""
@@ -573,6 +577,7 @@ class MainWindow(QMainWindow):
             return
         self.player.pause()
         self.live.disconnect()
+        self.tools.cancel()
         self.settings.setValue("window/geometry", self.saveGeometry())
         self.settings.setValue("window/state", self.saveState())
         super().closeEvent(event)

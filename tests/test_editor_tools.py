@@ -1,0 +1,107 @@
+"""Generate, Solve and Check from the window (offscreen): background jobs, results loaded,
+cancel, a window that keeps working meanwhile."""
+
+from __future__ import annotations
+
+import os
+
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+
+import time  # noqa: E402
+
+import pytest  # noqa: E402
+from PyQt5.QtCore import QSettings, QTimer  # noqa: E402
+from PyQt5.QtWidgets import QMessageBox  # noqa: E402
+
+from asprilo.generator import populate  # noqa: E402
+from asprilo.model import PickingStation  # noqa: E402
+from asprilo.visualizer import edits  # noqa: E402
+from asprilo.visualizer.window import MainWindow  # noqa: E402
+from asprilo.writer import format_instance  # noqa: E402
+
+from conftest import SMALL_A, WRONG_OUTCOME  # noqa: E402
+from test_serve import TINY  # noqa: E402
+
+pytestmark = pytest.mark.gui
+WAIT_MS = 60_000  # no job may take longer here
+
+
+@pytest.fixture
+def window(qtbot, tmp_path_factory, monkeypatch):
+    settings = QSettings(str(tmp_path_factory.mktemp("settings") / "viz.ini"), QSettings.IniFormat)
+    window = MainWindow(settings)
+    qtbot.addWidget(window)
+    window.show()
+    qtbot.waitExposed(window)
+    monkeypatch.setattr(QMessageBox, "question", lambda *args: QMessageBox.Discard)
+    yield window
+    window.tools.cancel()
+    qtbot.waitUntil(lambda: window.tools.job is None, timeout=WAIT_MS)
+
+
+def finish(qtbot, window) -> None:
+    qtbot.waitUntil(lambda: window.tools.job is None, timeout=WAIT_MS)
+
+
+def test_generate_fills_the_layout_as_one_undoable_edit(window, qtbot):
+    window.editor.new_instance(6, 4)
+    window.editor.add("station", (1, 1))
+    template = edits.grid(6, 4)
+    template.stations[1] = PickingStation(1, (1, 1))
+    counts = {"robots": 2, "shelves": 4, "stations": 1, "products": 3, "units": 12, "orders": 2}
+    assert window.tools.generate(counts, seed=3) is not None
+    assert not window.editor.palette.isEnabled() and not window.tools.commands["solve"].isEnabled()
+    finish(qtbot, window)
+    instance = window.editor.document.instance
+    expected = populate(template, seed=3, **counts).instance
+    assert format_instance(instance) == format_instance(expected)
+    assert instance.stations == {1: PickingStation(1, (1, 1))}  # the layout's own objects stay
+    assert len(window.scene.robots) == 2 and len(window.scene.shelves) == 4
+    assert window.editor.document.stack.undoText() == "generate (seed 3)"
+    window.editor.commands["undo"].trigger()
+    assert not window.scene.robots and window.editor.document.instance == template
+    assert window.editor.palette.isEnabled()
+
+
+def test_solve_loads_and_plays_a_plan_of_minimal_makespan(window, qtbot, write):
+    window.open_files([str(write("tiny.lp", TINY))])
+    window.tools.solve()
+    finish(qtbot, window)
+    outcome = window.tools.last_outcome
+    assert outcome.found and outcome.minimal and outcome.horizon == 6
+    assert window.scenario.plan == outcome.plan and window.track.horizon == 6
+    assert not window.track.violations
+    assert window.player.playing
+    assert "minimal makespan 6" in window.statusBar().currentMessage()
+
+
+def test_solving_keeps_the_window_alive_and_can_be_cancelled(window, qtbot):
+    window.open_files([str(SMALL_A)])  # its minimal makespan takes minutes to prove
+    ticks = []
+    timer = QTimer(window)
+    timer.timeout.connect(lambda: ticks.append(time.perf_counter()))
+    timer.start(50)
+    window.tools.solve()
+    assert window.tools.bar.isVisible() and window.tools.bar.label.text() == "Solve…"
+    qtbot.waitUntil(lambda: window.tools.bar.label.text().startswith("Solve: horizon 16"), timeout=WAIT_MS)
+    assert len(ticks) >= 10 and max(b - a for a, b in zip(ticks, ticks[1:])) < 1.0  # never frozen for long
+    started = time.perf_counter()
+    window.tools.cancel()
+    finish(qtbot, window)
+    assert time.perf_counter() - started < 5.0
+    assert window.statusBar().currentMessage() == "Solve cancelled"
+    assert len(window.scenario.plan) == 0 and not window.tools.bar.isVisible()
+    assert window.editor.palette.isEnabled()
+    timer.stop()
+
+
+def test_check_shows_the_asp_checkers_diagnostics(window, qtbot):
+    window.open_files([str(WRONG_OUTCOME)])
+    replay = [row for row in window.panels["violations"].texts()]
+    window.tools.check()
+    finish(qtbot, window)
+    report = window.tools.last_outcome
+    assert not report.valid
+    assert window.docks["violations"].windowTitle() == f"Violations — ASP checker ({len(report.errors)})"
+    assert sorted(window.panels["violations"].texts()) == sorted(replay)
+    assert window.statusBar().currentMessage().endswith("it agrees with the viewer's replay")
