@@ -37,9 +37,12 @@ def instance_facts(instance: Instance) -> str:
     return format_instance(instance, header=[])
 
 
-def plan_facts(instance: Instance, plan: Plan) -> str:
+def plan_facts(instance: Instance, plan: Plan, packed: bool = True) -> str:
     """The plan as facts: ``packedMoves/3`` for the moves of robots of the instance at steps
-    >= 1 that are the robot's only action at their step, ``occurs/3`` for all others."""
+    >= 1 that are the robot's only action at their step, ``occurs/3`` for all others
+    (for all actions with ``packed=False``)."""
+    if not packed:
+        return "\n".join(format_action(action) + "." for action in plan.actions)
     robots = sorted(r for r in instance.robots if isinstance(r, int))
     row = {robot: i for i, robot in enumerate(robots)}
     blocks = -(-max(plan.horizon, 1) // _DIGITS)
@@ -78,6 +81,7 @@ def run_checker(facts: str, domain: Domain) -> tuple[list[clingo.Symbol], Statis
     return [symbol for symbol in result.symbols if symbol.match("err", 3)], solver.stats
 
 
-def err_atoms(instance: Instance, plan: Plan, domain: Domain) -> tuple[list[clingo.Symbol], Statistics]:
+def err_atoms(instance: Instance, plan: Plan, domain: Domain,
+              packed: bool = True) -> tuple[list[clingo.Symbol], Statistics]:
     """The ``err/3`` atoms of ``plan`` on ``instance`` in ``domain``."""
-    return run_checker(instance_facts(instance) + "\n" + plan_facts(instance, plan), domain)
+    return run_checker(instance_facts(instance) + "\n" + plan_facts(instance, plan, packed), domain)
