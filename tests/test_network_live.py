@@ -60,8 +60,13 @@ def test_orders_arrive_and_robots_are_replanned_live(window, qtbot, servers):
     session = window.live.connect_to("127.0.0.1", solver_port, simulator_port)
     assert not window.editor.palette.isEnabled()  # the world belongs to the session
     seen_orders: dict[int, list[int]] = {}
-    window.player.step_changed.connect(
-        lambda step: seen_orders.setdefault(step, sorted(window.scenario.instance.orders)))
+    verdicts: dict[int, str] = {}
+
+    def shown(step: int) -> None:
+        seen_orders.setdefault(step, sorted(window.scenario.instance.orders))
+        verdicts.setdefault(step, window.problems.text())
+
+    window.player.step_changed.connect(shown)
     qtbot.waitUntil(lambda: window.live.session is None, timeout=int(WAIT * 1000))
     assert window.live.last_reason.startswith("the solver has nothing more to do after step")
     assert online.facts[-1] == ORDER_2  # the simulator's order reached the solver ...
@@ -76,6 +81,7 @@ def test_orders_arrive_and_robots_are_replanned_live(window, qtbot, servers):
     assert window.player.time == plan.horizon
     assert window.editor.palette.isEnabled()
     assert "Online session ended" in window.statusBar().currentMessage()
+    assert "no rule broken so far" in verdicts[2] and "valid plan" in window.problems.text()
 
 
 def test_solver_alone_plans_for_the_instance_shown(window, qtbot, servers, write):
@@ -107,3 +113,15 @@ def test_links_that_fail_end_the_session_with_a_message(window, qtbot, monkeypat
         silent.close()
     assert window.live.last_reason == f"the solver at 127.0.0.1:{silent_port} did not answer within 0.5 s"
     assert window.editor.palette.isEnabled()
+
+
+def test_viz_online_options_are_checked(write):
+    import subprocess
+    import sys
+    for args, message in ((["--simulator", "5001"], "error: --simulator goes with --solver"),
+                          (["--solver", "5000"], "error: --solver needs an INSTANCE to plan for"),
+                          ([str(write("tiny.lp", TINY)), "--solver", "5000", "--export", "x.png"],
+                           "error: --solver and --export do not go together")):
+        result = subprocess.run([sys.executable, "-m", "asprilo", "viz", *args], capture_output=True, text=True,
+                                timeout=WAIT)
+        assert result.returncode == 2 and result.stderr.startswith(message), result.stderr

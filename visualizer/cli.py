@@ -10,6 +10,7 @@ Examples:
   python -m clingo instance.lp encoding.lp | viz          (output shows init/2 and occurs/3)
   viz instance.lp plan.lp --export state.png --step 12
   viz instance.lp plan.lp --export plan.gif --frames 4 --speed 4
+  viz --solver 5000 --simulator 5001          (watch asprilo serve solver/simulator live)
 """
 
 from __future__ import annotations
@@ -36,6 +37,12 @@ def configure(parser: argparse.ArgumentParser) -> None:
                        help="animation speed in steps per second (default 2)")
     group.add_argument("--cell", type=int, metavar="PX",
                        help="pixels per cell (default 48, less for big warehouses)")
+    online = parser.add_argument_group("online link (see asprilo serve)")
+    online.add_argument("--solver", type=int, metavar="PORT",
+                        help="connect to a solver: it plans step by step for the INSTANCE, or for the simulator's world")
+    online.add_argument("--simulator", type=int, metavar="PORT",
+                        help="connect to a simulator as well: it says what the world is and when orders arrive")
+    online.add_argument("--host", default="127.0.0.1", help="where solver and simulator run (default 127.0.0.1)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -58,6 +65,12 @@ def _check_options(args: argparse.Namespace) -> None:
             raise InputError(f"{option} must be at least {least}, got {value}")
     if args.speed <= 0:
         raise InputError(f"--speed must be positive, got {args.speed:g}")
+    if args.simulator is not None and args.solver is None:
+        raise InputError("--simulator goes with --solver: the simulator's world needs a solver to plan it")
+    if args.solver is not None and args.simulator is None and not args.files:
+        raise InputError("--solver needs an INSTANCE to plan for, or a --simulator to say what the world is")
+    if args.solver is not None and args.export:
+        raise InputError("--solver and --export do not go together: an online session runs in the window")
 
 
 #: Qt warnings that say nothing useful to a user of the viewer (headless runs print them)
@@ -122,4 +135,6 @@ def _show(args: argparse.Namespace, scenario) -> int:
         if args.step:
             window.go_to(_step(args, window.track.horizon))
     window.show()
+    if args.solver is not None:
+        window.live.connect_to(args.host, args.solver, args.simulator)
     return app.exec_()

@@ -19,8 +19,8 @@ from asprilo.simulate import State, Violation, simulate
 class Track:
     """States 0..horizon of ``plan`` on ``instance`` (state t = the state after step t).
 
-    ``unfinished``: the plan is still growing (an online session), so the goal is not
-    checked at its last step yet.
+    ``unfinished``: the plan is not complete (none yet, or still growing in an online
+    session), so the goal is not checked at its last step.
     """
 
     def __init__(self, instance: Instance, plan: Plan, domain: Domain | None = None, unfinished: bool = False):

@@ -286,7 +286,9 @@ class MainWindow(QMainWindow):
         self._show_states(time)
 
     def _animate(self, scenario: Scenario) -> None:
-        self.track = Track(scenario.instance, scenario.plan, scenario.domain, scenario.unfinished)
+        # without a plan (yet) the goal is no problem: only the instance's own are shown
+        unfinished = scenario.unfinished or not len(scenario.plan)
+        self.track = Track(scenario.instance, scenario.plan, scenario.domain, unfinished)
         self.animator = Animator(self.scene, self.track)
         self.trails = Trails(self.scene, self.track)
 
@@ -428,7 +430,8 @@ class MainWindow(QMainWindow):
         total = len(self.track.violations)
         here = len(self.track.violations_at.get(step, []))
         if not total:
-            self.problems.setText("<span style='color:#2b8a3e'>valid plan \u2713</span>")
+            verdict = "no rule broken so far" if self.scenario.unfinished else "valid plan"
+            self.problems.setText(f"<span style='color:#2b8a3e'>{verdict} \u2713</span>")
             return
         text = f"\u26a0 {total} rule violation{'s' if total > 1 else ''}"
         if here:
