@@ -51,6 +51,7 @@ def test_generate_fills_the_layout_as_one_undoable_edit(window, qtbot):
     counts = {"robots": 2, "shelves": 4, "stations": 1, "products": 3, "units": 12, "orders": 2}
     assert window.tools.generate(counts, seed=3) is not None
     assert not window.editor.palette.isEnabled() and not window.tools.commands["solve"].isEnabled()
+    assert not window.editor.commands["undo"].isEnabled()  # the generator works on this instance
     finish(qtbot, window)
     instance = window.editor.document.instance
     expected = populate(template, seed=3, **counts).instance
@@ -60,7 +61,7 @@ def test_generate_fills_the_layout_as_one_undoable_edit(window, qtbot):
     assert window.editor.document.stack.undoText() == "generate (seed 3)"
     window.editor.commands["undo"].trigger()
     assert not window.scene.robots and window.editor.document.instance == template
-    assert window.editor.palette.isEnabled()
+    assert window.editor.palette.isEnabled() and window.editor.commands["redo"].isEnabled()
 
 
 def test_solve_loads_and_plays_a_plan_of_minimal_makespan(window, qtbot, write):

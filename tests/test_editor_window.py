@@ -13,7 +13,7 @@ from PyQt5.QtGui import QMouseEvent  # noqa: E402
 from PyQt5.QtWidgets import QApplication, QMessageBox  # noqa: E402
 
 from asprilo.reader import read_instance, read_plan  # noqa: E402
-from asprilo.visualizer import edits, style  # noqa: E402
+from asprilo.visualizer import style  # noqa: E402
 from asprilo.visualizer.dialogs import GenerateDialog, SizeDialog, StockDialog  # noqa: E402
 from asprilo.visualizer.window import MainWindow  # noqa: E402
 from asprilo.writer import format_instance  # noqa: E402
@@ -274,3 +274,13 @@ def test_saving_mid_animation_writes_the_initial_state(window, qtbot, tmp_path):
     assert text.startswith("%" * 60 + "\n% asprilo viz ") and "occurs(" not in text
     assert window.windowTitle() == "saved.lp + outcome.txt — asprilo viz"  # the plan still comes from there
     assert window.reload() and len(window.scenario.plan) == len(read_plan(OUTCOME))
+
+
+def test_the_pointer_selects_robots_while_a_plan_plays(window, qtbot):
+    window.open_files([str(OUTCOME)])
+    window.go_to(5)
+    cell = tuple(int(v) for v in window.track.state(5).robots[2])
+    window.editor.palette.choose("pointer")
+    qtbot.mouseClick(window.view.viewport(), Qt.LeftButton, pos=point(window, cell))
+    assert window.selected == [2] and window.player.time == 5  # no rewind, nothing moved
+    assert window.editor.document.stack.count() == 0

@@ -124,6 +124,9 @@ class Editor(QObject):
         self.palette.setEnabled(editable)
         self.commands["resize"].setEnabled(editable)
         self.orders.setEnabled(editable)
+        # (the stack re-enables these as it changes; it cannot change while locked)
+        self.commands["undo"].setEnabled(editable and self.document.stack.canUndo())
+        self.commands["redo"].setEnabled(editable and self.document.stack.canRedo())
 
     def confirm_discard(self) -> bool:
         """Whether unsaved edits may go (asks when there are any)."""
@@ -219,8 +222,8 @@ class Editor(QObject):
 
     def eventFilter(self, watched, event) -> bool:
         kind = event.type()
-        if self.window.scenario is None or kind not in _MOUSE_EVENTS:
-            return False
+        if self.window.scenario is None or self.locked is not None or kind not in _MOUSE_EVENTS:
+            return False  # the viewer's own mouse: pan, select, hover
         if kind == QEvent.ContextMenu:
             self.context_menu(self.cell_at(event.pos())).popup(event.globalPos())
             return True
@@ -243,12 +246,8 @@ class Editor(QObject):
         cell, tool = self.cell_at(event.pos()), self.palette.tool
         if tool == "pointer":
             target = self._draggable(cell)
-            if target is None:
-                return False  # pan and select as in the viewer
-            if self.window.player.time != 0:
-                self.window.go_to(0)
-                self.window.statusBar().showMessage("Objects are moved in the initial state: drag again", 5000)
-                return True
+            if target is None or self.window.player.time != 0:
+                return False  # pan and select as in the viewer (objects are moved in the initial state)
             self._drag = _Drag(self, *target, cell, event.pos())
             return True
         if tool in OBJECT_TOOLS:

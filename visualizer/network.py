@@ -185,6 +185,8 @@ class LiveSession(QObject):
                 return
             self._begin()
             return
+        if self.asking is None:
+            return  # not asked: ignored
         if message.facts:
             if not self._learn(message.facts):
                 return
