@@ -106,3 +106,13 @@ def test_check_shows_the_asp_checkers_diagnostics(window, qtbot):
     assert window.docks["violations"].windowTitle() == f"Violations — ASP checker ({len(report.errors)})"
     assert sorted(window.panels["violations"].texts()) == sorted(replay)
     assert window.statusBar().currentMessage().endswith("it agrees with the viewer's replay")
+
+
+def test_check_without_a_plan_reports_the_open_orders(window, qtbot):
+    window.open_files([str(SMALL_A)])
+    assert window.panels["violations"].texts() == []  # no plan: the goal is no problem yet
+    window.tools.check()
+    finish(qtbot, window)
+    rows = window.panels["violations"].texts()
+    assert rows and {row[1] for row in rows} == {"goal/unfilledOrder"}
+    assert window.statusBar().currentMessage().endswith("it agrees with the viewer's replay")

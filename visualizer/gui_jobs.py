@@ -281,7 +281,7 @@ class GuiTools(QObject):
         panel.table.resizeColumnsToContents()
         self.window.docks["violations"].setWindowTitle(f"Violations — ASP checker ({len(violations)})")
         self.window.docks["violations"].raise_()
-        replay = {v.atom for v in track.violations}
+        replay = {v.atom for v in track.timeline.violations}  # the goal included, also without a plan
         agree = "agrees with" if replay == {v.atom for v in violations} else "differs from"
         verdict = "valid plan" if report.valid else f"{len(violations)} violation{'s' if len(violations) != 1 else ''}"
         self.window.statusBar().showMessage(f"ASP checker: {verdict}; it {agree} the viewer's replay", 10000)
