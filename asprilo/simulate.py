@@ -87,9 +87,15 @@ class Violation:
         """The ``err/3`` term, exactly as clingo prints it."""
         return f"err({self.module},{self.check},{format_value(self.params)})"
 
-    @property
-    def sort_key(self) -> tuple:
-        return (self.step, self.module, self.check, tuple(_term_key(p) for p in self.params))
+
+
+def sort_violations(violations: list[Violation]) -> list[Violation]:
+    """Sort by step, module, check and params (in place; also returned)."""
+    try:
+        violations.sort(key=lambda v: (v.step, v.module, v.check, v.params))
+    except TypeError:  # ids of several types (robot 3 and robot "a")
+        violations.sort(key=lambda v: (v.step, v.module, v.check, _term_key(v.params)))
+    return violations
 
 
 def _term_key(value: Any) -> tuple:
@@ -112,7 +118,7 @@ def _ints(args: Any, lengths: tuple[int, ...]) -> bool:
 def well_formed(name: str, args: Any, domain: Domain) -> bool:
     """Whether ``args`` have the shape action ``name`` takes in ``domain`` (SPEC.md §3)."""
     if name == "move":
-        return args in _MOVES and _ints(args, (2,))
+        return args in _MOVES and type(args[0]) is int
     if name in ("pickup", "putdown"):
         return args == ()
     if name == "deliver":
@@ -179,8 +185,8 @@ class Timeline:
         self.robot_ids: list[int] = sorted(instance.robots)
         self._index = {robot: i for i, robot in enumerate(self.robot_ids)}
         self._actions: dict[tuple, list[Action]] | None = None
+        self._rows: dict[int, list] = {}  # positions of recent steps, as lists
         _Replay(self).run()
-        self.violations.sort(key=lambda v: v.sort_key)
 
     # filled in by _Replay
     violations: list[Violation]
@@ -197,8 +203,13 @@ class Timeline:
 
     def position(self, robot: int, step: int) -> Cell:
         """Where ``robot`` stands after ``step``."""
-        x, y = self._positions[min(max(step, 0), self.horizon), self._index[robot]]
-        return (int(x), int(y))
+        step = min(max(step, 0), self.horizon)
+        row = self._rows.get(step)
+        if row is None:
+            if len(self._rows) > 3:
+                self._rows.clear()
+            row = self._rows[step] = self._positions[step].tolist()
+        return tuple(row[self._index[robot]])
 
     def actions_of(self, robot: Any, step: int, kind: str = "robot") -> list[Action]:
         """The plan's actions of one object at one step."""
@@ -285,7 +296,8 @@ class _Replay:
         self.check_moves()
         self.replay(effective)
         self.check_goal()
-        timeline.violations = [timeline.explain(*entry) for entry in dict.fromkeys(self.found)]
+        found = sorted(dict.fromkeys(self.found), key=lambda entry: entry[2][-1])  # by step: cheap lookups
+        timeline.violations = sort_violations([timeline.explain(*entry) for entry in found])
 
     # --- actions -------------------------------------------------------------------------
 
@@ -294,38 +306,29 @@ class _Replay:
         robots, known, domain = self.instance.robots, DOMAIN_ACTIONS[self.domain], self.domain
         report = self.report
         effective: dict[int, list[Action]] = defaultdict(list)
-        actions = self.timeline.plan.actions  # sorted: one robot's actions at one step are adjacent
+        actions = self.timeline.plan.actions
+        # the plan is sorted, so the actions of one object at one step come one after another
+        keys = [(a.step, a.robot, a.kind) for a in actions]
+        shared = [False] + [a == b for a, b in zip(keys, keys[1:])] + [False]
         for i, action in enumerate(actions):
-            robot, step = action.robot, action.step
+            step, robot = action.step, action.robot
             if action.kind != "robot":
                 report("action", "notRobot", action.kind, robot, step)
-                continue
-            if robot not in robots:
+            elif robot not in robots:
                 report("action", "unknownRobot", robot, step)
-                continue
-            if step < 1:
+            elif step < 1:
                 report("action", "badStep", robot, step)
-                continue
-            name = action.name
-            if name not in known:
-                report("action", "unknownAction", robot, name, step)
-                good = False
-            elif name == "move" and action.args in _MOVES and type(action.args[0]) is int:
-                good = True
-            elif well_formed(name, action.args, domain):
-                good = True
-            else:
-                report("action", "badArguments", robot, name, step)
-                good = False
-            alone = True
-            for j in (i - 1, i + 1):
-                if 0 <= j < len(actions):
-                    other = actions[j]
-                    if other.step == step and other.robot == robot and other.kind == "robot":
-                        alone = False
-            if not alone:
+            elif action.name not in known:
+                report("action", "unknownAction", robot, action.name, step)
+                if shared[i] or shared[i + 1]:
+                    report("action", "concurrent", robot, step)
+            elif not well_formed(action.name, action.args, domain):
+                report("action", "badArguments", robot, action.name, step)
+                if shared[i] or shared[i + 1]:
+                    report("action", "concurrent", robot, step)
+            elif shared[i] or shared[i + 1]:
                 report("action", "concurrent", robot, step)
-            elif good:
+            else:
                 effective[step].append(action)
         return effective
 

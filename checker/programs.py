@@ -10,9 +10,11 @@ action stays an ``occurs/3`` fact.
 
 from __future__ import annotations
 
+from functools import lru_cache
 from pathlib import Path
 
 import clingo
+import clingo.ast
 import numpy as np
 
 from asprilo.domain import Domain
@@ -38,47 +40,54 @@ def instance_facts(instance: Instance) -> str:
 
 
 def plan_facts(instance: Instance, plan: Plan, packed: bool = True) -> str:
-    """The plan as facts: ``packedMoves/3`` for the moves of robots of the instance at steps
-    >= 1 that are the robot's only action at their step, ``occurs/3`` for all others
-    (for all actions with ``packed=False``)."""
-    if not packed:
-        return "\n".join(format_action(action) + "." for action in plan.actions)
-    robots = sorted(r for r in instance.robots if isinstance(r, int))
+    """The plan as facts: ``packedMoves/3`` for the well-formed moves of robots of the
+    instance at steps >= 1 that are the robot's only action at their step, ``occurs/3``
+    for all other actions (for all actions with ``packed=False``)."""
+    actions = plan.actions
+    if not packed or not actions:
+        return "\n".join(format_action(action) + "." for action in actions)
+    robots = sorted(r for r in instance.robots if type(r) is int)
     row = {robot: i for i, robot in enumerate(robots)}
-    blocks = -(-max(plan.horizon, 1) // _DIGITS)
+    rows = np.array([row.get(a.robot, -1) if a.kind == "robot" else -1 for a in actions], dtype=np.int64)
+    steps = np.array([a.step for a in actions], dtype=np.int64)
+    codes = np.array([_PACKED[a.args] if a.name == "move" and a.args in _PACKED and type(a.args[0]) is int
+                      else 0 for a in actions], dtype=np.int64)
+    horizon = max(int(steps.max()), 1)
+    slots = rows * (horizon + 1) + steps
+    _, first, counts = np.unique(slots, return_inverse=True, return_counts=True)
+    alone = counts[first] == 1
+    packable = (codes > 0) & (rows >= 0) & (steps >= 1) & alone
+    blocks = -(-horizon // _DIGITS)
     digits = np.zeros((len(robots), blocks * _DIGITS), dtype=np.int64)
-    others: list[str] = []
-    actions = plan.actions  # sorted: one robot's actions at one step are adjacent
-    last = len(actions) - 1
-    for i, action in enumerate(actions):
-        code = _PACKED.get(action.args) if action.name == "move" and action.kind == "robot" else None
-        if (code is None or action.step < 1 or action.robot not in row
-                or type(action.args[0]) is not int
-                or (i > 0 and _same_slot(actions[i - 1], action))
-                or (i < last and _same_slot(actions[i + 1], action))):
-            others.append(format_action(action) + ".")
-        else:
-            digits[row[action.robot], action.step - 1] = code
+    digits[rows[packable], steps[packable] - 1] = codes[packable]
     weights = 5 ** np.arange(_DIGITS, dtype=np.int64)
-    codes = digits.reshape(len(robots), blocks, _DIGITS) @ weights
-    packed = [f"packedMoves({robots[r]},{1 + b * _DIGITS},{codes[r, b]})."
-              for r, b in zip(*np.nonzero(codes))]
-    return "\n".join(packed + others)
+    packed_codes = digits.reshape(len(robots), blocks, _DIGITS) @ weights
+    lines = [f"packedMoves({robots[r]},{1 + b * _DIGITS},{packed_codes[r, b]})."
+             for r, b in zip(*np.nonzero(packed_codes))]
+    lines += [format_action(actions[i]) + "." for i in np.nonzero(~packable)[0]]
+    return "\n".join(lines)
 
 
-def _same_slot(a, b) -> bool:
-    return a.step == b.step and a.robot == b.robot and a.kind == b.kind
+@lru_cache(maxsize=None)
+def _statements(domain: Domain) -> tuple[clingo.ast.AST, ...]:
+    """The checker of ``domain`` and packed.lp, parsed once."""
+    statements: list[clingo.ast.AST] = []
+    clingo.ast.parse_files([str(program(domain)), str(HERE / "packed.lp")], statements.append)
+    return tuple(statements)
 
 
 def run_checker(facts: str, domain: Domain) -> tuple[list[clingo.Symbol], Statistics]:
     """Ground and solve the checker of ``domain`` on ``facts``; its ``err/3`` atoms."""
     solver = Solver(options=["--warn=none"])
-    solver.load(program(domain))
-    solver.load(HERE / "packed.lp")
+    with clingo.ast.ProgramBuilder(solver.control) as builder:
+        for statement in _statements(domain):
+            builder.add(statement)
     solver.add(facts)
     solver.ground()
-    result = solver.solve()
-    return [symbol for symbol in result.symbols if symbol.match("err", 3)], solver.stats
+    # one answer set, found without search: the program negates only what earlier steps decided
+    with solver.control.solve(yield_=True) as answers:
+        atoms = next(iter(answers)).symbols(shown=True)
+    return [atom for atom in atoms if atom.match("err", 3)], solver.stats
 
 
 def err_atoms(instance: Instance, plan: Plan, domain: Domain,

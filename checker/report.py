@@ -8,12 +8,13 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import clingo
+import numpy as np
 
 from asprilo.bounds import Floor, delivery_makespan_bound, mapf_bounds
 from asprilo.domain import Domain
 from asprilo.model import Instance, Plan
 from asprilo.reader import value_of
-from asprilo.simulate import Timeline, Violation, simulate
+from asprilo.simulate import Timeline, Violation, simulate, sort_violations
 
 
 @dataclass
@@ -58,7 +59,7 @@ def diagnostics(atoms: list[clingo.Symbol], timeline: Timeline | None) -> list[V
         module, check, params = (value_of(argument) for argument in atom.arguments)
         params = params if isinstance(params, tuple) else (params,)
         errors.append(timeline.explain(module, check, params))
-    return sorted(errors, key=lambda e: e.sort_key)
+    return sort_violations(errors)
 
 
 # --- metrics -----------------------------------------------------------------------------
@@ -66,18 +67,21 @@ def diagnostics(atoms: list[clingo.Symbol], timeline: Timeline | None) -> list[V
 def metrics(instance: Instance, plan: Plan, domain: Domain, errors: list[Violation]) -> dict[str, Any]:
     """Horizon, actions by name, sum of costs, idle steps, what the plan fulfils, lower
     bounds and the ratios plan/bound (``None`` where a bound is 0 or infinite)."""
-    horizon = max(plan.horizon, 0)
-    acting = {(a.robot, a.step) for a in plan.actions
-              if a.kind == "robot" and a.robot in instance.robots and 1 <= a.step}
-    last_step: dict[Any, int] = {}
-    for robot, step in acting:
-        last_step[robot] = max(step, last_step.get(robot, 0))
-    sum_of_costs = sum(last_step.values())
+    robots = sorted(instance.robots, key=str)
+    row = {robot: i for i, robot in enumerate(robots)}
+    rows = np.array([row.get(a.robot, -1) if a.kind == "robot" else -1 for a in plan.actions], dtype=np.int64)
+    steps = np.array([a.step for a in plan.actions], dtype=np.int64)
+    horizon = max(int(steps.max()), 0) if len(steps) else 0
+    acting = (rows >= 0) & (steps >= 1)
+    last_step = np.zeros(len(robots), dtype=np.int64)
+    np.maximum.at(last_step, rows[acting], steps[acting])
+    sum_of_costs = int(last_step.sum())
+    busy = len(np.unique(rows[acting] * (horizon + 1) + steps[acting]))
     result: dict[str, Any] = {
         "horizon": horizon,
         "actions": dict(sorted(Counter(a.name for a in plan.actions).items())),
         "sum_of_costs": sum_of_costs,
-        "idle_steps": len(instance.robots) * horizon - len(acting),
+        "idle_steps": len(robots) * horizon - busy,
     }
     if domain is Domain.MD:
         missed = {e.params[0] for e in errors if e.check == "unoccupiedDestination"}
@@ -115,4 +119,5 @@ def build_report(instance: Instance, plan: Plan, domain: Domain, atoms: list[cli
     """The report for a plan whose checker derived ``atoms``."""
     timeline = simulate(instance, plan, domain) if atoms else None
     errors = diagnostics(atoms, timeline)
-    return Report(domain, max(plan.horizon, 0), errors, metrics(instance, plan, domain, errors), statistics)
+    measured = metrics(instance, plan, domain, errors)
+    return Report(domain, measured["horizon"], errors, measured, statistics)
