@@ -23,8 +23,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "check": ("asprilo.checker.cli", "check a plan with the ASP checker: violations in plain words, metrics, bounds"),
     "gen": ("asprilo.generator.cli", "generate instances: random, structured (-H), templates (-T), YAML batches (-j)"),
     "viz": ("asprilo.visualizer.cli", "show a warehouse, animate a plan, export pictures and animations"),
+    "bench": ("asprilo.bench.cli", "run benchmark suites under limits, report tables and plots, export for btool"),
     "convert": ("asprilo.convert", "convert between asprilo, MovingAI maps/scenarios, LaCAM results, M and Md"),
     "serve": ("asprilo.serve", "serve the online link: a solver that re-plans, or a simulator releasing orders"),
+    "solve": ("asprilo.encodings.cli", "find a plan of minimal makespan with a reference encoding or max-flow"),
 }
 
 

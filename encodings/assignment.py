@@ -1,0 +1,85 @@
+"""Task assignment (the paper's subscript a): the first of two programs.
+
+:func:`assign_tasks` runs ``assign/m.lp`` or ``assign/abc.lp`` with the real floor
+distances as ``distance/3`` facts and returns the best assignment it finds within its time
+budget (optimisation is anytime: a cut-off answer is still a valid assignment).  The
+planners read the facts it returns (format in encodings/README.md).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+
+from asprilo.bounds import Floor
+from asprilo.domain import Domain
+from asprilo.model import Cell, Instance
+from asprilo.solver import Solver, Statistics, Status
+from asprilo.writer import format_instance
+
+from .registry import HERE
+
+
+@dataclass
+class Assignment:
+    """The assignment facts, the optimisation costs and whether they are proven optimal."""
+
+    facts: list[str]
+    status: Status = Status.SAT  # UNSAT: no assignment exists; UNKNOWN: none found in time
+    cost: list[int] = field(default_factory=list)
+    optimal: bool = False
+    seconds: float = 0.0
+    stats: Statistics = field(default_factory=Statistics)
+
+    def text(self) -> str:
+        return "".join(f"{fact}.\n" for fact in self.facts)
+
+
+def distance_facts(instance: Instance, domain: Domain, floor: Floor | None = None) -> list[str]:
+    """``distance(From,To,D)`` facts for the pairs an assignment program looks at."""
+    floor = floor or Floor(instance.cells)
+    robots = sorted({robot.at for robot in instance.robots.values()})
+    if domain.delivers:
+        stock = instance.shelf_stock()
+        ordered = {p for order in instance.orders.values() for p in order.lines}
+        shelves = sorted({s.at for s in instance.shelves.values() if ordered & set(stock.get(s.id, {}))})
+        pairs = [(robots, shelves), (shelves, sorted({p.at for p in instance.stations.values()}))]
+    else:
+        from asprilo.bounds import goal_cells
+        pairs = [(robots, goal_cells(instance))]
+    facts = []
+    for sources, targets in pairs:
+        table = floor.distances(sources, targets)
+        for (i, j) in zip(*np.nonzero(np.isfinite(table))):
+            facts.append(f"distance({_cell(sources[i])},{_cell(targets[j])},{int(table[i, j])})")
+    return facts
+
+
+def _cell(cell: Cell) -> str:
+    return f"({cell[0]},{cell[1]})"
+
+
+def assign_tasks(instance: Instance, domain: Domain, time_limit: float | None = 10.0,
+                 watch: Callable[[Solver], None] | None = None) -> Assignment:
+    """The best assignment found within ``time_limit`` seconds (``facts`` empty if none).
+
+    ``watch(solver)`` is called with the solver before it runs, so that a caller can
+    interrupt it from another thread.
+    """
+    started = time.perf_counter()
+    program = HERE / "assign" / ("abc.lp" if domain.delivers else "m.lp")
+    constants = {"domain": domain.value} if domain.delivers else {}
+    solver = Solver(options=["--opt-strategy=bb,hier"], constants=constants)
+    solver.add(format_instance(instance, []))
+    solver.add("".join(f"{fact}.\n" for fact in distance_facts(instance, domain)))
+    solver.load(program)
+    solver.ground()
+    if watch is not None:
+        watch(solver)
+    result = solver.solve(time_limit=time_limit)
+    facts = sorted(str(symbol) for symbol in result.symbols)
+    return Assignment(facts, result.status, result.cost, result.optimal,
+                      time.perf_counter() - started, solver.stats)
