@@ -20,6 +20,8 @@ from typing import Any, Callable
 import clingo
 
 from asprilo.bounds import Floor
+from asprilo.checker import check
+from asprilo.checker.report import Report
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
 from asprilo.model import Instance, Plan
@@ -75,7 +77,7 @@ class Outcome:
     horizons_tried: list[Attempt] = field(default_factory=list)
     stats: dict[str, Any] = field(default_factory=dict)
     assignment: Assignment | None = None
-    check: Any = None  # the checker's report of the plan
+    check: Report | None = None  # the ASP checker's verdict on the plan
     message: str = ""
 
     @property
@@ -190,20 +192,8 @@ def solve(instance: Instance | str | Path, domain: Domain | str | None = None, e
     return outcome
 
 
-@dataclass
-class _Report:
-    valid: bool
-    errors: list
-
-
-def check_plan(instance: Instance, plan: Plan, domain: Domain):
+def check_plan(instance: Instance, plan: Plan, domain: Domain) -> Report:
     """The ASP checker's report on ``plan`` (``.valid``, ``.errors`` with ``.message``)."""
-    try:
-        from asprilo.checker import check
-    except ImportError:  # until the ASP checker lands, the plain-Python replay stands in
-        from asprilo.simulate import simulate
-        timeline = simulate(instance, plan, domain)
-        return _Report(timeline.valid, list(timeline.violations))
     return check(instance, plan, domain)
 
 

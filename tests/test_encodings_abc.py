@@ -1,0 +1,109 @@
+"""The A/B/C encodings: exact minimal makespans on tiny instances, checked plans, assignments."""
+
+from __future__ import annotations
+
+import pytest
+
+from asprilo.domain import Domain
+from asprilo.encodings import ENCODINGS, SolveStatus, solve
+from asprilo.encodings.assignment import assign_tasks, distance_facts
+from asprilo.reader import read_instance
+from conftest import EXAMPLES, SMALL_A
+
+STYLES = {d: [e.name for e in ENCODINGS if e.domain is d] for d in (Domain.A, Domain.B, Domain.C)}
+TINY = {  # instance -> minimal makespan per domain (several robots may deliver in one step)
+    "x2_y2_n4_r2_s2_ps1_pr2_u4_o2_N1.lp": {Domain.C: 4, Domain.B: 5, Domain.A: 5},
+    "x3_y3_n9_r1_s1_ps1_pr1_u1_o1_N1.lp": {Domain.C: 9, Domain.B: 9, Domain.A: 9},
+    "x4_y4_n16_r2_s3_ps1_pr2_u4_o2_N1.lp": {Domain.C: 7, Domain.B: 8, Domain.A: 8},
+}
+CASES = [(name, domain, style, makespan) for name, spans in TINY.items()
+         for domain, makespan in spans.items() for style in STYLES[domain]]
+
+#: one robot that has to fetch two shelves in turn: the bound (8, C: 7) is far below 14
+TWO_SHELVES = """
+init(object(grid,1),value(xsize,4)). init(object(grid,1),value(ysize,3)).
+init(object(pickingStation,1),value(at,(1,1))).
+init(object(robot,1),value(at,(4,3))).
+init(object(shelf,1),value(at,(2,2))). init(object(shelf,2),value(at,(3,2))).
+init(object(product,1),value(on,(1,1))). init(object(product,2),value(on,(2,1))).
+init(object(order,1),value(line,(1,1))). init(object(order,1),value(line,(2,1))).
+init(object(order,1),value(pickingStation,1)).
+"""
+
+
+def test_registry():
+    assert STYLES == {Domain.A: ["plain", "plain-inc", "clingcon", "clingcon-inc"],
+                      Domain.B: ["plain", "plain-inc"], Domain.C: ["plain", "plain-inc"]}
+
+
+@pytest.mark.parametrize("name, domain, style, makespan", CASES,
+                         ids=[f"{n[:5]}-{d.value}-{s}" for n, d, s, _ in CASES])
+def test_minimal_makespan_and_none_below(name, domain, style, makespan):
+    instance = read_instance(EXAMPLES / "encodings-repo" / name)
+    outcome = solve(instance, domain, encoding=style)
+    assert (outcome.status, outcome.horizon, outcome.minimal) == (SolveStatus.FOUND, makespan, True)
+    assert outcome.check.valid and outcome.check.domain is domain
+    below = solve(instance, domain, encoding=style, horizon=makespan - 1)
+    assert below.status is SolveStatus.NONE
+
+
+@pytest.mark.parametrize("domain", [Domain.A, Domain.B, Domain.C])
+@pytest.mark.parametrize("style", ["plain", "plain-inc"])
+def test_search_climbs_to_a_two_trip_plan(write, domain, style):
+    outcome = solve(write("two.lp", TWO_SHELVES), domain, encoding=style)
+    first = 7 if domain is Domain.C else 8
+    assert [(a.horizon, a.result) for a in outcome.horizons_tried] == (
+        [(h, "unsat") for h in range(first, 14)] + [(14, "sat")])
+    assert (outcome.horizon, outcome.minimal, outcome.check.valid) == (14, True, True)
+    names = [a.name for a in outcome.plan.actions]
+    assert (names.count("pickup"), names.count("putdown"), names.count("deliver")) == (2, 1, 2)
+
+
+def test_clingcon_deliveries_carry_the_integer_amounts():
+    instance = read_instance(EXAMPLES / "encodings-repo/x2_y2_n4_r2_s2_ps1_pr2_u4_o2_N1.lp")
+    outcome = solve(instance, Domain.A, encoding="clingcon")
+    deliveries = sorted(a.args for a in outcome.plan.actions if a.name == "deliver")
+    assert deliveries == [(1, 1, 1), (2, 2, 3)]
+    assert outcome.check.valid
+
+
+def test_several_robots_deliver_in_the_same_step(write):
+    two_stations = """
+    init(object(grid,1),value(xsize,3)). init(object(grid,1),value(ysize,2)).
+    init(object(pickingStation,1),value(at,(1,1))). init(object(pickingStation,2),value(at,(3,1))).
+    init(object(robot,1),value(at,(1,2))). init(object(robot,2),value(at,(3,2))).
+    init(object(shelf,1),value(at,(1,2))). init(object(shelf,2),value(at,(3,2))).
+    init(object(product,1),value(on,(1,1))). init(object(product,2),value(on,(2,1))).
+    init(object(order,1),value(line,(1,1))). init(object(order,1),value(pickingStation,1)).
+    init(object(order,2),value(line,(2,1))). init(object(order,2),value(pickingStation,2)).
+    """
+    outcome = solve(write("stations.lp", two_stations), Domain.A)
+    assert outcome.horizon == 3 and outcome.check.valid
+    assert sorted((a.step, a.robot) for a in outcome.plan.actions if a.name == "deliver") == [(3, 1), (3, 2)]
+
+
+def test_assignment_for_b_uses_fewest_shelves():
+    instance = read_instance(SMALL_A)
+    assignment = assign_tasks(instance, Domain.B)
+    assert assignment.optimal
+    shelves = sorted({fact.split("shelf(")[1].split(")")[0] for fact in assignment.facts})
+    assert len(shelves) == 3 and "1" in shelves  # shelf 1 serves three lines at station 2
+    assert assignment.cost[0] == 3
+
+
+def test_assigned_plans_follow_the_assignment():
+    instance = read_instance(SMALL_A)
+    outcome = solve(instance, Domain.B, assign=True, time_limit=120)
+    assert outcome.found and outcome.check.valid and outcome.horizon == 16
+    carriers = {}
+    for fact in outcome.assignment.facts:  # assign(robot(R),shelf(S),pickingStation(P))
+        robot = int(fact.split("robot(")[1].split(")")[0])
+        carriers[int(fact.split("shelf(")[1].split(")")[0])] = robot
+    picked = [(a.robot, a.step) for a in outcome.plan.actions if a.name == "pickup"]
+    assert sorted(r for r, _ in picked) == sorted(carriers.values())
+
+
+def test_distance_facts_are_floor_distances():
+    instance = read_instance(EXAMPLES / "encodings-repo/x3_y3_n9_r1_s1_ps1_pr1_u1_o1_N1.lp")
+    assert sorted(distance_facts(instance, Domain.B)) == [
+        "distance((2,3),(3,1),3)", "distance((3,1),(1,3),4)"]

@@ -1,0 +1,132 @@
+"""The solve front end: API outcome, limits, cancellation, and the `asprilo solve` command."""
+
+from __future__ import annotations
+
+import json
+import threading
+import time
+
+import pytest
+
+from asprilo.cli import main
+from asprilo.domain import Domain
+from asprilo.encodings import SolveStatus, solve
+from asprilo.reader import read_plan
+from conftest import EXAMPLES, SMALL_A
+
+M5 = EXAMPLES / "paper-m/1x2x4/x11_y6_n66_r5_s16_ps1_pr16_u16_o5_N001.lp"
+X3 = EXAMPLES / "encodings-repo/x3_y3_n9_r1_s1_ps1_pr1_u1_o1_N1.lp"
+
+
+def test_outcome_of_a_search():
+    seen = []
+    outcome = solve(str(M5), on_progress=seen.append)
+    assert (outcome.status, outcome.domain, outcome.method, outcome.encoding) == (
+        SolveStatus.FOUND, Domain.M, "asp", "plain")
+    assert (outcome.horizon, outcome.minimal, outcome.lower_bound, outcome.plan.horizon) == (6, True, 6, 6)
+    assert [(a.horizon, a.result) for a in seen] == [(6, "sat")] and seen == outcome.horizons_tried
+    assert set(outcome.stats) == {"ground_time", "solve_time", "rules", "atoms", "choices", "conflicts"}
+    assert outcome.stats["rules"] > 0 and outcome.stats["atoms"] > 0
+
+
+def test_time_limit():
+    started = time.perf_counter()
+    outcome = solve(SMALL_A, Domain.A, time_limit=1.5)
+    assert outcome.status is SolveStatus.LIMIT and outcome.plan is None
+    assert outcome.horizons_tried[-1].result == "unknown"
+    assert time.perf_counter() - started < 6
+
+
+def test_cancel_from_another_thread():
+    cancel, result = threading.Event(), {}
+    worker = threading.Thread(target=lambda: result.update(
+        outcome=solve(SMALL_A, Domain.A, horizon=22, cancel=cancel)))
+    worker.start()
+    time.sleep(1.5)
+    cancel.set()
+    worker.join(timeout=10)
+    assert not worker.is_alive()
+    assert result["outcome"].status is SolveStatus.CANCELLED
+
+
+def test_no_plan_when_an_ordered_product_cannot_reach_its_station(write):
+    walled = """
+    init(object(node,1),value(at,(1,1))). init(object(node,2),value(at,(3,1))).
+    init(object(pickingStation,1),value(at,(1,1))). init(object(robot,1),value(at,(1,1))).
+    init(object(shelf,1),value(at,(3,1))). init(object(product,1),value(on,(1,1))).
+    init(object(order,1),value(line,(1,1))). init(object(order,1),value(pickingStation,1)).
+    """
+    outcome = solve(write("walled.lp", walled), Domain.B)
+    assert (outcome.status, outcome.minimal, outcome.horizons_tried) == (SolveStatus.NONE, True, [])
+    assert outcome.message == "some goal or order line can never be reached"
+
+
+@pytest.mark.parametrize("arguments, message", [
+    (dict(encoding="fast"), "no encoding 'fast' for domain M (choose one of plain, split, clingcon, dl, "
+                            "plain-inc, split-inc, clingcon-inc)"),
+    (dict(domain="b", encoding="dl"), "no encoding 'dl' for domain B (choose one of plain, plain-inc)"),
+    (dict(domain="a", method="flow"), "the flow method solves domains M and Md only, not A"),
+    (dict(method="sat"), "unknown method 'sat' (choose asp or flow)"),
+    (dict(horizon=-1), "the horizon must be at least 0, got -1"),
+    (dict(domain="e"), "unknown domain 'e' (choose one of a, b, c, m, md)"),
+])
+def test_bad_requests(arguments, message):
+    from asprilo.errors import InputError
+    with pytest.raises(InputError) as error:
+        solve(M5, **arguments)
+    assert error.value.message == message
+
+
+# --- the command ----------------------------------------------------------------------------
+
+def test_command_prints_plan_and_summary(capsys):
+    assert main(["solve", str(X3), "--domain", "b"]) == 0
+    out, err = capsys.readouterr()
+    assert out.splitlines()[3] == "occurs(object(robot,1),action(pickup,()),4)."
+    assert read_plan(_source(out)).horizon == 9
+    lines = err.splitlines()
+    assert lines[0].startswith("horizon 9: sat (")
+    assert lines[1:3] == ["domain B, method asp, encoding plain, lower bound 9",
+                          "plan: horizon 9 (proven minimal), 9 actions, checked: valid"]
+    assert lines[3].startswith("ground ") and ", conflicts " in lines[3]
+
+
+def test_command_writes_the_plan_file(tmp_path, capsys):
+    target = tmp_path / "plans" / "plan.lp"
+    assert main(["solve", str(M5), "-o", str(target), "--method", "flow"]) == 0
+    out, err = capsys.readouterr()
+    assert out == "" and "plan: horizon 6 (proven minimal)" in err
+    assert read_plan(target).horizon == 6
+    assert [p.name for p in target.parent.iterdir()] == ["plan.lp"]
+
+
+def test_command_json(capsys):
+    assert main(["solve", str(X3), "--domain", "c", "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert (report["status"], report["domain"], report["horizon"], report["minimal"]) == ("found", "c", 9, True)
+    assert [a["horizon"] for a in report["horizons_tried"]] == [9]
+    assert report["plan"][-1] == "occurs(object(robot,1),action(deliver,(1,1)),9)"
+
+
+def test_command_exit_statuses(tmp_path, capsys):
+    assert main(["solve", str(X3), "--domain", "b", "--horizon", "8"]) == 1
+    assert "no plan exists" in capsys.readouterr().err
+    assert main(["solve", str(tmp_path / "missing.lp")]) == 2
+    assert capsys.readouterr().err == f"error: {tmp_path / 'missing.lp'}: no such file\n"
+    assert main(["solve", str(X3), "--encoding", "nope"]) == 2
+    assert capsys.readouterr().err.startswith("error: no encoding 'nope' for domain M")
+    assert main(["solve", str(X3), "--time-limit", "0"]) == 2
+    assert capsys.readouterr().err == "error: --time-limit must be positive, got 0\n"
+
+
+def test_command_lists_the_encodings(capsys):
+    assert main(["solve", "--list"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert lines[0] == "m   plain         positions as cells (paper Listings 1-2)"
+    assert "a   clingcon      quantities as clingcon integer variables [clingcon]" in lines
+    assert len(lines) == 7 * 2 + 3 * 2 + 2
+
+
+def _source(text):
+    from asprilo.sources import Source
+    return Source("<stdout>", text)
