@@ -14,6 +14,7 @@ large warehouses, a random sample of candidate pairs.
 
 from __future__ import annotations
 
+import re
 import time
 from copy import deepcopy
 from dataclasses import dataclass, field
@@ -23,7 +24,6 @@ from typing import Callable, Iterable
 import clingo
 
 from asprilo.model import Cell, Instance
-from asprilo.reader import value_of
 from asprilo.solver import Solver
 from asprilo.writer import format_instance
 
@@ -31,6 +31,7 @@ from .plan import Plan
 from .sampling import rng, sample_options
 
 HERE = Path(__file__).resolve().parent
+_NUMBER = re.compile(r"-?\d+")
 PROGRAMS = ("random.lp", "floor.lp", "structured.lp", "open_layout.lp", "template.lp", "stations.lp",
             "robots.lp", "shelves.lp", "reachable.lp", "products.lp", "orders.lp", "oneshot.lp")
 STAGES = ("floor", "stations", "robots", "shelves", "stock", "units", "lines", "quantities")
@@ -67,25 +68,26 @@ class World:
     lines: dict[tuple[int, int], int | None] = field(default_factory=dict)
     order_stations: dict[int, Cell] = field(default_factory=dict)
 
-    def record(self, choice: clingo.Symbol) -> None:
-        """Take in one choice ``new_X(Round, Args...)``."""
-        kind, args = choice.name[4:], [value_of(a) for a in choice.arguments[1:]]
+    def record(self, choice: str) -> None:
+        """Take in one choice ``new_X(Round,Args...)``, given as text (much quicker than symbols)."""
+        kind = choice[4:choice.index("(")]
+        numbers = [int(n) for n in _NUMBER.findall(choice)][1:]  # all arguments are numbers or cells
         if kind == "node":
-            self.nodes.add(args[0])
+            self.nodes.add((numbers[0], numbers[1]))
         elif kind in ("station", "robot"):
-            getattr(self, kind + "s").append(args[0])
+            getattr(self, kind + "s").append((numbers[0], numbers[1]))
         elif kind == "shelf":
-            self.shelves.append(args[0])
+            self.shelves.append((numbers[0], numbers[1]))
         elif kind == "stock":
-            self.stock.setdefault((args[0], args[1]), None)
+            self.stock.setdefault((numbers[0], (numbers[1], numbers[2])), None)
         elif kind == "units":
-            self.stock[(args[0], args[1])] = args[2]
+            self.stock[(numbers[0], (numbers[1], numbers[2]))] = numbers[3]
         elif kind == "line":
-            self.lines.setdefault((args[0], args[1]), None)
+            self.lines.setdefault((numbers[0], numbers[1]), None)
         elif kind == "quantity":
-            self.lines[(args[0], args[1])] = args[2]
+            self.lines[(numbers[0], numbers[1])] = numbers[2]
         elif kind == "order_station":
-            self.order_stations[args[0]] = args[1]
+            self.order_stations[numbers[0]] = (numbers[1], numbers[2])
 
 
 @dataclass
@@ -120,6 +122,16 @@ class Generator:
     # --- the stages ----------------------------------------------------------------------
 
     def run(self) -> World:
+        """Run every stage; the clingo control is released afterwards (it holds the ground program)."""
+        try:
+            self._run()
+        finally:
+            # Control and Solver refer to each other (the logger): drop the control now
+            # rather than at the next garbage collection, so memory stays flat over -N runs.
+            self.solver.control = None
+        return self.world
+
+    def _run(self) -> None:
         plan = self.plan
         self._layout()
         self._place("stations", plan.stations)
@@ -133,7 +145,6 @@ class Generator:
             self._quantities()
         if plan.one_shot:
             self._solve_once()
-        return self.world
 
     def _layout(self) -> None:
         plan = self.plan
@@ -146,10 +157,7 @@ class Generator:
             self.solver.ground([("grid", []), ("keys", [])])
             if plan.partial_floor:
                 round_ = self._round("floor")
-                parts = [("floor", [round_, plan.nodes])]
-                if plan.gap_size < plan.width * plan.height - plan.nodes:
-                    parts.append(("gaps", [round_]))
-                self._step("floor", round_, parts, "pass_floor")
+                self._step("floor", round_, [("floor", [round_, plan.nodes])], "pass_floor")
             else:
                 self.solver.ground([("full_floor", [])])
             self.solver.ground([("open_layout", [])])
@@ -162,11 +170,13 @@ class Generator:
 
     def _place(self, stage: str, count: int) -> None:
         """Stations, robots or shelves: ``count`` more, K per round with a split threshold."""
-        for size in self._split(count):
+        sizes = self._split(count)
+        for index, size in enumerate(sizes):
             round_ = self._round(stage)
             parts = [(stage, [round_, size])]
-            if stage == "shelves" and self.plan.reachable and self.plan.station_total:
-                parts.append(("reachable", [round_]))
+            last = index == len(sizes) - 1
+            if stage == "shelves" and last and self.plan.reachable and self.plan.station_total:
+                parts.append(("reachable", [round_]))  # -R is checked once, for all shelves
             self._step(stage, round_, parts, f"pass_{stage}")
 
     def _stock(self) -> None:
@@ -184,7 +194,7 @@ class Generator:
             aim = target * len(chunk) / len(ids)  # pairs this round should have
 
             def attempt(per_product: int | None, chunk=chunk, bounds=bounds, shelf_min=shelf_min,
-                        aim=aim) -> list[clingo.Symbol] | None:
+                        aim=aim) -> list[str] | None:
                 round_ = self._round("stock")
                 facts, options = "", len(chunk) * plan.shelf_total
                 if per_product:
@@ -195,7 +205,7 @@ class Generator:
                                   *bounds, _chance(aim / options)])
                 return self._step("stock", round_, [part], "pass_stock", facts)
 
-            chosen = self._sampled_or_all(attempt, len(chunk), plan.shelf_total, 2 * plan.spr_max)
+            chosen = self._sampled_or_all(attempt, len(chunk), plan.shelf_total, plan.spr_max)
             done += len(chosen or ())
 
     def _units(self) -> None:
@@ -219,7 +229,7 @@ class Generator:
         for index, chunk in enumerate(chunks):
             final = int(index == len(chunks) - 1)
 
-            def attempt(per_order: int | None, chunk=chunk, final=final) -> list[clingo.Symbol] | None:
+            def attempt(per_order: int | None, chunk=chunk, final=final) -> list[str] | None:
                 round_ = self._round("lines")
                 facts = ""
                 if per_order:
@@ -229,7 +239,7 @@ class Generator:
                 part = ("lines", [round_, chunk[0], chunk[-1], int(bool(per_order)), final, chance])
                 return self._step("lines", round_, [part], "pass_lines", facts)
 
-            self._sampled_or_all(attempt, len(chunk), len(products), 4 * plan.ol_max)
+            self._sampled_or_all(attempt, len(chunk), len(products), plan.ol_max)
 
     def _quantities(self) -> None:
         plan = self.plan
@@ -246,10 +256,10 @@ class Generator:
     # --- multi-shot mechanics ------------------------------------------------------------
 
     def _step(self, stage: str, round_: int, parts: list, pass_part: str | None = None,
-              facts: str = "") -> list[clingo.Symbol] | None:
+              facts: str = "") -> list[str] | None:
         """Ground a stage's parts for one round, solve, and fix the choices as facts.
 
-        Returns the round's choices (``new_*`` atoms); ``None`` in one-shot mode, where
+        Returns the round's choices (``new_*`` atoms as text); ``None`` in one-shot mode, where
         solving waits until every part is grounded.
         """
         started = time.perf_counter()
@@ -268,21 +278,25 @@ class Generator:
         report.seconds += time.perf_counter() - started
         if not result.satisfiable:
             raise GenerationFailed(stage, result.timed_out)
-        chosen = [symbol for symbol in result.symbols if symbol.name.startswith("new_")]
-        self._add_facts("".join(f"{symbol.name[4:]}({','.join(map(str, symbol.arguments[1:]))}).\n"
-                                for symbol in chosen))
-        for symbol in chosen:
-            self.world.record(symbol)
+        # new_X(Round,Args) -> the fact X(Args)
+        chosen = [text for text in map(str, result.symbols) if text.startswith("new_")]
+        self._add_facts("".join(f"{text[4:text.index('(') + 1]}{text[text.index(',') + 1:]}.\n"
+                                for text in chosen))
+        for text in chosen:
+            self.world.record(text)
         return chosen
 
     def _sampled_or_all(self, attempt: Callable[[int | None], list | None], rows: int, columns: int,
-                        least_per_row: int) -> list | None:
+                        most_per_row: int) -> list | None:
         """Solve a round on a sample of the candidate pairs when there are too many of them.
 
-        ``attempt(per_row)`` solves the round with ``per_row`` sampled candidates per row, or
-        with all of them (``None``); a sample that turns out unsatisfiable is retried in full.
+        A row (product or order) gets a few times the candidates it may take
+        (``most_per_row``), within the budget, and enough that every column is offered about
+        twice.  ``attempt(per_row)`` solves the round with ``per_row`` sampled candidates per
+        row, or with all of them (``None``); a sample that turns out unsatisfiable is retried
+        in full.
         """
-        per_row = max(least_per_row, SAMPLE_BUDGET // rows)
+        per_row = max(2 * -(-columns // rows), most_per_row + 1, min(8 * most_per_row, SAMPLE_BUDGET // rows))
         if not self.plan.one_shot and rows * columns > SAMPLE_BUDGET and per_row < columns:
             try:
                 return attempt(per_row)
@@ -297,9 +311,9 @@ class Generator:
         self.reports["floor"].seconds += time.perf_counter() - started
         if not result.satisfiable:
             raise GenerationFailed("one-shot", result.timed_out)
-        for symbol in result.symbols:
-            if symbol.name.startswith("new_"):
-                self.world.record(symbol)
+        for text in map(str, result.symbols):
+            if text.startswith("new_"):
+                self.world.record(text)
 
     def _add_facts(self, facts: str, parts: Iterable = ()) -> None:
         """Add facts in a part of their own and ground it together with ``parts``."""

@@ -40,16 +40,14 @@ class Zones:
     rows: int     # zones on top of each other
     cells: int    # storage cells in all zones
     robot_room: int  # cells below the zones and the bottom border
-    station_step: int
 
 
-def zones(width: int, height: int, zone_x: int, zone_y: int, border: int, stations: int) -> Zones:
+def zones(width: int, height: int, zone_x: int, zone_y: int, border: int) -> Zones:
     columns = max(0, (width - 2 * border - zone_x) // (zone_x + 1) + 1)
     rows = max(0, (height - 2 * border - 2 - zone_y) // (zone_y + 1) + 1)
     last_zone_row = border + 2 + (rows - 1) * (zone_y + 1) + zone_y - 1
-    step = (2 * width + stations + 1) // (2 * (stations + 1))
     return Zones(columns, rows, columns * rows * zone_x * zone_y,
-                 width * max(0, height - last_zone_row - border), step)
+                 width * max(0, height - last_zone_row - border))
 
 
 @dataclass(frozen=True)
@@ -162,7 +160,7 @@ def make_plan(config: GeneratorConfig) -> Plan:
     if c.shelves is not None and c.shelf_coverage is not None:
         raise InputError("give either -s or --sc, not both")
     if layout == "structured":
-        geometry = zones(width, height, floor["zone_x"], floor["zone_y"], floor["border"], station_total)
+        geometry = zones(width, height, floor["zone_x"], floor["zone_y"], floor["border"])
         _check_structured(c, floor, geometry, station_total, robot_total)
         sites, free = geometry.cells, geometry.cells
     elif layout == "random":
@@ -233,7 +231,8 @@ def _floor(c: GeneratorConfig, template: Instance | None) -> dict[str, Any]:
         return {**floor, "layout": "structured", "width": width, "height": height, "nodes": width * height}
     given = _given(c, "zone_x", "zone_y", "border")
     if given:
-        raise InputError(f"{', '.join(given)} only apply to the structured layout (-H)")
+        raise InputError(f"{', '.join(given)} only appl{'ies' if len(given) == 1 else 'y'} to the "
+                         f"structured layout (-H)")
     nodes = c.nodes if c.nodes is not None else width * height
     if nodes > width * height:
         raise InputError(f"-n {nodes} nodes do not fit into the grid of -x {width} x -y {height} "
@@ -250,7 +249,7 @@ def _check_structured(c: GeneratorConfig, floor: dict, geometry: Zones, stations
     if geometry.cells == 0:
         raise InputError(f"-H: no storage zone of -X {floor['zone_x']} x -Y {floor['zone_y']} fits into "
                          f"-x {width} x -y {height} with border -B {floor['border']}")
-    if stations > width or (stations and stations * geometry.station_step > width):
+    if stations > width:
         raise InputError(f"-H: -p {stations} picking stations do not fit into the top row (-x {width})")
     if robots > geometry.robot_room:
         raise InputError(f"-H: -r {robots} robots do not fit below the storage zones "
@@ -323,6 +322,7 @@ def _inventory(c: GeneratorConfig, r: dict[str, Any], existing: Instance, shelve
                              f"{r['pus_min']}/{r['pus_max']} the shelves hold "
                              f"{least * r['pus_min'] + fixed_units}..{most * pus_max + fixed_units} units")
         least, most = low, high
+        pus_max = min(pus_max, units - (least - 1) * r["pus_min"])  # room left by the other pairs
     spr_min, prs_min = r["spr_min"], r["prs_min"]
     if new:  # tighten the ranges by the totals, so the solver need not count across products
         spr_max = min(spr_max, most - (new - 1) * spr_min)
