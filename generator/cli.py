@@ -79,7 +79,8 @@ def run(args: argparse.Namespace) -> int:
             plans.append(make_plan(job.config))
         except InputError as error:
             raise error.at(*job.where) from None
-    progress = Progress(sum(job.options.count for job in jobs))
+    # a progress bar when writing files (with -C the instances themselves show the progress)
+    progress = Progress(sum(job.options.count for job in jobs if not job.options.console))
     failed = 0
     for job, plan in zip(jobs, plans):
         failed += _generate(job, plan, progress, args.verbose)
@@ -131,7 +132,8 @@ def _generate(job: _Job, plan: Plan, progress: Progress, verbose: bool) -> int:
             stages = ", ".join(f"{stage} {rounds}x {seconds:.2f}s" for stage, (rounds, seconds) in item.stages.items())
             progress.interrupt()
             print(f"{label}: {stages}", file=sys.stderr)
-        progress.advance(label)
+        if not options.console:
+            progress.advance(label)
     return failed
 
 
