@@ -9,7 +9,6 @@ from __future__ import annotations
 from typing import Iterable, Sequence
 
 import numpy as np
-from scipy.optimize import linear_sum_assignment
 from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import shortest_path
 
@@ -76,6 +75,7 @@ def bottleneck_assignment(costs: np.ndarray) -> float:
 
 def _matches_all(allowed: np.ndarray) -> bool:
     """Whether every row can get its own allowed column (an assignment of cost 0 exists)."""
+    from scipy.optimize import linear_sum_assignment  # imported when needed: it is slow to import
     rows, columns = linear_sum_assignment(~allowed)
     return bool(allowed[rows, columns].all())
 
@@ -89,6 +89,7 @@ def min_cost_assignment(costs: np.ndarray) -> float:
         return INFINITE
     finite = costs[np.isfinite(costs)]
     penalty = (finite.max() if finite.size else 0) * (goals + 1) + 1
+    from scipy.optimize import linear_sum_assignment
     rows, columns = linear_sum_assignment(np.where(np.isfinite(costs), costs, penalty))
     total = costs[rows, columns]
     return float(total.sum()) if np.isfinite(total).all() else INFINITE

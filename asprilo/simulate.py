@@ -627,10 +627,10 @@ def _station_words(timeline: Timeline, station: Any) -> str:
 def _explain(timeline: Timeline, module: str, check: str, params: tuple) -> Violation:
     step = params[-1] if params and isinstance(params[-1], int) else 0
     describe = _DESCRIPTIONS.get((module, check))
-    if describe is None:
-        text, highlight = f"{module} rule '{check}' is broken ({format_value(params)})", {}
-    else:
+    try:
         text, highlight = describe(timeline, *params)
+    except (TypeError, KeyError, IndexError, ValueError):  # no words for it (raw facts only)
+        text, highlight = f"{module} rule '{check}' is broken ({format_value(params)})", {}
     if module == "instance":
         prefix = "instance: "
     elif module == "goal":

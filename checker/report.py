@@ -54,11 +54,16 @@ def _json(value: Any) -> Any:
 def diagnostics(atoms: list[clingo.Symbol], timeline: Timeline | None) -> list[Violation]:
     """``err(Module,Check,Params)`` atoms as violations in plain words (``timeline``, the
     replay of the same plan, supplies the words: positions, quantities, names)."""
+    if not atoms:
+        return []
+    replayed = {violation.atom: violation for violation in timeline.violations}
     errors = []
     for atom in atoms:
-        module, check, params = (value_of(argument) for argument in atom.arguments)
-        params = params if isinstance(params, tuple) else (params,)
-        errors.append(timeline.explain(module, check, params))
+        error = replayed.get(str(atom))
+        if error is None:  # the replay does not report it: say it all the same
+            module, check, params = (value_of(argument) for argument in atom.arguments)
+            error = timeline.explain(module, check, params if isinstance(params, tuple) else (params,))
+        errors.append(error)
     return sort_violations(errors)
 
 
