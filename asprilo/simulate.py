@@ -53,8 +53,8 @@ DOMAIN_ACTIONS: dict[Domain, frozenset[str]] = {
 }
 
 Line = tuple[int, int]  # (order, product)
-_CLOSED = object()  # a closed line in the changes of B and C
 Stock = tuple[int, int]  # (shelf, product)
+_CLOSED = object()  # what a line becomes in the changes of a step when B or C close it
 
 
 @dataclass
@@ -86,7 +86,6 @@ class Violation:
     def atom(self) -> str:
         """The ``err/3`` term, exactly as clingo prints it."""
         return f"err({self.module},{self.check},{format_value(self.params)})"
-
 
 
 def sort_violations(violations: list[Violation]) -> list[Violation]:
@@ -186,13 +185,15 @@ class Timeline:
         self._index = {robot: i for i, robot in enumerate(self.robot_ids)}
         self._actions: dict[tuple, list[Action]] | None = None
         self._rows: dict[int, list] = {}  # positions of recent steps, as lists
+        self._cached: _Snapshot | None = None  # the last snapshot made
         _Replay(self).run()
 
     # filled in by _Replay
     violations: list[Violation]
-    _positions: np.ndarray            # (horizon+1) x robots x 2
-    _changes: dict[int, _Changes]
-    _checkpoints: list[_Snapshot]
+    _positions: np.ndarray              # (horizon+1) x robots x 2
+    _changes: dict[int, _Changes]       # step -> what it changed besides positions
+    _checkpoints: list[_Snapshot]       # after steps 0, every, 2 * every, ...
+    _every: int
     _mapf_lines: dict[Line, list[int]]  # M: line -> shelves holding its product
 
     @property
@@ -222,7 +223,7 @@ class Timeline:
     def _snapshot(self, step: int) -> _Snapshot:
         """Carried and resting shelves, stock and order lines after ``step`` (shared: copy it)."""
         step = min(max(step, 0), self.horizon)
-        cached = getattr(self, "_cached", None)
+        cached = self._cached
         start = self._checkpoints[min(step // self._every, len(self._checkpoints) - 1)]
         if cached is not None and start.step <= cached.step <= step:
             start = cached
@@ -318,18 +319,16 @@ class _Replay:
                 report("action", "unknownRobot", robot, step)
             elif step < 1:
                 report("action", "badStep", robot, step)
-            elif action.name not in known:
-                report("action", "unknownAction", robot, action.name, step)
-                if shared[i] or shared[i + 1]:
-                    report("action", "concurrent", robot, step)
-            elif not well_formed(action.name, action.args, domain):
-                report("action", "badArguments", robot, action.name, step)
-                if shared[i] or shared[i + 1]:
-                    report("action", "concurrent", robot, step)
-            elif shared[i] or shared[i + 1]:
-                report("action", "concurrent", robot, step)
             else:
-                effective[step].append(action)
+                alone = not (shared[i] or shared[i + 1])
+                if action.name not in known:
+                    report("action", "unknownAction", robot, action.name, step)
+                elif not well_formed(action.name, action.args, domain):
+                    report("action", "badArguments", robot, action.name, step)
+                elif alone:
+                    effective[step].append(action)
+                if not alone:
+                    report("action", "concurrent", robot, step)
         return effective
 
     def compute_positions(self, effective: dict[int, list[Action]]) -> None:
@@ -465,14 +464,13 @@ class _Replay:
             if step % every == 0:
                 timeline._checkpoints.append(
                     _Snapshot(step, dict(carries), dict(resting), dict(stock), dict(lines)))
-        self.final_carries, self.final_resting = carries, resting
 
     def step(self, step, actions, carries, resting, resting_at, stock, lines, position):
         report, domain = self.report, self.domain
         before = step - 1
         lifts: dict[int, list[int]] = defaultdict(list)
         putdowns: list[tuple[int, int, Cell]] = []
-        deliveries: list[tuple[int, int, Action]] = []
+        deliveries: list[tuple[int, Action]] = []
         for action in actions:
             robot = action.robot
             shelf = carries.get(robot)
@@ -503,7 +501,7 @@ class _Replay:
                 putdowns.append((robot, shelf, cell))
             elif action.name == "deliver":
                 if self.check_delivery(step, action, shelf, stock, lines, position):
-                    deliveries.append((robot, shelf, action))
+                    deliveries.append((shelf, action))
         changes = _Changes()
         for robot, shelf, cell in putdowns:
             del carries[robot]
@@ -519,7 +517,7 @@ class _Replay:
             resting_at[resting.pop(shelf)].discard(shelf)
             changes.carries.append((robot, shelf))
             changes.resting.append((shelf, None))
-        for robot, shelf, action in deliveries:
+        for shelf, action in deliveries:
             self.deliver(shelf, action, stock, lines, changes)
         if changes.carries or changes.stock or changes.lines:
             return changes

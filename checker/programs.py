@@ -46,7 +46,7 @@ def plan_facts(instance: Instance, plan: Plan, packed: bool = True) -> str:
     actions = plan.actions
     if not packed or not actions:
         return "\n".join(format_action(action) + "." for action in actions)
-    robots = sorted(r for r in instance.robots if type(r) is int)
+    robots = sorted(instance.robots)
     row = {robot: i for i, robot in enumerate(robots)}
     rows = np.array([row.get(a.robot, -1) if a.kind == "robot" else -1 for a in actions], dtype=np.int64)
     steps = np.array([a.step for a in actions], dtype=np.int64)
@@ -54,8 +54,8 @@ def plan_facts(instance: Instance, plan: Plan, packed: bool = True) -> str:
                       else 0 for a in actions], dtype=np.int64)
     horizon = max(int(steps.max()), 1)
     slots = rows * (horizon + 1) + steps
-    _, first, counts = np.unique(slots, return_inverse=True, return_counts=True)
-    alone = counts[first] == 1
+    _, slot, counts = np.unique(slots, return_inverse=True, return_counts=True)
+    alone = counts[slot] == 1
     packable = (codes > 0) & (rows >= 0) & (steps >= 1) & alone
     blocks = -(-horizon // _DIGITS)
     digits = np.zeros((len(robots), blocks * _DIGITS), dtype=np.int64)

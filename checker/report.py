@@ -72,7 +72,7 @@ def diagnostics(atoms: list[clingo.Symbol], timeline: Timeline | None) -> list[V
 def metrics(instance: Instance, plan: Plan, domain: Domain, errors: list[Violation]) -> dict[str, Any]:
     """Horizon, actions by name, sum of costs, idle steps, what the plan fulfils, lower
     bounds and the ratios plan/bound (``None`` where a bound is 0 or infinite)."""
-    robots = sorted(instance.robots, key=str)
+    robots = list(instance.robots)
     row = {robot: i for i, robot in enumerate(robots)}
     rows = np.array([row.get(a.robot, -1) if a.kind == "robot" else -1 for a in plan.actions], dtype=np.int64)
     steps = np.array([a.step for a in plan.actions], dtype=np.int64)

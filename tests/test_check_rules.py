@@ -16,15 +16,14 @@ from asprilo.simulate import simulate
 A, B, C, M, MD = Domain.A, Domain.B, Domain.C, Domain.M, Domain.MD
 
 
-def _moved(instance, **changes):
-    """``instance`` with objects moved: ``robot1=(x,y)``, ``shelf2=(x,y)``, ``station1=(x,y)``."""
-    for name, cell in changes.items():
-        kind, ident = name.rstrip("0123456789"), int(name.lstrip("abcdefghijklmnopqrstuvwxyz"))
-        table = {"robot": instance.robots, "shelf": instance.shelves, "station": instance.stations}[kind]
-        if ident in table:
-            table[ident].at = cell
-        else:
-            table[ident] = (Shelf if kind == "shelf" else PickingStation)(ident, cell)
+def _moved(instance, robot=None, shelf=None, station=None):
+    """``instance`` with robot 1, shelf 1 or picking station 1 put at a cell (made if missing)."""
+    if robot is not None:
+        instance.robots[1].at = robot
+    if shelf is not None:
+        instance.shelves[1] = Shelf(1, shelf)
+    if station is not None:
+        instance.stations[1] = PickingStation(1, station)
     return instance
 
 
@@ -42,17 +41,17 @@ FETCH = [(1, 1, "pickup"), (2, 1, "E")]  # lifts shelf 1 and brings it to the st
 
 CASES = {
     # the instance ---------------------------------------------------------------------
-    "instance robotOffFloor": (M, _moved(world("R."), robot1=(5, 5)), plan(), ["err(instance,robotOffFloor,(1,0))"]),
-    "instance shelfOffFloor": (M, _moved(world("R."), shelf1=(3, 1)), plan(), ["err(instance,shelfOffFloor,(1,0))"]),
-    "instance stationOffFloor": (M, _moved(world("R."), station1=(9, 9)), plan(),
+    "instance robotOffFloor": (M, _moved(world("R."), robot=(5, 5)), plan(), ["err(instance,robotOffFloor,(1,0))"]),
+    "instance shelfOffFloor": (M, _moved(world("R."), shelf=(3, 1)), plan(), ["err(instance,shelfOffFloor,(1,0))"]),
+    "instance stationOffFloor": (M, _moved(world("R."), station=(9, 9)), plan(),
                                  ["err(instance,stationOffFloor,(1,0))"]),
-    "instance robotCollision": (M, _moved(world("RR"), robot2=(1, 1)), plan(),
+    "instance robotCollision": (M, _moved(world("RR"), robot=(2, 1)), plan(),
                                 ["err(instance,robotCollision,(1,2,0))"]),
-    "instance shelfCollision": (M, _moved(world("RSS"), shelf2=(2, 1)), plan(),
+    "instance shelfCollision": (M, _moved(world("RSS"), shelf=(3, 1)), plan(),
                                 ["err(instance,shelfCollision,(1,2,0))"]),
-    "instance shelfOnHighway": (M, _moved(world("R#"), shelf1=(2, 1)), plan(),
+    "instance shelfOnHighway": (M, _moved(world("R#"), shelf=(2, 1)), plan(),
                                 ["err(instance,shelfOnHighway,(1,0))"]),
-    "instance shelfOnStation": (M, _moved(world("RP"), shelf1=(2, 1)), plan(),
+    "instance shelfOnStation": (M, _moved(world("RP"), shelf=(2, 1)), plan(),
                                 ["err(instance,shelfOnStation,(1,0))"]),
     "instance carriedShelfElsewhere": (M, world("RS", carries={1: 1}), plan(),
                                        ["err(instance,carriedShelfElsewhere,(1,1,0))"]),
@@ -103,7 +102,7 @@ CASES = {
                           ["err(move,ontoShelf,(1,2))", "err(putdown,ontoShelf,(1,3))"]),
     # deliver: where the faulty delivery does not spoil the order, a valid one fulfils it
     "deliver notCarrying": (A, _moved(world("R.", products={1: {1: 2}}, orders={1: ({1: 1}, 1)}),
-                                      station1=(1, 1), shelf1=(2, 1)),
+                                      station=(1, 1), shelf=(2, 1)),
                             plan((1, 1, "deliver", (1, 1, 1)), (2, 1, "E"), (3, 1, "pickup"), (4, 1, "W"),
                                  (5, 1, "deliver", (1, 1, 1))),
                             ["err(deliver,notCarrying,(1,1))"]),

@@ -9,6 +9,7 @@ from conftest import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
 from test_check_world import plan, walk, world
 
 from asprilo.domain import Domain
+from asprilo.model import Product
 from asprilo.reader import read_instance, read_plan
 from asprilo.simulate import State, Violation, simulate
 
@@ -113,7 +114,7 @@ def test_a_failed_pickup_changes_nothing():
 def test_an_order_line_closes_in_b_and_every_matching_line_at_the_station_closes_in_c():
     instance = world("BP", products={1: {1: None}, 2: {1: None}},
                      orders={1: ({1: None}, 1), 2: ({2: None, 3: None}, 1)})
-    instance.products[3] = instance.products[1].__class__(3, {9: None})  # on no shelf of the instance
+    instance.products[3] = Product(3, {9: None})  # on no shelf of the instance
     steps = plan((1, 1, "pickup"), (2, 1, "E"), (3, 1, "deliver", (1, 1)))
     b = simulate(instance, steps, Domain.B)
     assert b.state(3).open_lines == {(2, 2): None, (2, 3): None}
