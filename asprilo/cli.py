@@ -19,6 +19,7 @@ from .errors import InputError
 
 #: name -> (module, one-line summary); a command is listed here once it works.
 COMMANDS: dict[str, tuple[str, str]] = {
+    "demo": ("asprilo.demo", "generate, solve, check and render a small warehouse: the whole tool chain"),
     "info": ("asprilo.info", "summarise an instance (and plan): counts, domain, horizon"),
     "check": ("asprilo.checker.cli", "check a plan with the ASP checker: violations in plain words, metrics, bounds"),
     "gen": ("asprilo.generator.cli", "generate instances: random, structured (-H), templates (-T), YAML batches (-j)"),

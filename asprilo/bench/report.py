@@ -49,11 +49,19 @@ def _ordered(values: Iterable, order: list) -> list:
     return [v for v in order if v in present] + sorted(present - set(order), key=str)
 
 
+#: row order as in the paper: domains from simple to hard, each without then with assignment
+LABELS = ["M", "M_a", "Md", "Md_a", "C", "C_a", "B", "B_a", "A", "A_a"]
+ENCODINGS = ["plain", "split", "clingcon", "dl"]
+
+
+def _rank(value: str, order: list[str]) -> tuple:
+    return (order.index(value), "") if value in order else (len(order), value)
+
+
 def _rows(records: list[dict]) -> list[tuple[str, str]]:
-    seen: dict[tuple[str, str], None] = {}
-    for record in records:
-        seen[(record["label"], record["encoding"])] = None
-    return list(seen)
+    """(domain label, encoding) pairs present, in the paper's order."""
+    rows = {(record["label"], record["encoding"]) for record in records}
+    return sorted(rows, key=lambda row: (_rank(row[0], LABELS), _rank(row[1], ENCODINGS)))
 
 
 def _table(header: list[str], rows: list[list[str]]) -> str:
@@ -138,18 +146,20 @@ def plot(records: list[dict], folder: Path, set_order: list[str] | None = None) 
     """A cactus plot (solved runs over time, one line per encoding, one panel per domain)
     and a plot of average time by number of robots (one panel per instance set)."""
     import matplotlib
+    import matplotlib.ticker
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     written = []
-    labels = _ordered({r["label"] for r in records}, [])
+    labels = _ordered({r["label"] for r in records}, LABELS)
     figure, axes = plt.subplots(1, len(labels), figsize=(4.5 * len(labels), 3.8), squeeze=False)
     for axis, label in zip(axes[0], labels):
         for _l, encoding in [row for row in _rows(records) if row[0] == label]:
             times = sorted(r["time"] for r in records
                            if r["label"] == label and r["encoding"] == encoding and r["status"] == "solved")
-            axis.step(range(1, len(times) + 1), times, where="post", label=encoding)
+            axis.plot(range(1, len(times) + 1), times, marker="o", markersize=3, label=encoding)
         axis.set(title=label, xlabel="solved runs", ylabel="time (s)")
+        axis.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
         axis.grid(alpha=0.3)
         axis.legend(fontsize="small")
     figure.tight_layout()
