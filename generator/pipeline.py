@@ -98,7 +98,14 @@ class StageReport:
 
 
 def _chance(probability: float) -> int:
+    """A probability as the threshold of the programs' coins (0..32748)."""
     return max(0, min(COIN, round(probability * COIN)))
+
+
+def _geometric(mean: float) -> int:
+    """The coin for "one more" that makes the number of extra items geometric with ``mean``."""
+    mean = max(0.0, mean)
+    return _chance(mean / (1 + mean))
 
 
 class Generator:
@@ -108,7 +115,7 @@ class Generator:
         self.plan = plan
         self.seed = seed
         self.solver = Solver(options=["--heuristic=Domain", f"--parallel-mode={plan.threads}"],
-                             constants={**plan.constants(), "seed": seed % COIN})
+                             constants={**plan.constants(), "seed": seed % COIN, "seed2": seed // COIN % COIN})
         for program in PROGRAMS:
             self.solver.load(HERE / program)
         self.deadline = time.monotonic() + plan.time_limit
@@ -186,23 +193,22 @@ class Generator:
         self._keys("product", self._all_products())
         shelves = self._all_shelves()
         ids = list(plan.products)
+        spread_chance = _geometric(target / len(ids) - plan.spr_min)  # shelves beyond spr_min
         done = 0
         for chunk in self._chunks(ids):
             later = len(ids) - ids.index(chunk[-1]) - 1
             bounds = (max(0, least - done - later * plan.spr_max), most - done - later * plan.spr_min)
             shelf_min = 0 if later else plan.prs_min
-            aim = target * len(chunk) / len(ids)  # pairs this round should have
 
-            def attempt(per_product: int | None, chunk=chunk, bounds=bounds, shelf_min=shelf_min,
-                        aim=aim) -> list[str] | None:
+            def attempt(per_product: int | None, chunk=chunk, bounds=bounds,
+                        shelf_min=shelf_min) -> list[str] | None:
                 round_ = self._round("stock")
-                facts, options = "", len(chunk) * plan.shelf_total
+                facts = ""
                 if per_product:
-                    pairs = list(sample_options(chunk, shelves, per_product, self._samples))
-                    facts = "".join(f"sample(stock,{round_},{p},({x},{y})).\n" for p, (x, y) in pairs)
-                    options = len(pairs)
-                part = ("stock", [round_, chunk[0], chunk[-1], int(bool(per_product)), shelf_min,
-                                  *bounds, _chance(aim / options)])
+                    facts = "".join(f"sample(stock,{round_},{p},({x},{y})).\n"
+                                    for p, (x, y) in sample_options(chunk, shelves, per_product, self._samples))
+                part = ("stock", [round_, chunk[0], chunk[-1], int(bool(per_product)), shelf_min, *bounds,
+                                  spread_chance])
                 return self._step("stock", round_, [part], "pass_stock", facts)
 
             chosen = self._sampled_or_all(attempt, len(chunk), plan.shelf_total, plan.spr_max)
@@ -211,12 +217,11 @@ class Generator:
     def _units(self) -> None:
         plan = self.plan
         pairs = plan.pairs[1] if plan.one_shot else len(self.world.stock)
-        # Every additional unit of a pair comes with a fixed chance (a geometric
-        # distribution) whose mean spreads the requested units evenly over the pairs.
+        # the requested units spread evenly over the pairs, on average
         mean = (plan.units - pairs * plan.pus_min) / pairs if plan.units is not None and pairs else 1.0
         total = plan.units if plan.units is not None else -1
         round_ = self._round("units")
-        part = ("units", [round_, plan.products[0], plan.products[-1], total, _chance(mean / (1 + mean))])
+        part = ("units", [round_, plan.products[0], plan.products[-1], total, _geometric(mean)])
         self._step("units", round_, [part], "pass_units")
 
     def _lines(self) -> None:
@@ -224,7 +229,7 @@ class Generator:
         products = self._all_products()
         self._keys("product", products)
         self._keys("order", list(plan.orders))
-        wanted = (plan.ol_min + plan.ol_max) / 2  # lines per order
+        lines_chance = _geometric((plan.ol_max - plan.ol_min) / 2)  # lines beyond ol_min
         chunks = self._chunks(list(plan.orders))
         for index, chunk in enumerate(chunks):
             final = int(index == len(chunks) - 1)
@@ -235,8 +240,7 @@ class Generator:
                 if per_order:
                     facts = "".join(f"sample(line,{round_},{o},{p}).\n"
                                     for o, p in sample_options(chunk, products, per_order, self._samples))
-                chance = _chance(wanted / (per_order or len(products)))
-                part = ("lines", [round_, chunk[0], chunk[-1], int(bool(per_order)), final, chance])
+                part = ("lines", [round_, chunk[0], chunk[-1], int(bool(per_order)), final, lines_chance])
                 return self._step("lines", round_, [part], "pass_lines", facts)
 
             self._sampled_or_all(attempt, len(chunk), len(products), plan.ol_max)

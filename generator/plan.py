@@ -241,7 +241,23 @@ def _floor(c: GeneratorConfig, template: Instance | None) -> dict[str, Any]:
         if c.nodes is None:
             raise InputError("--gs only applies to a partial grid (-n)")
         _at_least(c, "gap_size", 1)
+    most = most_missing(width, height, floor["gap_size"])
+    if width * height - nodes > most:
+        raise InputError(f"-n {nodes}: at most {most} of the {width * height} cells can be missing with "
+                         f"--gs {floor['gap_size']} (gaps do not touch each other)")
     return {**floor, "layout": "random", "width": width, "height": height, "nodes": nodes}
+
+
+def most_missing(width: int, height: int, gap_size: int) -> int:
+    """An upper bound on the missing cells of a partial grid (floor.lp's gaps).
+
+    Gaps are W x H blocks (W*H <= gap_size, W < width, H < height) that do not touch, not
+    even at a corner; so the blocks grown by one column and one row are disjoint and lie in
+    (width+1) x (height+1) cells.
+    """
+    ratios = [w * h / ((w + 1) * (h + 1)) for w in range(1, width) for h in range(1, height)
+              if w * h <= gap_size]
+    return int(max(ratios, default=0) * (width + 1) * (height + 1))
 
 
 def _check_structured(c: GeneratorConfig, floor: dict, geometry: Zones, stations: int, robots: int) -> None:
