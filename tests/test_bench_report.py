@@ -30,7 +30,7 @@ instances:
   tiny: {files: ["*.lp"]}
 runs:
   - {domain: m, encoding: [plain, split], assign: [false, true]}
-  - {domain: [a, b]}
+  - {domain: [a, b], sets: tiny}
 """)
     suite = load_suite(path)
     assert (suite.name, suite.time_limit, suite.memory_limit) == ("demo", 30.0, 1024)
@@ -39,6 +39,8 @@ runs:
         (Domain.M, "plain", False), (Domain.M, "plain", True), (Domain.M, "split", False),
         (Domain.M, "split", True), (Domain.A, "plain", False), (Domain.B, "plain", False)]
     assert suite.runs[1].label == "M_a"
+    assert [r.runs_on("small") for r in suite.runs] == [True] * 4 + [False] * 2
+    assert suite.runs[4].runs_on("tiny")
 
 
 @pytest.mark.parametrize("text, message", [
@@ -50,6 +52,7 @@ runs:
     ("instances: {x: {batch: nope.yml}}\nruns: [{domain: m}]\n", "suite.yml: instances.x.batch: no such file"),
     ("time_limit: -1\n", "suite.yml: time_limit: must be a positive number of seconds"),
     ("colour: red\n", "suite.yml: colour: unknown key"),
+    ("instances: {x: {files: [a]}}\nruns: [{domain: m, sets: [y]}]\n", "suite.yml: runs[0].sets: no instance set 'y'"),
 ])
 def test_bad_suites(write, text, message):
     path = write("suite.yml", text)

@@ -1,6 +1,6 @@
 """Run benchmark suites and report on them.
 
-  asprilo bench SUITE.yml [-o DIR] [--jobs N] [--time-limit S] [--memory-limit MB]
+  asprilo bench SUITE.yml [-o DIR] [--jobs N] [--time-limit S] [--memory-limit MB] [--domain D]
       make the suite's instances, find their minimal makespans, run every (instance,
       domain, encoding, assignment) under OS-enforced limits, check every plan, append
       one JSON line per run to DIR/results.jsonl and print the summary table;
@@ -25,6 +25,7 @@ import json
 import sys
 from pathlib import Path
 
+from ..cli import domain_argument
 from ..errors import InputError
 from ..writer import write_text
 from . import btool, report
@@ -41,6 +42,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--jobs", type=int, default=1, metavar="N", help="runs at the same time (default 1)")
     parser.add_argument("--time-limit", type=float, metavar="S", help="seconds per run (default: the suite's)")
     parser.add_argument("--memory-limit", type=int, metavar="MB", help="MB per run (default: the suite's)")
+    parser.add_argument("--domain", type=domain_argument, action="append", metavar="D",
+                        help="only the runs of this domain (a|b|c|m|md; may be repeated)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -69,6 +72,11 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _runner(suite, folder: Path, args: argparse.Namespace) -> Runner:
+    if args.domain:
+        suite.runs = [spec for spec in suite.runs if spec.domain in args.domain]
+        if not suite.runs:
+            raise InputError(f"the suite has no runs of domain {', '.join(d.label for d in args.domain)}",
+                             str(suite.path))
     if args.jobs < 1:
         raise InputError(f"--jobs must be at least 1, got {args.jobs}")
     if args.time_limit is not None and args.time_limit <= 0:

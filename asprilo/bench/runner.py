@@ -161,10 +161,10 @@ class Runner:
         """Minimal makespan of every instance for every domain (and assignment) the runs use."""
         path = self.folder / MAKESPANS
         known: dict[str, dict[str, int | None]] = json.loads(path.read_text()) if path.exists() else {}
-        wanted = {(spec.domain, spec.assign, spec.label) for spec in self.suite.runs}
-        todo = [(instance, domain, assign, label) for instance in instances
-                for domain, assign, label in sorted(wanted, key=lambda w: w[2])
-                if label not in known.get(instance.name, {})]
+        todo = list(dict.fromkeys(
+            (instance, spec.domain, spec.assign, spec.label) for instance in instances
+            for spec in self.suite.runs
+            if spec.runs_on(instance.set) and spec.label not in known.get(instance.name, {})))
         if todo:
             progress = Progress(len(todo), "makespans", self.stream)
 
@@ -190,9 +190,11 @@ class Runner:
         instances = self.instances()
         makespans = self.makespans(instances)
         finished = {record["key"] for record in load_results(self.folder)}
-        todo = [(instance, spec) for instance in instances for spec in self.suite.runs
+        planned = [(instance, spec) for instance in instances for spec in self.suite.runs
+                   if spec.runs_on(instance.set)]
+        todo = [(instance, spec) for instance, spec in planned
                 if run_key(instance.set, instance.name, spec.label, spec.encoding) not in finished]
-        skipped = len(instances) * len(self.suite.runs) - len(todo)
+        skipped = len(planned) - len(todo)
         if skipped:
             self.stream.write(f"resuming: {skipped} runs already recorded\n")
         progress = Progress(len(todo), "runs", self.stream)

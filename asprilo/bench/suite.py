@@ -11,7 +11,9 @@ A suite is a YAML file::
       tiny:  {files: ["../examples/encodings-repo/x2_y2*.lp"]}  # or existing files (globs)
     runs:                     # every combination of the listed values is run on every instance
       - {domain: m, encoding: [plain, split, clingcon, dl], assign: [false, true]}
-      - {domain: [c, b, a], encoding: [plain, clingcon], assign: [false, true]}
+      - {domain: [c, b, a], encoding: [plain, clingcon], assign: [false, true], sets: [tiny]}
+
+A run entry with ``sets`` runs on the instances of those sets only.
 
 Paths are relative to the suite file.
 """
@@ -45,6 +47,10 @@ class RunSpec:
     domain: Domain
     encoding: str
     assign: bool
+    sets: tuple[str, ...] | None = None  # the instance sets it runs on (None: all)
+
+    def runs_on(self, instance_set: str) -> bool:
+        return self.sets is None or instance_set in self.sets
 
     @property
     def label(self) -> str:
@@ -127,7 +133,16 @@ def load_suite(path: str | Path) -> Suite:
         assigns = _listed(entry.get("assign", False))
         if not all(isinstance(a, bool) for a in assigns):
             raise fail(f"{where}.assign", "must be true, false or a list of them")
-        suite.runs += [RunSpec(d, e, a) for d, e, a in itertools.product(domains, encodings, assigns)]
+        sets = None
+        if "sets" in entry:
+            sets = tuple(str(name) for name in _listed(entry["sets"]))
+            unknown_sets = [name for name in sets if name not in {s.name for s in suite.sets}]
+            if unknown_sets:
+                raise fail(f"{where}.sets", f"no instance set '{unknown_sets[0]}'")
+        unknown_keys = set(entry) - {"domain", "encoding", "assign", "sets"}
+        if unknown_keys:
+            raise fail(f"{where}.{sorted(unknown_keys)[0]}", "unknown key (known: domain, encoding, assign, sets)")
+        suite.runs += [RunSpec(d, e, a, sets) for d, e, a in itertools.product(domains, encodings, assigns)]
     return suite
 
 
