@@ -60,15 +60,15 @@ class GeneratorConfig:
     one_shot: bool = False              # --one-shot
 
     @classmethod
-    def from_options(cls, options: Mapping[str, Any], where: str = "") -> "GeneratorConfig":
+    def from_options(cls, options: Mapping[str, Any]) -> "GeneratorConfig":
         """A config from ``{"-x": 11, "--prs": 1, "structured": True, ...}`` (flags or field names).
 
         Run options (``-N``, ``--seed``, ``-d`` ...) are rejected here; see :class:`RunOptions`.
         """
-        config, run = split_values(parse_values(options, where))
+        config, run = split_values(parse_values(options))
         if run:
             names = ", ".join(option_for(name).flag for name in run)
-            raise InputError(f"{where}{names}: not a generator setting (a run option)")
+            raise InputError(f"{names}: not a generator setting (a run option)")
         return cls(**config)
 
     def values(self) -> dict[str, Any]:
@@ -111,20 +111,20 @@ class RunOptions:
         return {"count": self.count, "seed": self.seed}
 
 
-def parse_values(options: Mapping[str, Any], where: str = "") -> dict[str, Any]:
+def parse_values(options: Mapping[str, Any]) -> dict[str, Any]:
     """Flags or field names -> checked values by field name; ``--prs N`` becomes prs_min and prs_max.
 
     Later layers of options (YAML presets, the command line) simply update these values.
     """
     values = {}
     for key, value in options.items():
-        option = option_for(str(key), where)
-        values[option.name] = convert(option, value, where)
+        option = option_for(str(key))
+        values[option.name] = convert(option, value)
     for name in SHORTHANDS:
         if name in values:
             both = values.pop(name)
             given = [option_for(f"{name}_{end}").flag for end in ("min", "max") if f"{name}_{end}" in values]
             if given:
-                raise InputError(f"{where}give either {option_for(name).flag} or {'/'.join(given)}, not both")
+                raise InputError(f"give either {option_for(name).flag} or {'/'.join(given)}, not both")
             values[f"{name}_min"] = values[f"{name}_max"] = both
     return values

@@ -118,10 +118,10 @@ RUN_FIELDS = ("count", "seed", "directory", "console", "prefix", "instance_dir",
 SHORTHANDS = ("pus", "prs", "spr", "ol")
 
 
-def convert(option: Option, value: Any, where: str = "") -> Any:
+def convert(option: Option, value: Any) -> Any:
     """Check and convert a value given for ``option`` (in a YAML file or through the API)."""
     def bad(expected: str) -> InputError:
-        return InputError(f"{where}{option.flag} needs {expected}, got {value!r}")
+        return InputError(f"{option.flag} needs {expected}, got {value!r}")
 
     kind = option.kind
     if kind == "flag":
@@ -148,16 +148,16 @@ def convert(option: Option, value: Any, where: str = "") -> Any:
     if kind == "domain":
         domain = value if isinstance(value, Domain) else Domain.parse(str(value))
         if domain is Domain.MD:
-            raise InputError(f"{where}--domain md is not generated; generate m and convert it")
+            raise InputError("--domain md is not generated; generate m and convert it")
         return domain
     raise AssertionError(kind)
 
 
-def option_for(key: str, where: str = "") -> Option:
+def option_for(key: str) -> Option:
     """The option named by a flag (``-x``, ``--grid-x``) or a field name (``width``)."""
     option = BY_FLAG.get(key) or BY_NAME.get(key)
     if option is None:
-        raise InputError(f"{where}unknown option {key!r}")
+        raise InputError(f"unknown option {key!r}")
     return option
 
 

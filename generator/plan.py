@@ -161,7 +161,7 @@ def make_plan(config: GeneratorConfig) -> Plan:
         raise InputError("give either -s or --sc, not both")
     if layout == "structured":
         geometry = zones(width, height, floor["zone_x"], floor["zone_y"], floor["border"])
-        _check_structured(c, floor, geometry, station_total, robot_total)
+        _check_structured(floor, geometry, station_total, robot_total)
         sites, free = geometry.cells, geometry.cells
     elif layout == "random":
         sites = free = nodes - station_total - robot_total
@@ -190,8 +190,8 @@ def make_plan(config: GeneratorConfig) -> Plan:
         raise InputError(f"-s {shelf_total} shelves do not fit: room for {free} more {where}")
 
     ranges = _ranges(c, domain, shelf_total, robot_total)
-    inventory = _inventory(c, ranges, existing, shelf_total)
-    orders = _orders(c, ranges, inventory, existing, station_total, robot_total)
+    inventory = _inventory(ranges, existing, shelf_total)
+    orders = _orders(c, ranges, inventory, existing, station_total)
     return Plan(
         layout=layout, width=width, height=height, nodes=nodes, gap_size=floor["gap_size"],
         zone_x=floor["zone_x"], zone_y=floor["zone_y"], border=floor["border"], template=template,
@@ -260,7 +260,7 @@ def most_missing(width: int, height: int, gap_size: int) -> int:
     return int(max(ratios, default=0) * (width + 1) * (height + 1))
 
 
-def _check_structured(c: GeneratorConfig, floor: dict, geometry: Zones, stations: int, robots: int) -> None:
+def _check_structured(floor: dict, geometry: Zones, stations: int, robots: int) -> None:
     width, height = floor["width"], floor["height"]
     if geometry.cells == 0:
         raise InputError(f"-H: no storage zone of -X {floor['zone_x']} x -Y {floor['zone_y']} fits into "
@@ -302,7 +302,7 @@ def _ranges(c: GeneratorConfig, domain: Domain, shelves: int, robots: int) -> di
     return values
 
 
-def _inventory(c: GeneratorConfig, r: dict[str, Any], existing: Instance, shelves: int) -> dict[str, Any]:
+def _inventory(r: dict[str, Any], existing: Instance, shelves: int) -> dict[str, Any]:
     product_total = r["products"] if r["products"] is not None else len(existing.products)
     new = _new(product_total, len(existing.products), "-P", "products")
     first = max(existing.products, default=0) + 1
@@ -352,7 +352,7 @@ def _inventory(c: GeneratorConfig, r: dict[str, Any], existing: Instance, shelve
 
 
 def _orders(c: GeneratorConfig, r: dict[str, Any], inventory: dict[str, Any], existing: Instance,
-            stations: int, robots: int) -> dict[str, Any]:
+            stations: int) -> dict[str, Any]:
     order_total = r["orders"] if r["orders"] is not None else len(existing.orders)
     new = _new(order_total, len(existing.orders), "-o", "orders")
     first = max(existing.orders, default=0) + 1
