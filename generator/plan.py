@@ -136,7 +136,7 @@ def make_plan(config: GeneratorConfig) -> Plan:
                  "orders", "shelf_coverage"):
         if getattr(c, name) is not None:
             _at_least(c, name, 0 if name not in ("width", "height", "nodes") else 1)
-    domain = c.domain or Domain.A
+    domain = c.domain or Domain.A  # A: no alignment
     threads = _at_least(c, "threads", 1)
     time_limit = _value(c, "time_limit")
     if time_limit <= 0:
@@ -198,7 +198,17 @@ def make_plan(config: GeneratorConfig) -> Plan:
         stations=new_stations, robots=new_robots, shelves=new_shelves, station_total=station_total,
         robot_total=robot_total, shelf_total=shelf_total, reachable=c.reachable,
         threads=threads, time_limit=float(time_limit), split=split, one_shot=c.one_shot,
-        quantities=domain not in (Domain.B, Domain.C), **inventory, **orders)
+        quantities=_with_quantities(c.domain, existing), **inventory, **orders)
+
+
+def _with_quantities(domain: Domain | None, template: Instance) -> bool:
+    """Whether products and lines are written with quantities: not for B and C, and without
+    --domain not when the template writes its own without them."""
+    if domain is not None:
+        return domain not in (Domain.B, Domain.C)
+    entries = [u for p in template.products.values() for u in p.stock.values()]
+    entries += [u for o in template.orders.values() for u in o.lines.values()]
+    return None not in entries
 
 
 def _new(total: int, existing: int, flag: str, what: str) -> int:

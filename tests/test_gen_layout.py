@@ -231,3 +231,14 @@ def test_template_objects_count_towards_the_totals(write):
     layout = template()
     instance = populate(layout, robots=1, shelves=1).instance
     assert instance.robots.keys() == {3} and instance.shelves.keys() == {2}
+
+
+def test_a_quantity_free_template_gets_quantity_free_additions():
+    from asprilo.model import Product
+    layout = template()
+    layout.products = {1: Product(1, {2: None})}
+    instance = populate(layout, shelves=4, products=3, units=None, stations=1, orders=2).instance
+    assert instance.products[1].stock == {2: None}
+    assert all(u is None for p in instance.products.values() for u in p.stock.values())
+    assert all(u is None for o in instance.orders.values() for u in o.lines.values())
+    check_instance(instance)
