@@ -29,6 +29,10 @@ How a plan that breaks a rule changes the state (the checker does the same):
 
 State checks are event based: collisions and swaps of robots at every step; a shelf
 coming onto a node where another shelf rests is reported by the action that does it.
+
+The timeline keeps robot positions as one array and, for shelves, stock and order lines,
+only what each step changed plus a few checkpoints; ``state(t)`` is put together on
+demand, quickly for steps in sequence and from the nearest checkpoint otherwise.
 """
 
 from __future__ import annotations
@@ -190,7 +194,7 @@ class Timeline:
 
     # filled in by _Replay
     violations: list[Violation]
-    _positions: np.ndarray              # (horizon+1) x robots x 2
+    _positions: np.ndarray              # (horizon+1) x robots x 2, int32
     _changes: dict[int, _Changes]       # step -> what it changed besides positions
     _checkpoints: list[_Snapshot]       # after steps 0, every, 2 * every, ...
     _every: int
@@ -334,12 +338,12 @@ class _Replay:
     def compute_positions(self, effective: dict[int, list[Action]]) -> None:
         timeline, index = self.timeline, self.timeline._index
         steps = self.horizon + 1
-        moves = np.zeros((steps, len(index), 2), dtype=np.int64)
+        moves = np.zeros((steps, len(index), 2), dtype=np.int32)
         for step, actions in effective.items():
             for action in actions:
                 if action.name == "move":
                     moves[step, index[action.robot]] = action.args
-        start = np.array([self.instance.robots[r].at for r in timeline.robot_ids], dtype=np.int64)
+        start = np.array([self.instance.robots[r].at for r in timeline.robot_ids], dtype=np.int32)
         moves[0] = start.reshape(len(index), 2)
         timeline._positions = np.cumsum(moves, axis=0)
 
@@ -400,7 +404,7 @@ class _Replay:
             return
         low = int(positions.min())
         span = int(positions.max()) - low + 1
-        codes = (positions[..., 0] - low) * span + (positions[..., 1] - low)  # steps x robots
+        codes = (positions[..., 0].astype(np.int64) - low) * span + (positions[..., 1] - low)  # steps x robots
         floor = np.zeros(span * span, dtype=bool)
         for x, y in self.nodes:
             if low <= x < low + span and low <= y < low + span:
