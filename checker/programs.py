@@ -86,8 +86,8 @@ def run_checker(facts: str, domain: Domain) -> tuple[list[clingo.Symbol], Statis
     solver.ground()
     # one answer set, found without search: the program negates only what earlier steps decided
     with solver.control.solve(yield_=True) as answers:
-        atoms = next(iter(answers)).symbols(shown=True)
-    return [atom for atom in atoms if atom.match("err", 3)], solver.stats
+        atoms = next(iter(answers)).symbols(shown=True)  # goal.lp shows err/3 only
+    return atoms, solver.stats
 
 
 def err_atoms(instance: Instance, plan: Plan, domain: Domain,
