@@ -14,7 +14,7 @@ from typing import Callable
 
 import numpy as np
 
-from asprilo.bounds import Floor
+from asprilo.bounds import Floor, goal_cells
 from asprilo.domain import Domain
 from asprilo.model import Cell, Instance
 from asprilo.solver import Solver, Statistics, Status
@@ -48,7 +48,6 @@ def distance_facts(instance: Instance, domain: Domain, floor: Floor | None = Non
         shelves = sorted({s.at for s in instance.shelves.values() if ordered & set(stock.get(s.id, {}))})
         pairs = [(robots, shelves), (shelves, sorted({p.at for p in instance.stations.values()}))]
     else:
-        from asprilo.bounds import goal_cells
         pairs = [(robots, goal_cells(instance))]
     facts = []
     for sources, targets in pairs:

@@ -67,7 +67,9 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _progress(attempt: Attempt) -> None:
-    print(f"horizon {attempt.horizon}: {attempt.result} ({attempt.seconds:.2f} s)", file=sys.stderr, flush=True)
+    note = f" {attempt.note}" if attempt.note else ""
+    print(f"horizon {attempt.horizon}{note}: {attempt.result} ({attempt.seconds:.2f} s)",
+          file=sys.stderr, flush=True)
 
 
 def _summary(outcome: Outcome) -> None:
@@ -85,9 +87,12 @@ def _summary(outcome: Outcome) -> None:
         lines.append({"none": "no plan exists", "limit": "no plan within the limits",
                       "cancelled": "cancelled", "invalid": "no valid plan"}[outcome.status.value]
                      + (f": {outcome.message}" if outcome.message else ""))
-    lines.append(f"ground {stats['ground_time']:.2f} s, solve {stats['solve_time']:.2f} s, "
-                 f"rules {stats['rules']}, atoms {stats['atoms']}, "
-                 f"choices {stats['choices']}, conflicts {stats['conflicts']}")
+    if outcome.method == "flow":
+        lines.append(f"max-flow {stats['solve_time']:.2f} s")
+    else:
+        lines.append(f"ground {stats['ground_time']:.2f} s, solve {stats['solve_time']:.2f} s, "
+                     f"rules {stats['rules']}, atoms {stats['atoms']}, "
+                     f"choices {stats['choices']}, conflicts {stats['conflicts']}")
     print("\n".join(lines), file=sys.stderr)
 
 

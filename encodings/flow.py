@@ -77,39 +77,41 @@ class TimeExpandedNetwork:
             capacities.append(np.broadcast_to(capacity, np.asarray(tail).ravel().shape))
 
         steps = np.arange(layers)[:, None] * self.layer
-        arcs(steps + self.entry(vertex), steps + self.exit(vertex))  # one robot per cell and step
+        arcs(steps + self.inlet(vertex), steps + self.outlet(vertex))  # one robot per cell and step
         moves = steps[:-1]
         after = moves + self.layer
-        arcs(moves + self.exit(vertex), after + self.entry(vertex))  # wait
+        arcs(moves + self.outlet(vertex), after + self.inlet(vertex))  # wait
         if len(edges):
             a = 2 * cells + np.arange(len(edges))
             b = a + len(edges)
             u, v = edges[:, 0], edges[:, 1]
-            arcs(moves + self.exit(u), moves + a)
-            arcs(moves + self.exit(v), moves + a)
+            arcs(moves + self.outlet(u), moves + a)
+            arcs(moves + self.outlet(v), moves + a)
             arcs(moves + a, moves + b)  # the edge carries one robot per step, in either direction
-            arcs(moves + b, after + self.entry(u))
-            arcs(moves + b, after + self.entry(v))
+            arcs(moves + b, after + self.inlet(u))
+            arcs(moves + b, after + self.inlet(v))
         index = floor.index
-        start_nodes = [self.entry(index[cell]) for cell in starts]
+        start_nodes = [self.inlet(index[cell]) for cell in starts]
         arcs([self.source] * len(start_nodes), start_nodes)
         last = horizon * self.layer
         goal_set = {index[cell] for cell in goals}
-        arcs([last + self.exit(g) for g in sorted(goal_set)], [self.sink] * len(goal_set))
+        arcs([last + self.outlet(g) for g in sorted(goal_set)], [self.sink] * len(goal_set))
         surplus = len(starts) - len(goal_set)
         if surplus > 0:
             others = [v for v in range(cells) if v not in goal_set]
-            arcs([last + self.exit(v) for v in others], [self.idle] * len(others))
+            arcs([last + self.outlet(v) for v in others], [self.idle] * len(others))
             arcs([self.idle], [self.sink], surplus)
         tail, head = np.concatenate(tails), np.concatenate(heads)
         capacity = np.concatenate(capacities).astype(np.int32)
         self.arcs = len(tail)
         self.graph = csr_matrix((capacity, (tail, head)), shape=(self.size, self.size))
 
-    def entry(self, vertex):
+    def inlet(self, vertex):
+        """The node where robots enter a cell (in layer 0; add ``t * layer`` for step t)."""
         return vertex
 
-    def exit(self, vertex):
+    def outlet(self, vertex):
+        """The node where robots leave a cell."""
         return vertex + len(self.floor.cells)
 
     def route(self) -> dict[int, list[Cell]] | None:
@@ -127,7 +129,7 @@ class TimeExpandedNetwork:
         cells = len(self.floor.cells)
         paths = {}
         for number, start in enumerate(self.starts):
-            node, path = self.entry(self.floor.index[start]), []
+            node, path = self.inlet(self.floor.index[start]), []
             while node not in (self.sink, self.idle):
                 local = node % self.layer
                 if local < cells:  # an in-node: the robot stands on this cell at this step

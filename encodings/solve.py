@@ -30,13 +30,15 @@ from asprilo.solver import Result, Solver, Statistics, Status
 from asprilo.writer import format_instance
 
 from .assignment import Assignment, assign_tasks
-from .bounds import lower_bound, unusable_goals
+from .bounds import assignment_bound, lower_bound, unusable_goals
 from .flow import flow_plan
 from .registry import Encoding, find_encoding
 
-#: the share of the time limit the task assignment may spend optimising
+#: the share of the time limit the task assignment may spend optimising, and its cap
 ASSIGNMENT_SHARE = 0.2
 ASSIGNMENT_SECONDS = 10.0
+#: after a plan along an assignment, how long to look for shorter plans without it
+TIGHTEN_SECONDS = 10.0
 
 
 class SolveStatus(str, Enum):
@@ -49,19 +51,24 @@ class SolveStatus(str, Enum):
 
 @dataclass
 class Attempt:
-    """One horizon tried: ``sat``, ``unsat`` or ``unknown`` (stopped), and how long it took."""
+    """One horizon tried: ``sat``, ``unsat`` or ``unknown`` (stopped), and how long it took.
+
+    ``note`` is ``"without assignment"`` for the tries that follow a plan found along a task
+    assignment, looking for a shorter plan or the proof that there is none.
+    """
 
     horizon: int
     result: str
     seconds: float
+    note: str = ""
 
 
 @dataclass
 class Outcome:
     """What :func:`solve` found.
 
-    ``minimal`` says that no shorter plan exists (proven by the search or the lower bound;
-    with an assignment only when the plan meets the bound of the unassigned problem).
+    ``minimal`` says that no shorter plan exists: proven by the search or the lower bound;
+    with an assignment, by the lower bound or by a try one step shorter without it.
     ``stats`` holds ground and solve time (seconds), rules, atoms (of the last program),
     choices and conflicts (summed over all solve calls).
     """
@@ -129,10 +136,13 @@ class _Watch:
     def expired(self) -> bool:
         return self.deadline is not None and time.perf_counter() >= self.deadline
 
-    def solve(self, solver: Solver) -> Result:
+    def solve(self, solver: Solver, limit: float | None = None) -> Result:
         self.attach(solver)
         before = Statistics(**solver.stats.as_dict())
-        result = solver.solve(time_limit=self.remaining())
+        remaining = self.remaining()
+        if limit is not None:
+            remaining = limit if remaining is None else min(limit, remaining)
+        result = solver.solve(time_limit=remaining)
         after = solver.stats
         self.stats.solve_time += after.solve_time - before.solve_time
         self.stats.choices += after.choices - before.choices
@@ -248,6 +258,7 @@ class _Search:
         self.facts = format_instance(instance, [])
         self.outcome = Outcome(SolveStatus.LIMIT, domain, "asp", encoding.name)
         self.max_horizon = max_horizon
+        self.follow_assignment = False
 
     def run(self) -> Outcome:
         outcome, watch = self.outcome, self.watch
@@ -256,21 +267,14 @@ class _Search:
             outcome.status, outcome.minimal = SolveStatus.NONE, True
             outcome.message = "some goal or order line can never be reached"
             return outcome
-        if self.assign:
-            budget = watch.remaining()
-            budget = ASSIGNMENT_SECONDS if budget is None else min(ASSIGNMENT_SECONDS, ASSIGNMENT_SHARE * budget)
-            outcome.assignment = assign_tasks(self.instance, self.domain, budget, watch.attach)
-            watch.stats.ground_time += outcome.assignment.stats.ground_time
-            watch.stats.solve_time += outcome.assignment.stats.solve_time
-            if not outcome.assignment.facts:
-                outcome.status = SolveStatus.CANCELLED if watch.cancelled else (
-                    SolveStatus.NONE if outcome.assignment.status is Status.UNSAT else SolveStatus.LIMIT)
-                outcome.message = "no task assignment"
-                return outcome
+        if self.assign and not self._assign():
+            return outcome
         if self.horizon is not None:
             first = last = self.horizon
         else:
             first = int(bound)
+            if self.assign:
+                first = max(first, int(assignment_bound(self.instance, outcome.assignment.facts, self.floor)))
             last = self.max_horizon if self.max_horizon is not None else self._largest_horizon(first)
         if self.encoding.incremental:
             self._incremental(first, last)
@@ -281,7 +285,50 @@ class _Search:
             proven = (self.horizon is None and not self.assign
                       and all(a.result == "unsat" for a in outcome.horizons_tried[:-1]))
             outcome.minimal = proven or outcome.horizon <= bound
+            if self.assign and self.horizon is None and not outcome.minimal:
+                self._tighten()
         return outcome
+
+    def _assign(self) -> bool:
+        """Compute the task assignment the planner will follow; whether there is one."""
+        outcome, watch = self.outcome, self.watch
+        budget = watch.remaining()
+        budget = ASSIGNMENT_SECONDS if budget is None else min(ASSIGNMENT_SECONDS, ASSIGNMENT_SHARE * budget)
+        outcome.assignment = assign_tasks(self.instance, self.domain, budget, watch.attach)
+        watch.stats.ground_time += outcome.assignment.stats.ground_time
+        watch.stats.solve_time += outcome.assignment.stats.solve_time
+        if not outcome.assignment.facts:
+            outcome.status = SolveStatus.CANCELLED if watch.cancelled else (
+                SolveStatus.NONE if outcome.assignment.status is Status.UNSAT else SolveStatus.LIMIT)
+            outcome.message = "no task assignment"
+            return False
+        self.follow_assignment = True
+        return True
+
+    def _tighten(self) -> None:
+        """After a plan along the assignment: try one step shorter without it, for a while.
+
+        Plans only get shorter when robots wait, so "no plan at H-1" proves H minimal; a
+        plan at H-1 replaces the one found and the next step down is tried.
+        """
+        outcome, watch = self.outcome, self.watch
+        self.follow_assignment = False
+        budget_end = time.perf_counter() + TIGHTEN_SECONDS
+        while outcome.horizon > outcome.lower_bound and not watch.cancelled and not watch.expired:
+            limit = budget_end - time.perf_counter()
+            if limit <= 0:
+                return
+            horizon = outcome.horizon - 1
+            started = time.perf_counter()
+            result = self._solve_at(horizon, limit)
+            self._record(Attempt(horizon, result.status.value, time.perf_counter() - started,
+                                 "without assignment"))
+            if result.status is Status.UNSAT:
+                outcome.minimal = True
+                return
+            if result.status is not Status.SAT:
+                return
+            outcome.plan, outcome.horizon = self._plan(result), horizon
 
     def _largest_horizon(self, first: int) -> int:
         """Where an upward search gives up: no plan needs this many steps in practice."""
@@ -290,23 +337,28 @@ class _Search:
 
     def _program(self, solver: Solver, horizon: int | None) -> None:
         solver.add(self.facts)
-        if self.outcome.assignment is not None:
+        if self.follow_assignment:
             solver.add(self.outcome.assignment.text())
         elif horizon is not None and not self.domain.delivers:
             hints = unusable_goals(self.instance, horizon, self.floor)
             solver.add("".join(f"ruled_out({r},({x},{y})).\n" for r, (x, y) in hints))
         solver.load(self.encoding.program)
 
-    def _tried(self, horizon: int, result: Result, seconds: float) -> bool:
-        """Record one horizon; whether the search goes on."""
-        outcome = self.outcome
-        word = result.status.value
-        outcome.horizons_tried.append(Attempt(horizon, word, seconds))
+    def _record(self, attempt: Attempt) -> None:
+        self.outcome.horizons_tried.append(attempt)
         if self.on_progress is not None:
-            self.on_progress(outcome.horizons_tried[-1])
+            self.on_progress(attempt)
+
+    @staticmethod
+    def _plan(result: Result) -> Plan:
+        return plan_from_atoms([_with_values(symbol, result.assignment) for symbol in result.symbols])
+
+    def _tried(self, horizon: int, result: Result, seconds: float) -> bool:
+        """Record one horizon of the search; whether the search goes on."""
+        outcome = self.outcome
+        self._record(Attempt(horizon, result.status.value, seconds))
         if result.status is Status.SAT:
-            atoms = [_with_values(symbol, result.assignment) for symbol in result.symbols]
-            outcome.status, outcome.plan = SolveStatus.FOUND, plan_from_atoms(atoms)
+            outcome.status, outcome.plan = SolveStatus.FOUND, self._plan(result)
             return False
         if result.status is Status.UNSAT:
             outcome.status = SolveStatus.NONE
@@ -323,21 +375,34 @@ class _Search:
             return True
         return False
 
+    def _solve_at(self, horizon: int, limit: float | None = None) -> Result:
+        """Ground and solve the encoding for exactly this horizon, in a fresh solver."""
+        if self.encoding.incremental:
+            solver = Solver(self.encoding.theory)
+            self._program(solver, None)
+            self.watch.attach(solver)
+            steps = [("step", [t]) for t in range(1, horizon + 1)]
+            self.watch.ground(solver, [("base", []), *steps, ("check", [horizon])])
+            solver.assign_external(f"query({horizon})", True)
+        else:
+            solver = Solver(self.encoding.theory, constants={"horizon": horizon})
+            self._program(solver, horizon)
+            self.watch.attach(solver)
+            self.watch.ground(solver)
+        return self.watch.solve(solver, limit)
+
     def _single_shot(self, first: int, last: int) -> None:
         for horizon in range(first, last + 1):
             if self._stopped():
                 return
             started = time.perf_counter()
-            solver = Solver(self.encoding.theory, constants={"horizon": horizon})
-            self._program(solver, horizon)
-            self.watch.attach(solver)
-            self.watch.ground(solver)
-            if not self._tried(horizon, self.watch.solve(solver), time.perf_counter() - started):
+            if not self._tried(horizon, self._solve_at(horizon), time.perf_counter() - started):
                 return
         if self.horizon is None:
             self.outcome.status = SolveStatus.LIMIT
 
     def _incremental(self, first: int, last: int) -> None:
+        """One solver for all horizons: ground one more step, move the query, solve again."""
         solver = Solver(self.encoding.theory)
         self._program(solver, None)
         self.watch.attach(solver)

@@ -95,6 +95,10 @@ def test_assigned_plans_follow_the_assignment():
     instance = read_instance(SMALL_A)
     outcome = solve(instance, Domain.B, assign=True, time_limit=120)
     assert outcome.found and outcome.check.valid and outcome.horizon == 16
+    # the plan along the assignment is proven minimal by one try without it
+    assert [(a.horizon, a.result, a.note) for a in outcome.horizons_tried] == [
+        (15, "unsat", ""), (16, "sat", ""), (15, "unsat", "without assignment")]
+    assert outcome.minimal
     carriers = {}
     for fact in outcome.assignment.facts:  # assign(robot(R),shelf(S),pickingStation(P))
         robot = int(fact.split("robot(")[1].split(")")[0])
@@ -103,7 +107,34 @@ def test_assigned_plans_follow_the_assignment():
     assert sorted(r for r, _ in picked) == sorted(carriers.values())
 
 
+def test_assignment_bound_chains_the_tasks_of_each_robot(write):
+    from asprilo.encodings.bounds import assignment_bound
+    two = read_instance(write("two.lp", TWO_SHELVES))
+    facts = ["assign(robot(1),shelf(1),pickingStation(1))", "assign(robot(1),shelf(2),pickingStation(1))"]
+    assert assignment_bound(two, facts) == 14  # the minimal makespan of this instance
+    small = read_instance(SMALL_A)
+    facts = ["assign(robot(1),shelf(2),pickingStation(1))", "assign(robot(1),shelf(2),pickingStation(2))",
+             "assign(robot(2),shelf(3),pickingStation(1))", "assign(robot(3),shelf(1),pickingStation(2))",
+             "assign(robot(3),shelf(9),pickingStation(2))"]
+    assert assignment_bound(small, facts) == 23  # robot 3: shelf 1, put it down, shelf 9
+
+
 def test_distance_facts_are_floor_distances():
     instance = read_instance(EXAMPLES / "encodings-repo/x3_y3_n9_r1_s1_ps1_pr1_u1_o1_N1.lp")
     assert sorted(distance_facts(instance, Domain.B)) == [
         "distance((2,3),(3,1),3)", "distance((3,1),(1,3),4)"]
+
+
+@pytest.mark.parametrize("domain, style", [(d, s) for d, styles in STYLES.items() for s in styles])
+def test_a_robot_may_start_with_a_shelf(write, domain, style):
+    carrying = """
+    init(object(grid,1),value(xsize,3)). init(object(grid,1),value(ysize,1)).
+    init(object(pickingStation,1),value(at,(1,1))).
+    init(object(robot,1),value(at,(2,1))). init(object(robot,1),value(carries,1)).
+    init(object(shelf,1),value(at,(2,1))). init(object(product,1),value(on,(1,2))).
+    init(object(order,1),value(line,(1,2))). init(object(order,1),value(pickingStation,1)).
+    """
+    outcome = solve(write("carrying.lp", carrying), domain, encoding=style)
+    deliver = (1, 1, 2) if domain is Domain.A else (1, 1)
+    assert [(a.step, a.name, a.args) for a in outcome.plan.actions] == [(1, "move", (-1, 0)), (2, "deliver", deliver)]
+    assert outcome.minimal and outcome.check.valid
