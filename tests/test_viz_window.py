@@ -172,8 +172,20 @@ def test_zoom_and_level_of_detail(window, qtbot):
     assert window.scene.fine and window.scene.robots[1].label.isVisible()
 
 
+def user_actions(window) -> list[QAction]:
+    """The window's own actions and those of its menus, sub-menus included (not Qt's internal ones)."""
+    actions, waiting = {}, [*window.actions(), *window.menuBar().actions()]
+    while waiting:
+        action = waiting.pop()
+        if id(action) not in actions:
+            actions[id(action)] = action
+            if action.menu() is not None:
+                waiting.extend(action.menu().actions())
+    return list(actions.values())
+
+
 def test_shortcuts_do_not_clash(window):
-    keys = [key.toString() for action in window.findChildren(QAction) for key in action.shortcuts()]
+    keys = [key.toString() for action in user_actions(window) for key in action.shortcuts()]
     assert keys and len(keys) == len(set(keys))
     assert "Space" in keys and "Ctrl+G" in keys
 
