@@ -109,12 +109,23 @@ def goal_cells(instance: Instance) -> list[Cell]:
 
 
 def mapf_bounds(instance: Instance, floor: Floor | None = None) -> tuple[float, float]:
-    """``(makespan bound, sum-of-costs bound)`` of an M/Md instance by robot-to-goal assignment."""
+    """``(makespan bound, sum-of-costs bound)`` of an M/Md instance by robot-to-goal assignment.
+
+    Robots with a labelled goal (``instance.assignment``) count their own distance to it;
+    the other robots are matched to the remaining goals.
+    """
     floor = floor or Floor(instance.cells)
-    goals = goal_cells(instance)
-    starts = [robot.at for _id, robot in sorted(instance.robots.items())]
+    assigned = instance.assigned_cells()
+    taken = set(assigned.values())
+    goals = [cell for cell in goal_cells(instance) if cell not in taken]
+    starts = [robot.at for ident, robot in sorted(instance.robots.items()) if ident not in assigned]
     costs = floor.distances(goals, starts)
-    return bottleneck_assignment(costs), min_cost_assignment(costs)
+    makespan, total = bottleneck_assignment(costs), min_cost_assignment(costs)
+    if assigned:
+        robots = sorted(assigned)
+        own = floor.distances([assigned[r] for r in robots], [instance.robots[r].at for r in robots]).diagonal()
+        makespan, total = max(makespan, float(own.max())), total + float(own.sum())
+    return makespan, total
 
 
 def delivery_makespan_bound(instance: Instance, floor: Floor | None = None) -> float:

@@ -4,6 +4,7 @@ result files, and asprilo's own domains M and Md.
 Examples:
   asprilo convert random-32-32-20.map floor.lp
   asprilo convert random-32-32-20-random-1.scen agents.lp --agents 50 --goals md
+  asprilo convert random-32-32-20-random-1.scen agents.lp --agents 50 --labelled
   asprilo convert instance.lp floor.map
   asprilo convert instance.lp agents.scen
   asprilo convert m-instance.lp md-instance.lp --to md
@@ -92,9 +93,11 @@ def _terrain(atoms) -> dict:
 # --- scenarios ---------------------------------------------------------------------------
 
 
-def scenario_to_instance(grid: Map, tasks: list[Task], agents: int, goals: str = "md") -> Instance:
+def scenario_to_instance(grid: Map, tasks: list[Task], agents: int, goals: str = "md",
+                         labelled: bool = False) -> Instance:
     """Robots at the first ``agents`` starts; goals as Md destinations (``md``) or as M
-    shelves, products and orders (``m``), numbered like the scenario rows."""
+    shelves, products and orders (``m``), numbered like the scenario rows.  ``labelled``
+    assigns robot k to goal k, as the scenario does (otherwise any robot may take any goal)."""
     if agents < 1 or agents > len(tasks):
         raise InputError(f"--agents must be between 1 and {len(tasks)} (the scenario's rows), got {agents}")
     tasks = tasks[:agents]
@@ -110,6 +113,8 @@ def scenario_to_instance(grid: Map, tasks: list[Task], agents: int, goals: str =
     instance = map_to_instance(grid)
     for number, task in enumerate(tasks, 1):
         instance.robots[number] = Robot(number, to_cell(*task.start))
+        if labelled:
+            instance.assignment[number] = ("destination" if goals == "md" else "shelf", number)
         if goals == "md":
             instance.destinations[number] = Destination(number, to_cell(*task.goal))
         else:
@@ -125,7 +130,11 @@ def scenario_to_instance(grid: Map, tasks: list[Task], agents: int, goals: str =
 
 def goals_of(instance: Instance) -> list:
     """The goal cell of each robot, in robot order: destinations (Md) or the cells of the
-    shelves ordered by the orders (M), the k-th goal belonging to the k-th robot."""
+    shelves ordered by the orders (M), the k-th goal belonging to the k-th robot; or each
+    robot's labelled goal when the instance assigns one to every robot."""
+    if instance.assignment and set(instance.assignment) == set(instance.robots):
+        cells = instance.assigned_cells()
+        return [cells[robot] for robot in sorted(instance.robots)]
     if instance.destinations:
         goals = [d.at for _id, d in sorted(instance.destinations.items())]
     else:
@@ -179,6 +188,7 @@ def m_to_md(instance: Instance) -> Instance:
                              f"on a shelf); it cannot become a destination without loss")
         result.destinations[ident] = Destination(ident, cell)
         result.orders[ident] = Order(ident, {}, order.station)
+    result.assignment = _relabel(instance, result, "destination")
     return result
 
 
@@ -210,7 +220,15 @@ def md_to_m(instance: Instance) -> Instance:
         kept = instance.orders.get(ident)
         station = kept.station if kept is not None and kept.station is not None else first_station
         result.orders[ident] = Order(ident, {min(products): 1}, station)
+    result.assignment = _relabel(instance, result, "shelf")
     return result
+
+
+def _relabel(source: Instance, target: Instance, kind: str) -> dict[int, tuple[str, int]]:
+    """The labelled goals of ``source`` as goals of ``kind`` in ``target``, found by their cells."""
+    table = target.destinations if kind == "destination" else target.shelves
+    at = {item.at: item.id for item in table.values()}
+    return {robot: (kind, at[cell]) for robot, cell in source.assigned_cells().items()}
 
 
 def _products_on(instance: Instance, shelf: int) -> list[int]:
@@ -225,7 +243,8 @@ def _copy(instance: Instance) -> Instance:
         stations={i: PickingStation(s.id, s.at) for i, s in instance.stations.items()},
         products={i: Product(p.id, dict(p.stock)) for i, p in instance.products.items()},
         orders={i: Order(o.id, dict(o.lines), o.station) for i, o in instance.orders.items()},
-        destinations={i: Destination(d.id, d.at) for i, d in instance.destinations.items()})
+        destinations={i: Destination(d.id, d.at) for i, d in instance.destinations.items()},
+        assignment=dict(instance.assignment))
 
 
 # --- plans -------------------------------------------------------------------------------
@@ -290,6 +309,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--agents", type=int, help="number of scenario rows to use (default: all)")
     parser.add_argument("--goals", choices=GOALS, default="md",
                         help="scenario goals as Md destinations (md, default) or M shelves and orders (m)")
+    parser.add_argument("--labelled", action="store_true",
+                        help="keep the scenario's pairing: robot k must reach goal k (assign/2 facts)")
     parser.add_argument("--map", help="map of a scenario (default: the map named in it, next to it)")
     parser.add_argument("--instance", help="asprilo instance a plan or result belongs to")
 
@@ -355,7 +376,7 @@ def _from_movingai(args: argparse.Namespace, source_format: str) -> str:
         tasks = parse_scenario(Source.from_path(args.source))
         map_path = Path(args.map) if args.map else Path(args.source).parent / tasks[0].map_name
         grid = parse_map(Source.from_path(map_path))
-        instance = scenario_to_instance(grid, tasks, args.agents or len(tasks), args.goals)
+        instance = scenario_to_instance(grid, tasks, args.agents or len(tasks), args.goals, args.labelled)
     header = header_lines(instance, command=f"asprilo convert {args.source} {args.target}")
     return format_instance(instance, header) + "\n% MovingAI map data (kept for exact .map round trips)\n" + \
         "\n".join(terrain_facts(grid, map_path.name)) + "\n"

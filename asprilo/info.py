@@ -36,6 +36,7 @@ def summary(args: argparse.Namespace) -> dict:
         "order_lines": sum(len(order.lines) for order in instance.orders.values()),
         "domain": (args.domain or detect_domain(instance, plan)).value,
         "domain_detected": args.domain is None,
+        "labelled_robots": len(instance.assignment),
     }
     if plan is not None:
         report["horizon"] = plan.horizon
@@ -57,6 +58,8 @@ def run(args: argparse.Namespace) -> int:
           f"{c['orders']} orders with {report['order_lines']} lines")
     print(f"name:     {report['name']}")
     print(f"domain:   {domain}")
+    if report["labelled_robots"]:
+        print(f"labelled: {report['labelled_robots']} robots have an assigned goal")
     if "horizon" in report:
         kinds = ", ".join(f"{count} {name}" for name, count in report["actions"].items()) or "none"
         print(f"plan:     horizon {report['horizon']}, {sum(report['actions'].values())} actions ({kinds})")

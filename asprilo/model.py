@@ -72,6 +72,9 @@ class Instance:
     products: dict[int, Product] = field(default_factory=dict)
     orders: dict[int, Order] = field(default_factory=dict)
     destinations: dict[int, Destination] = field(default_factory=dict)
+    #: labelled goals (M/Md): robot id -> ("shelf", S) or ("destination", D), from
+    #: ``assign(robot(R),shelf(S))`` / ``assign(robot(R),destination(D))`` facts
+    assignment: dict[int, tuple[str, int]] = field(default_factory=dict)
 
     # --- the floor -----------------------------------------------------------------------
 
@@ -100,6 +103,11 @@ class Instance:
         for dx, dy in DIRECTIONS:
             if (x + dx, y + dy) in cells:
                 yield (x + dx, y + dy)
+
+    def assigned_cells(self) -> dict[int, Cell]:
+        """Robot id -> the cell its labelled goal (shelf or destination) starts on."""
+        tables = {"shelf": self.shelves, "destination": self.destinations}
+        return {robot: tables[kind][goal].at for robot, (kind, goal) in self.assignment.items()}
 
     # --- inventory -----------------------------------------------------------------------
 

@@ -94,6 +94,7 @@ class _InstanceBuilder:
         self.instance = Instance()
         self.seen: dict[tuple, tuple[Any, Any]] = {}
         self.grid: dict[str, int] = {}
+        self.goals: dict[int, tuple[str, int]] = {}
 
     def fail(self, message: str, origin: Any) -> InputError:
         return InputError(message, *_where(origin, self.sources))
@@ -129,6 +130,17 @@ class _InstanceBuilder:
         if not (obj.match("object", 2) and val.match("value", 2)):
             raise self.fail(f"expected init(object(Type,Id),value(Attribute,Value)), got {atom}", atom)
         self.add(*(value_of(term) for term in (*obj.arguments, *val.arguments)), atom)
+
+    def assign(self, atom: clingo.Symbol) -> None:
+        """Add a labelled goal ``assign(robot(R),shelf(S))`` or ``assign(robot(R),destination(D))``."""
+        robot, goal = atom.arguments
+        if not (robot.match("robot", 1) and (goal.match("shelf", 1) or goal.match("destination", 1))
+                and all(term.arguments[0].type == SymbolType.Number for term in (robot, goal))):
+            raise self.fail(f"expected assign(robot(R),shelf(S)) or assign(robot(R),destination(D)), "
+                            f"got {atom}", atom)
+        ident = robot.arguments[0].number
+        self.single(("assign", ident), str(goal), atom, f"robot {ident} is assigned two goals")
+        self.goals[ident] = (goal.name, goal.arguments[0].number)
 
     # one method per object type --------------------------------------------------------
 
@@ -200,6 +212,14 @@ class _InstanceBuilder:
                                 self.seen[("robot", robot.id, "carries")][1])
         if self.grid:
             self._expand_grid()
+        tables = {"shelf": instance.shelves, "destination": instance.destinations}
+        for robot, (kind, goal) in self.goals.items():
+            origin = self.seen[("assign", robot)][1]
+            if robot not in instance.robots:
+                raise self.fail(f"assign names robot {robot}, which the instance lacks", origin)
+            if goal not in tables[kind]:
+                raise self.fail(f"assign names {kind} {goal}, which the instance lacks", origin)
+            instance.assignment[robot] = (kind, goal)
         return instance
 
     def _expand_grid(self) -> None:
@@ -243,13 +263,15 @@ def _build_instance(sources: Sequence[Source], facts: list | None, atoms: list[c
         for atom in atoms:
             if atom.match("init", 2):
                 builder.add_symbol(atom)
+            elif atom.match("assign", 2):
+                builder.assign(atom)
     if not builder.seen:
         raise _no_facts("instance facts (expected init(object(..),value(..)) facts)", sources)
     return builder.finish()
 
 
 def instance_from_atoms(atoms: Iterable[clingo.Symbol], sources: Sequence[Source] = ()) -> Instance:
-    """Build an :class:`Instance` from ground atoms; atoms other than ``init/2`` are ignored."""
+    """Build an :class:`Instance` from ground ``init/2`` and ``assign/2`` atoms; others are ignored."""
     return _build_instance(sources, None, list(atoms))
 
 

@@ -579,6 +579,12 @@ class _Replay:
     def check_goal(self) -> None:
         horizon, domain, report = self.horizon, self.domain, self.report
         timeline = self.timeline
+        if self.instance.assignment and not domain.delivers:
+            final = timeline.state(horizon)
+            for robot, (kind, goal) in sorted(self.instance.assignment.items()):
+                cell = final.shelves.get(goal) if kind == "shelf" else self.instance.destinations[goal].at
+                if cell is not None and final.robots[robot] != cell:
+                    report("goal", "missedAssignedGoal", robot, cell, horizon)
         if domain is Domain.MD:
             occupied = {timeline.position(r, horizon) for r in timeline.robot_ids}
             for destination in sorted(self.instance.destinations.values(), key=lambda d: d.id):
@@ -963,6 +969,13 @@ def _(timeline, order, product, missing, _step):
     if timeline.domain is Domain.A:
         return f"order {order} still lacks {_units(missing)} of product {product}", {}
     return f"order {order} still waits for product {product}", {}
+
+
+@_describes("goal", "missedAssignedGoal")
+def _(timeline, robot, cell, _step):
+    kind, goal = timeline.instance.assignment[robot]
+    return f"robot {robot} does not end on its assigned goal, {kind} {goal} at {_cell(cell)}", \
+        {"robots": [robot], "cells": [cell]}
 
 
 @_describes("goal", "unoccupiedDestination")

@@ -83,6 +83,8 @@ def format_instance(instance: Instance, header: Iterable[str] | None = None) -> 
     group("orders", orders)
     group("destinations", [_init("destination", i, "at", d.at)
                            for i, d in sorted(instance.destinations.items())])
+    group("labelled goals: robot -> goal", [f"assign(robot({robot}),{kind}({goal}))."
+                                            for robot, (kind, goal) in sorted(instance.assignment.items())])
     return "\n".join(out)
 
 

@@ -181,6 +181,11 @@ def solve(instance: Instance | str | Path, domain: Domain | str | None = None, e
         raise InputError(f"unknown method '{method}' (choose asp or flow)")
     if method == "flow" and domain.delivers:
         raise InputError(f"the flow method solves domains M and Md only, not {domain.label}")
+    if instance.assignment and method == "flow":
+        raise InputError("the instance assigns goals to robots; the flow method solves anonymous "
+                         "goals only (use --method asp)")
+    if instance.assignment and assign:
+        raise InputError("the instance assigns goals to robots already; leave out --assign")
     program = find_encoding(domain, encoding) if method == "asp" else None
     watch = _Watch(time_limit, cancel)
     try:

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+import re
+
 import pytest
 
 from asprilo.cli import main
 from asprilo.convert import md_to_m, m_to_md, result_to_plan
-from asprilo.model import Action, Destination, Instance, Robot
+from asprilo.model import Action, Destination, Instance, Plan, Robot
 from asprilo.movingai import octile_lengths, parse_map, parse_result, parse_scenario
 from asprilo.reader import read_instance, read_plan
 from asprilo.sources import Source
@@ -117,3 +119,67 @@ def test_bad_maps(capsys, write, text, message):
 def test_too_many_agents(capsys, tmp_path):
     assert convert(SCEN, tmp_path / "x.lp", "--agents", 500) == 2
     assert capsys.readouterr().err == "error: --agents must be between 1 and 409 (the scenario's rows), got 500\n"
+
+
+def test_labelled_scenario_metrics(tmp_path):
+    """The first 50 agents of random-32-32-20-random-1, each bound to its own goal."""
+    from asprilo.checker import check
+    assert convert(SCEN, tmp_path / "l.lp", "--agents", 50, "--labelled") == 0
+    instance = read_instance(tmp_path / "l.lp")
+    assert instance.assignment == {k: ("destination", k) for k in range(1, 51)}
+    report = check(instance, Plan([]))
+    assert (report.metrics["makespan_bound"], report.metrics["sum_of_costs_bound"]) == (48, 1082)
+    missed = [v for v in report.errors if v.check == "missedAssignedGoal"]
+    assert len(missed) == 50 and missed[0].params == (1, (32, 25), 0)
+    # the same scenario rows come back, in the same pairing
+    assert convert(tmp_path / "l.lp", tmp_path / "l.scen") == 0
+    original = [line.split("\t")[:8] for line in SCEN.read_text().splitlines()[1:51]]
+    assert [line.split("\t")[:8] for line in (tmp_path / "l.scen").read_text().splitlines()[1:]] == original
+
+
+def test_labelled_goals_are_checked_and_followed(write):
+    from asprilo.checker import check
+    from asprilo.encodings import solve
+    # two robots on a corridor, each labelled with the destination the other one is closer to
+    path = write("swap.lp", """
+        init(object(node,1),value(at,(1,1))). init(object(node,2),value(at,(2,1))).
+        init(object(node,3),value(at,(3,1))). init(object(node,4),value(at,(2,2))).
+        init(object(robot,1),value(at,(1,1))). init(object(robot,2),value(at,(3,1))).
+        init(object(destination,1),value(at,(1,1))). init(object(destination,2),value(at,(3,1))).
+        assign(robot(1),destination(2)). assign(robot(2),destination(1)).""")
+    instance = read_instance(path)
+    anonymous = check(instance, Plan([]))
+    assert [(v.check, v.params) for v in anonymous.errors] == [
+        ("missedAssignedGoal", (1, (3, 1), 0)), ("missedAssignedGoal", (2, (1, 1), 0))]
+    assert [v.message for v in anonymous.errors][0] == (
+        "step 0 (the horizon): robot 1 does not end on its assigned goal, destination 2 at (3,1)")
+    outcome = solve(instance)
+    assert outcome.found and outcome.check.valid and outcome.minimal
+    assert outcome.horizon == 4  # one robot steps aside into (2,2) to let the other pass
+    assert (outcome.lower_bound, outcome.check.metrics["sum_of_costs_bound"]) == (2, 4)
+
+
+def test_labelled_m_and_md_convert_both_ways():
+    m = read_instance(EXAMPLES / "paper-m/2x3x5/x19_y9_n171_r5_s60_ps3_pr60_u60_o5_N001.lp")
+    ordered = [next(iter(m.products[next(iter(o.lines))].stock)) for _id, o in sorted(m.orders.items())]
+    m.assignment = {robot: ("shelf", shelf) for robot, shelf in zip(sorted(m.robots), ordered)}
+    md = m_to_md(m)
+    assert md.assigned_cells() == m.assigned_cells()
+    assert set(kind for kind, _ in md.assignment.values()) == {"destination"}
+    assert md_to_m(md) == m
+
+
+@pytest.mark.parametrize("text, message", [
+    ("assign(robot(1),destination(1)). assign(robot(1),destination(2)).",
+     "robot 1 is assigned two goals: destination(1) and destination(2)"),
+    ("assign(robot(3),destination(1)).", "assign names robot 3, which the instance lacks"),
+    ("assign(robot(1),destination(9)).", "assign names destination 9, which the instance lacks"),
+    ("assign(robot(1),node(1)).", "expected assign(robot(R),shelf(S)) or assign(robot(R),destination(D)), "
+                                  "got assign(robot(1),node(1))"),
+])
+def test_bad_assignments(write, text, message):
+    path = write("bad.lp", "init(object(node,1),value(at,(1,1))). init(object(node,2),value(at,(2,1))). "
+                           "init(object(robot,1),value(at,(1,1))). init(object(destination,1),value(at,(2,1))). "
+                           "init(object(destination,2),value(at,(1,1))).\n" + text)
+    with pytest.raises(Exception, match=re.escape(f"{path}:2: {message}")):
+        read_instance(path)
