@@ -43,6 +43,17 @@ runs:
     assert suite.runs[4].runs_on("tiny")
 
 
+def test_first_keeps_the_first_files_of_each_folder(write):
+    path = write("suite.yml", "instances: {some: {files: ['*/*.lp'], first: 2}}\nruns: [{domain: m}]\n")
+    for folder in ("r02", "r05"):
+        (path.parent / folder).mkdir()
+        for number in (3, 1, 2):
+            write(f"{folder}/N{number}.lp", "")
+    suite = load_suite(path)
+    picked = suite.sets[0].pick(sorted(path.parent.glob("*/*.lp")))
+    assert [f"{p.parent.name}/{p.name}" for p in picked] == ["r02/N1.lp", "r02/N2.lp", "r05/N1.lp", "r05/N2.lp"]
+
+
 @pytest.mark.parametrize("text, message", [
     ("runs: [\n  - a\n", "suite.yml:2: bad YAML: expected the node content, but found '-'"),
     ("instances: {x: {files: [a]}}\nruns: [{domain: z}]\n",
@@ -52,6 +63,8 @@ runs:
     ("instances: {x: {batch: nope.yml}}\nruns: [{domain: m}]\n", "suite.yml: instances.x.batch: no such file"),
     ("time_limit: -1\n", "suite.yml: time_limit: must be a positive number of seconds"),
     ("colour: red\n", "suite.yml: colour: unknown key"),
+    ("instances: {x: {files: [a], first: 0}}\nruns: [{domain: m}]\n",
+     "suite.yml: instances.x.first: must be a positive number of files per folder"),
     ("instances: {x: {files: [a]}}\nruns: [{domain: m, sets: [y]}]\n", "suite.yml: runs[0].sets: no instance set 'y'"),
 ])
 def test_bad_suites(write, text, message):

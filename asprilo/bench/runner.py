@@ -141,12 +141,12 @@ class Runner:
                     raise InputError(f"generating the instances of set '{instance_set.name}' failed",
                                      str(instance_set.batch))
                 root = target / instance_set.select
-                paths = sorted(root.rglob("*.lp"))
+                paths = instance_set.pick(sorted(root.rglob("*.lp")))
                 if not paths:
                     raise InputError(f"instances.{instance_set.name}: the batch made no .lp file under "
                                      f"{instance_set.select!r}", str(self.suite.path))
             else:
-                paths = existing_files(self.suite, instance_set)
+                paths = instance_set.pick(existing_files(self.suite, instance_set))
             for path in paths:
                 try:
                     name = str(path.resolve().relative_to(self.folder.resolve()))

@@ -9,6 +9,7 @@ A suite is a YAML file::
     instances:                # named sets, in report order
       small: {batch: paper-m.yml, select: 1x2x4}   # a gen batch file and the part of its output to use
       tiny:  {files: ["../examples/encodings-repo/x2_y2*.lp"]}  # or existing files (globs)
+      quick: {batch: paper-m.yml, select: 1x2x4, first: 5}  # only the first 5 files of each folder
     runs:                     # every combination of the listed values is run on every instance
       - {domain: m, encoding: [plain, split, clingcon, dl], assign: [false, true]}
       - {domain: [c, b, a], encoding: [plain, clingcon], assign: [false, true], sets: [tiny]}
@@ -40,6 +41,19 @@ class InstanceSet:
     batch: Path | None = None
     select: str = ""
     files: tuple[str, ...] = ()
+    first: int | None = None  # use only the first N files (by name) of each folder
+
+    def pick(self, paths: list[Path]) -> list[Path]:
+        """``paths`` (in their order) cut to the first ``first`` of each folder."""
+        if self.first is None:
+            return paths
+        taken: dict[Path, int] = {}
+        kept = []
+        for path in paths:
+            taken[path.parent] = taken.get(path.parent, 0) + 1
+            if taken[path.parent] <= self.first:
+                kept.append(path)
+        return kept
 
 
 @dataclass(frozen=True)
@@ -111,13 +125,17 @@ def load_suite(path: str | Path) -> Suite:
     for name, entry in sets.items():
         if not isinstance(entry, dict) or not ({"batch", "files"} & set(entry)):
             raise fail(f"instances.{name}", "needs 'batch' (a gen batch file) or 'files' (globs)")
+        first = entry.get("first")
+        if first is not None and (not isinstance(first, int) or isinstance(first, bool) or first < 1):
+            raise fail(f"instances.{name}.first", "must be a positive number of files per folder")
         if "batch" in entry:
             batch = (path.parent / str(entry["batch"])).resolve()
             if not batch.is_file():
                 raise fail(f"instances.{name}.batch", f"no such file {batch}")
-            suite.sets.append(InstanceSet(str(name), batch, str(entry.get("select", ""))))
+            suite.sets.append(InstanceSet(str(name), batch, str(entry.get("select", "")), first=first))
         else:
-            suite.sets.append(InstanceSet(str(name), files=tuple(str(f) for f in _listed(entry["files"]))))
+            suite.sets.append(InstanceSet(str(name), files=tuple(str(f) for f in _listed(entry["files"])),
+                                          first=first))
     runs = data.get("runs")
     if not isinstance(runs, list) or not runs:
         raise fail("runs", "must be a list of {domain, encoding, assign} mappings")
