@@ -8,17 +8,15 @@ import os
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import socket  # noqa: E402
-import threading  # noqa: E402
 
 import pytest  # noqa: E402
 from PyQt5.QtCore import QSettings  # noqa: E402
 
-from asprilo.online import OnlinePlanner, Schedule, encodings_planner  # noqa: E402
-from asprilo.serve import listen, serve, simulator_session, solver_session  # noqa: E402
+from asprilo.serve import listen  # noqa: E402
 from asprilo.visualizer import network  # noqa: E402
 from asprilo.visualizer.window import MainWindow  # noqa: E402
 
-from test_serve import ORDER_2, TINY, WAIT, tiny  # noqa: E402
+from test_serve import ORDER_2, TINY, WAIT, servers  # noqa: E402,F401  (servers: a fixture)
 
 pytestmark = pytest.mark.gui
 
@@ -32,27 +30,6 @@ def window(qtbot, tmp_path_factory):
     qtbot.waitExposed(window)
     window.player.set_speed(64)
     return window
-
-
-@pytest.fixture
-def servers():
-    """Solver and simulator (order 2 arrives at step 3) in threads, on ephemeral ports."""
-    stop = threading.Event()
-    solver, simulator = listen("127.0.0.1", 0), listen("127.0.0.1", 0)
-    online = OnlinePlanner(encodings_planner(time_limit=WAIT))
-    schedule = Schedule(tiny(), {2: 3})
-    threads = [threading.Thread(target=serve, args=(solver, lambda c: solver_session(c, online)),
-                                kwargs={"stop": stop}, daemon=True),
-               threading.Thread(target=serve, args=(simulator, lambda c: simulator_session(c, schedule, print)),
-                                kwargs={"stop": stop}, daemon=True)]
-    for thread in threads:
-        thread.start()
-    yield solver.getsockname()[1], simulator.getsockname()[1], online
-    stop.set()
-    for thread in threads:
-        thread.join(WAIT)
-    solver.close()
-    simulator.close()
 
 
 def test_orders_arrive_and_robots_are_replanned_live(window, qtbot, servers):

@@ -133,7 +133,7 @@ def servers():
                                 kwargs={"stop": stop}, daemon=True)]
     for thread in threads:
         thread.start()
-    yield solver.getsockname()[1], simulator.getsockname()[1]
+    yield solver.getsockname()[1], simulator.getsockname()[1], online
     stop.set()
     for thread in threads:
         thread.join(WAIT)
@@ -142,7 +142,7 @@ def servers():
 
 
 def test_an_order_injected_at_step_3_is_delivered(servers):
-    solver_port, simulator_port = servers
+    solver_port, simulator_port, _online = servers
     solver = Channel.connect("127.0.0.1", solver_port, timeout=WAIT)
     simulator = Channel.connect("127.0.0.1", simulator_port, timeout=WAIT)
     simulator.send(reset())

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, Callable
 
-from PyQt5.QtCore import QAbstractTableModel, QModelIndex, Qt
+from PyQt5.QtCore import QModelIndex, Qt
 from PyQt5.QtWidgets import (QAbstractItemView, QHBoxLayout, QHeaderView, QPushButton, QStyledItemDelegate,
                              QTableView, QVBoxLayout, QWidget)
 
@@ -20,7 +20,7 @@ from . import edits
 from .dialogs import MAX_COUNT, spin
 from .edit_commands import Document
 from .edits import Edit, EditRefused
-from .tables import PROBLEM
+from .tables import PROBLEM, RowsModel
 
 PRODUCT, UNITS, STATION = 1, 2, 3
 
@@ -33,7 +33,7 @@ class OrderRow:
     station: int | None
 
 
-class OrderTable(QAbstractTableModel):
+class OrderTable(RowsModel):
     """The document's orders as rows; edits go through ``perform`` (which may refuse them)."""
 
     columns = ("Order", "Product", "Units", "Station")
@@ -69,18 +69,7 @@ class OrderTable(QAbstractTableModel):
         return self.problems.get((row.order, row.product), []) + \
             (self.problems.get((row.order, None), []) if row.product is not None else [])
 
-    # --- Qt's model interface ---------------------------------------------------------------
-
-    def rowCount(self, parent: QModelIndex = QModelIndex()) -> int:
-        return 0 if parent.isValid() else len(self.rows)
-
-    def columnCount(self, parent: QModelIndex = QModelIndex()) -> int:
-        return 0 if parent.isValid() else len(self.columns)
-
-    def headerData(self, section: int, orientation, role=Qt.DisplayRole):
-        if orientation == Qt.Horizontal and role == Qt.DisplayRole:
-            return self.columns[section]
-        return None
+    # --- Qt's model interface (beyond RowsModel's) ------------------------------------------
 
     def flags(self, index: QModelIndex):
         flags = super().flags(index)

@@ -24,7 +24,25 @@ PROBLEM = QColor("#ffe3e3")    # violations
 FADED = QColor("#868e96")      # what lies in the past
 
 
-class StepModel(QAbstractTableModel):
+class RowsModel(QAbstractTableModel):
+    """A table of ``self.rows`` under the headers ``columns``."""
+
+    columns: tuple[str, ...] = ()
+    rows: list[Any]
+
+    def rowCount(self, parent: QModelIndex = QModelIndex()) -> int:
+        return 0 if parent.isValid() else len(self.rows)
+
+    def columnCount(self, parent: QModelIndex = QModelIndex()) -> int:
+        return 0 if parent.isValid() else len(self.columns)
+
+    def headerData(self, section: int, orientation, role=Qt.DisplayRole):
+        if orientation == Qt.Horizontal and role == Qt.DisplayRole:
+            return self.columns[section]
+        return None
+
+
+class StepModel(RowsModel):
     """Rows of one kind of object; ``value``/``text`` say what a cell shows at ``self.step``."""
 
     columns: tuple[str, ...] = ()
@@ -75,18 +93,7 @@ class StepModel(QAbstractTableModel):
     def tooltip(self, row: Any, column: int) -> str | None:
         return None
 
-    # --- Qt's model interface ---------------------------------------------------------------
-
-    def rowCount(self, parent: QModelIndex = QModelIndex()) -> int:
-        return 0 if parent.isValid() else len(self.rows)
-
-    def columnCount(self, parent: QModelIndex = QModelIndex()) -> int:
-        return 0 if parent.isValid() else len(self.columns)
-
-    def headerData(self, section: int, orientation, role=Qt.DisplayRole):
-        if orientation == Qt.Horizontal and role == Qt.DisplayRole:
-            return self.columns[section]
-        return None
+    # --- Qt's model interface (beyond RowsModel's) ------------------------------------------
 
     def data(self, index: QModelIndex, role=Qt.DisplayRole):
         if not index.isValid():
