@@ -69,3 +69,36 @@ def test_a_killed_runner_resumes_without_repeating_runs(write, tmp_path):
     assert {r["status"] for r in records} == {"solved"}
     assert json.loads((out / "makespans.json").read_text()) == {
         str(TINY): {"M": 1}, str(SMALL): {"M": 6}}
+
+
+def test_btool_export_and_its_results_read_back(write, tmp_path, capsys):
+    """export-btool writes a runscript btool understands; report reads what such runs leave."""
+    from asprilo.bench import single
+    from asprilo.bench.btool import read_results
+    suite = suite_file(write, [SMALL])
+    folder = tmp_path / "cluster"
+    assert main(["bench", "export-btool", str(suite), str(folder)]) == 0
+    script = (folder / "runscripts/t.xml").read_text()
+    assert '<setting name="M-plain" tag="all" cmdline="--domain m --encoding plain"/>' in script
+    assert '<seqjob name="seq" timeout="30s" memout="2048"' in script
+    assert '<folder path="benchmarks/tiny"/>' in script
+    assert "{args} {files}" in (folder / "templates/asprilo.sh").read_text()
+    copied = folder / "benchmarks/tiny" / SMALL.name
+    assert json.loads((folder / "benchmarks/tiny/makespans.json").read_text()) == {SMALL.name: {"M": 6}}
+    # what btool leaves behind: a finished run of M-plain and a run of M-split that runlim stopped
+    runs = folder / "output/t-seq-tiny/cluster/results/tiny"
+    solved = runs / "asprilo-0.1.0-M-plain/tiny" / SMALL.name / "run1"
+    solved.mkdir(parents=True)
+    capsys.readouterr()
+    assert single.main([str(copied), "--domain", "m", "--encoding", "plain", "--time-limit", "30"]) == 0
+    (solved / "runsolver.solver").write_text(capsys.readouterr().out)
+    stopped = runs / "asprilo-0.1.0-M-split/tiny" / SMALL.name / "run1"
+    stopped.mkdir(parents=True)
+    (stopped / "runsolver.solver").write_text("")
+    (stopped / "runsolver.watcher").write_text("[runlim] time limit:\t30 seconds\n[runlim] status:\tout of time\n")
+    records = sorted(read_results(folder), key=lambda r: r["encoding"])
+    assert [(r["label"], r["encoding"], r["status"], r["horizon"]) for r in records] == [
+        ("M", "plain", "solved", 6), ("M", "split", "timeout", None)]
+    assert records[1]["time"] == 30
+    assert main(["bench", "report", str(folder)]) == 0
+    assert "                  split     30(1)\n" in capsys.readouterr().out  # the time-out counts at the limit

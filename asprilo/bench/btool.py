@@ -11,8 +11,11 @@ makespans here (like ``asprilo bench``), then writes into DIR::
     resultparsers/asprilo.py      reads the run's JSON line and runlim's report
     benchmarks/<set>/...          the instances, with makespans.json beside them
 
-Then, on the cluster: ``cd DIR && btool gen runscripts/<suite>.xml`` and start the
-generated script; afterwards ``asprilo bench report DIR`` reads the results.
+Then, on the cluster: put a runlim binary (https://github.com/arminbiere/runlim) at
+``DIR/programs/runlim``, ``cd DIR && btool gen runscripts/<suite>.xml`` and start the
+generated script; afterwards ``asprilo bench report DIR`` reads the results.  The machine
+needs this asprilo installed (the program calls ``python -m asprilo.bench.single`` with the
+Python that made the export).
 """
 
 from __future__ import annotations
@@ -101,7 +104,7 @@ cd "$(dirname $0)"
 if [[ ! -e .finished ]]; then
   "{root}/programs/runlim" --space-limit={memout} --real-time-limit={timeout} \\
       --output-file=runsolver.watcher \\
-      "{root}/programs/{solver}" --time-limit={timeout} {setting_cmd} {files} > runsolver.solver
+      "{root}/programs/{solver}" --time-limit={timeout} {args} {files} > runsolver.solver
 fi
 touch .finished
 """

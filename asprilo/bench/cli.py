@@ -58,7 +58,8 @@ def run(args: argparse.Namespace) -> int:
         suite = load_suite(words[1])
         runner = _runner(suite, Path(words[2]) / "prepared", args)
         runscript = btool.export(suite, words[2], runner)
-        print(f"wrote {runscript}; on the cluster: cd {words[2]} && btool gen {runscript.relative_to(Path(words[2]).resolve())}")
+        print(f"wrote {runscript}; on the cluster: put runlim at {words[2]}/programs/runlim, then "
+              f"cd {words[2]} && btool gen {runscript.relative_to(Path(words[2]).resolve())}")
         return 0
     if len(words) != 1:
         raise InputError("give one suite file (or: report DIR, export-btool SUITE.yml DIR)")
