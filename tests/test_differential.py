@@ -76,6 +76,12 @@ def random_instance(rng: random.Random, domain: Domain, clean: bool) -> Instance
     if domain is Domain.MD:
         for destination in range(1, rng.randint(1, 2) + 1):
             instance.destinations[destination] = Destination(destination, rng.choice(nodes))
+    goals = {Domain.MD: ("destination", instance.destinations), Domain.M: ("shelf", instance.shelves)}
+    if domain in goals and goals[domain][1] and rng.randint(0, 2) == 0:  # labelled goals
+        kind, table = goals[domain]
+        for robot in instance.robots:
+            if rng.randint(0, 2):
+                instance.assignment[robot] = (kind, rng.choice(list(table)))
     return instance
 
 
