@@ -152,6 +152,17 @@ def test_tooltips_describe_objects_and_cell(qapp, outcome):
     assert tooltip(outcome, 0, (6, 1), []) == "<b>Cell (6,1): highway</b><br>empty"
 
 
+def test_tooltips_name_labelled_goals(qapp, write):
+    from asprilo.model import Plan
+    path = write("labelled.lp", "init(object(node,1),value(at,(1,1))). init(object(node,2),value(at,(2,1))). "
+                                "init(object(robot,1),value(at,(1,1))). init(object(destination,4),value(at,(2,1))). "
+                                "assign(robot(1),destination(4)).")
+    track = Track(read_instance(path), Plan([]))
+    assert "<br>assigned goal: destination 4 at (2,1)" in tooltip(track, 0, (1, 1), [("robot", 1)])
+    assert tooltip(track, 0, (2, 1), [("destination", 4)]).startswith(
+        "<b>Destination 4</b><br>assigned to robot 1<hr>")
+
+
 def test_action_texts():
     from asprilo.model import Action
     assert action_text(None) == "wait"

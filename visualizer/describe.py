@@ -58,7 +58,16 @@ def robot_lines(track: Track, robot: int, step: int) -> list[str]:
     if step < track.horizon:
         rows.append(f"next (step {step + 1}): {actions_text(track.actions(robot, step + 1))}")
     rows.append(f"idle {int(track.idle[step, index])} of {step} steps")
+    if robot in track.instance.assignment:
+        kind, goal = track.instance.assignment[robot]
+        rows.append(f"assigned goal: {kind} {goal} at {cell_text(track.instance.assigned_cells()[robot])}")
     return rows
+
+
+def destination_lines(track: Track, destination: int) -> list[str]:
+    robots = [robot for robot, goal in sorted(track.instance.assignment.items())
+              if goal == ("destination", destination)]
+    return [f"assigned to robot {', '.join(map(str, robots))}"] if robots else []
 
 
 def shelf_lines(track: Track, shelf: int, step: int) -> list[str]:
@@ -119,7 +128,7 @@ def tooltip(track: Track, step: int, cell: Cell, objects: list[tuple[str, int]])
         elif kind == "station":
             parts.append(_lines(f"Picking station {ident}", station_lines(track, ident, step)))
         elif kind == "destination":
-            parts.append(_lines(f"Destination {ident}", []))
+            parts.append(_lines(f"Destination {ident}", destination_lines(track, ident)))
     state = track.state(step)
     occupants = [f"robot {r}" for r, at in sorted(state.robots.items()) if tuple(at) == cell]
     occupants += [f"shelf {s}" for s, at in sorted(state.shelves.items()) if tuple(at) == cell]
