@@ -101,6 +101,20 @@ def test_removing_a_shelf_takes_its_stock_and_its_carrier_lets_go(floor):
     assert floor == before
 
 
+def test_removing_a_robot_or_its_goal_drops_the_labelled_goal(floor):
+    for kind, cell in (("robot", (1, 1)), ("robot", (2, 1)), ("destination", (4, 3)), ("destination", (3, 3))):
+        do(floor, edits.add_object(floor, kind, cell))
+    floor.assignment = {1: ("destination", 1), 2: ("destination", 2)}
+    before = copy.deepcopy(floor)
+    first = do(floor, edits.remove_object(floor, "destination", 1))
+    assert floor.assignment == {2: ("destination", 2)}
+    second = do(floor, edits.remove_object(floor, "robot", 2))
+    assert floor.assignment == {}
+    edits.apply(floor, second, undo=True)
+    edits.apply(floor, first, undo=True)
+    assert floor == before
+
+
 def test_a_robot_takes_its_shelf_along_but_not_under_another(floor):
     do(floor, edits.add_object(floor, "robot", (1, 1)))
     do(floor, edits.add_object(floor, "shelf", (1, 1)))

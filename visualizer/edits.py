@@ -195,15 +195,24 @@ def add_object(instance: Instance, kind: str, cell: Cell) -> Edit:
 
 
 def remove_object(instance: Instance, kind: str, ident: int) -> Edit:
-    """Remove an object; a shelf takes its stock with it and robots carrying it carry nothing."""
-    table = TABLES[kind]
-    if ident not in getattr(instance, table):
+    """Remove an object; a shelf takes its stock with it and robots carrying it carry nothing;
+    labelled goals of the object or at it go too."""
+    if ident not in getattr(instance, TABLES[kind]):
         raise EditRefused(f"there is no {NAMES[kind]} {ident}")
     record = _Recorder(instance)
-    record.remove(table, ident)
+    _forget(instance, kind, ident, record)
+    return record.edit(f"remove {NAMES[kind]} {ident}")
+
+
+def _forget(instance: Instance, kind: str, ident: int, record: _Recorder) -> None:
+    """Record the removal of an object with what depends on it: a shelf's stock and carrier,
+    the labelled goals of a robot or at a shelf or destination."""
+    record.remove(TABLES[kind], ident)
     if kind == "shelf":
         _forget_shelf(instance, ident, record)
-    return record.edit(f"remove {NAMES[kind]} {ident}")
+    for robot, goal in instance.assignment.items():
+        if (kind == "robot" and robot == ident) or goal == (kind, ident):
+            record.remove("assignment", robot)
 
 
 def _forget_shelf(instance: Instance, shelf: int, record: _Recorder) -> None:
@@ -328,9 +337,7 @@ def resize(instance: Instance, width: int, height: int) -> Edit:
     for kind, table in TABLES.items():
         for ident, thing in getattr(instance, table).items():
             if not inside(thing.at):
-                record.remove(table, ident)
-                if kind == "shelf":
-                    _forget_shelf(instance, ident, record)
+                _forget(instance, kind, ident, record)
     for table in ("nodes", "highways"):
         for ident, cell in getattr(instance, table).items():
             if not inside(cell):
@@ -438,7 +445,8 @@ def set_order_station(instance: Instance, order: int, station: int | None) -> Ed
 def replace_all(instance: Instance, new: Instance, text: str) -> Edit:
     """Replace every table of ``instance`` by those of ``new`` (e.g. the generator's result)."""
     record = _Recorder(instance)
-    for table in ("nodes", "highways", "robots", "shelves", "stations", "products", "orders", "destinations"):
+    for table in ("nodes", "highways", "robots", "shelves", "stations", "products", "orders", "destinations",
+                  "assignment"):
         old_entries, new_entries = getattr(instance, table), getattr(new, table)
         for key in set(old_entries) | set(new_entries):
             record.set(table, key, new_entries.get(key, MISSING))
@@ -449,5 +457,5 @@ def template_of(instance: Instance) -> Instance:
     """The layout for ``gen -T``: floor, highways, picking stations, robots and shelves,
     without products and orders (the generator adds those)."""
     kept = copy.deepcopy(instance)
-    kept.products, kept.orders, kept.destinations = {}, {}, {}
+    kept.products, kept.orders, kept.destinations, kept.assignment = {}, {}, {}, {}
     return kept
