@@ -29,6 +29,7 @@ ROOT = Path(__file__).resolve().parent.parent
 PAPER_M = ROOT / "examples/paper-m"
 SMALL_A = ROOT / "examples/asprilo/dom-a/small/x11_y6_n66_r3_s12_ps2_pr5_u50_o3_N001.lp"
 STYLES = ("plain", "split", "clingcon", "dl")
+SHORT = {"sat": "s", "unsat": "u", "unknown": "?"}  # how table 3 writes a horizon's result
 
 
 def _run(queue, path, options):
@@ -116,13 +117,14 @@ def styles(optimum: dict[Path, int], limit: float) -> None:
 
 
 def small_a(limit: float) -> None:
-    print(f"\n3. the small A example (11x6, 3 robots, 3 orders; limit {limit:g} s)\n")
+    print(f"\n3. the small A example (11x6, 3 robots, 3 orders; limit {limit:g} s; "
+          "horizons tried: s = plan, u = no plan, ? = stopped)\n")
     print(f"{'domain':<7} {'mode':<8} {'result':>16} {'horizon':>8} {'proven':>7}  horizons tried")
     for domain in ("c", "b", "a"):
         for assign in (False, True):
             progress(f"small A as {domain}, assign={assign}")
             result = measure(SMALL_A, limit, domain=domain, assign=assign)
-            tried = " ".join(f"{h}:{r[0]}" for h, r in result["tried"])
+            tried = " ".join(f"{h}:{SHORT[r]}" for h, r in result["tried"])
             print(f"{domain.upper():<7} {'assign' if assign else 'exact':<8} {cell(result):>16} "
                   f"{str(result['horizon']):>8} {str(result['minimal']):>7}  {tried}", flush=True)
 
