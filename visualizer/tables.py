@@ -45,7 +45,6 @@ class RowsModel(QAbstractTableModel):
 class StepModel(RowsModel):
     """Rows of one kind of object; ``value``/``text`` say what a cell shows at ``self.step``."""
 
-    columns: tuple[str, ...] = ()
     #: columns whose contents depend on the step
     dynamic: tuple[int, ...] = ()
 
