@@ -369,14 +369,15 @@ def _from_movingai(args: argparse.Namespace, source_format: str) -> str:
     if source_format == "map":
         map_path = Path(args.source)
         grid = parse_map(Source.from_path(map_path))
-        if args.agents:
+        if args.agents is not None:
             raise InputError("--agents needs a scenario: convert the .scen file (its map is found next to it)")
         instance = map_to_instance(grid)
     else:
         tasks = parse_scenario(Source.from_path(args.source))
         map_path = Path(args.map) if args.map else Path(args.source).parent / tasks[0].map_name
         grid = parse_map(Source.from_path(map_path))
-        instance = scenario_to_instance(grid, tasks, args.agents or len(tasks), args.goals, args.labelled)
+        instance = scenario_to_instance(grid, tasks, len(tasks) if args.agents is None else args.agents,
+                                        args.goals, args.labelled)
     header = header_lines(instance, command=f"asprilo convert {args.source} {args.target}")
     return format_instance(instance, header) + "\n% MovingAI map data (kept for exact .map round trips)\n" + \
         "\n".join(terrain_facts(grid, map_path.name)) + "\n"

@@ -116,9 +116,11 @@ def test_bad_maps(capsys, write, text, message):
     assert not path.with_suffix(".lp").exists()
 
 
-def test_too_many_agents(capsys, tmp_path):
-    assert convert(SCEN, tmp_path / "x.lp", "--agents", 500) == 2
-    assert capsys.readouterr().err == "error: --agents must be between 1 and 409 (the scenario's rows), got 500\n"
+@pytest.mark.parametrize("agents", [500, 0])
+def test_agents_out_of_range(capsys, tmp_path, agents):
+    assert convert(SCEN, tmp_path / "x.lp", "--agents", agents) == 2
+    assert capsys.readouterr().err == f"error: --agents must be between 1 and 409 (the scenario's rows), got {agents}\n"
+    assert not (tmp_path / "x.lp").exists()
 
 
 def test_labelled_scenario_metrics(tmp_path):
