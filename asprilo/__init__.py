@@ -1,13 +1,10 @@
-"""asprilo: Answer Set Programming for robotic intra-logistics."""
+"""asprilo: Answer Set Programming for robotic intra-logistics.
 
-from pathlib import Path as _Path
+This package is the core: the instance and plan model, reading and writing, the clingo
+driver, the domain rules (simulator), bounds and errors.  The tools live in folders of
+their own and are installed as ``asprilo.generator``, ``asprilo.checker``,
+``asprilo.encodings``, ``asprilo.visualizer``, ``asprilo.bench``, ``asprilo.interop``,
+``asprilo.online`` and ``asprilo.cli`` (see docs/ARCHITECTURE.md).
+"""
 
 __version__ = "0.1.0"
-
-# The tools live in their own folders next to this package (generator/, checker/, ...)
-# and are installed as asprilo.generator, asprilo.checker, ... .  In a source checkout
-# that is not installed (or when the checkout shadows an installed copy, as with
-# ``python -m pytest`` from the repository root), find them in those folders.
-_checkout = _Path(__file__).resolve().parent.parent
-if not (_Path(__file__).parent / "generator").is_dir() and (_checkout / "generator" / "__init__.py").is_file():
-    __path__.append(str(_checkout))

@@ -157,7 +157,7 @@ def main(argv: list[str] | None = None) -> int:
         simulated, _ = median_time(lambda: simulate(instance, plan, report.domain), repeat)
         print(f"{name:14s} {len(instance.robots):6d} {report.horizon:5d} {len(plan):7d} {len(report.errors):6d} "
               f"{seconds:8.2f} {target:6.1f} {report.statistics['ground_time']:8.2f} {simulated:10.2f}", flush=True)
-    command = [sys.executable, "-m", "asprilo", "check", str(small / "x11_y6_n66_r3_s12_ps2_pr5_u50_o3_N001.lp"),
+    command = [sys.executable, "-m", "asprilo.cli", "check", str(small / "x11_y6_n66_r3_s12_ps2_pr5_u50_o3_N001.lp"),
                str(small / "outcome.txt")]
     seconds, _ = median_time(lambda: subprocess.run(command, capture_output=True, check=True), args.repeat)
     print(f"the command 'asprilo check' on the outcome: {seconds:.2f} s (interpreter start included)")

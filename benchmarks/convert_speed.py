@@ -20,7 +20,7 @@ from pathlib import Path
 
 from asprilo.bounds import mapf_bounds
 from asprilo.cli import main
-from asprilo.movingai import Task, format_scenario, parse_map
+from asprilo.interop.movingai import Task, format_scenario, parse_map
 from asprilo.reader import read_instance
 from asprilo.sources import Source
 

@@ -90,9 +90,9 @@ def solve_responsiveness(app, window, seconds: float) -> tuple[float, float]:
 def online_steps() -> tuple[list[float], list[float], int]:
     """Seconds per step without and with re-planning, and the plan's length."""
     from asprilo.generator import GeneratorConfig, generate
-    from asprilo.online import OnlinePlanner, Schedule, encodings_planner
-    from asprilo.protocol import DONE, END, Channel, Message, read_actions, reset
-    from asprilo.serve import listen, serve, simulator_session, solver_session
+    from asprilo.online.planner import OnlinePlanner, Schedule, encodings_planner
+    from asprilo.online.protocol import DONE, END, Channel, Message, read_actions, reset
+    from asprilo.online.serve import listen, serve, simulator_session, solver_session
 
     config = GeneratorConfig.from_options({"-x": 7, "-y": 5, "-p": 1, "-s": 6, "-P": 3, "-u": 12, "-r": 2, "-o": 3})
     instance = generate(config, 1, seed=7)[0].instance

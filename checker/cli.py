@@ -15,7 +15,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from asprilo.cli import domain_argument
+from asprilo.arguments import domain_argument
 from asprilo.reader import read_instance, read_plan
 
 from . import Report, check

@@ -20,7 +20,7 @@ import argparse
 import json
 import sys
 
-from asprilo.cli import domain_argument
+from asprilo.arguments import domain_argument
 from asprilo.errors import InputError
 from asprilo.writer import format_action, format_plan, write_text
 

@@ -15,6 +15,8 @@ from .config import GeneratorConfig, RunOptions
 from .options import DEFAULT_SEED
 from .pipeline import GenerationFailed
 from .plan import Plan, make_plan
+from .runs import generate_batch
 
 __all__ = ["GeneratorConfig", "RunOptions", "Generated", "GenerationFailed", "Plan", "DEFAULT_SEED",
-           "generate", "iter_generate", "generate_one", "populate", "make_plan", "instance_seed"]
+           "generate", "iter_generate", "generate_one", "populate", "make_plan", "instance_seed",
+           "generate_batch"]

@@ -49,7 +49,7 @@ def test_an_invalid_plan_is_a_failure(write, tmp_path, monkeypatch, capsys):
 def test_a_killed_runner_resumes_without_repeating_runs(write, tmp_path):
     suite = suite_file(write, [TINY, SMALL], "[{domain: m, encoding: [plain, split, clingcon, dl]}]")
     out = tmp_path / "out"
-    command = [sys.executable, "-m", "asprilo", "bench", str(suite), "-o", str(out)]
+    command = [sys.executable, "-m", "asprilo.cli", "bench", str(suite), "-o", str(out)]
     first = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                              start_new_session=True)
     deadline = time.time() + 120

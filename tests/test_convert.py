@@ -7,9 +7,9 @@ import re
 import pytest
 
 from asprilo.cli import main
-from asprilo.convert import md_to_m, m_to_md, result_to_plan
+from asprilo.interop.convert import md_to_m, m_to_md, result_to_plan
 from asprilo.model import Action, Destination, Instance, Plan, Robot
-from asprilo.movingai import octile_lengths, parse_map, parse_result, parse_scenario
+from asprilo.interop.movingai import octile_lengths, parse_map, parse_result, parse_scenario
 from asprilo.reader import read_instance, read_plan
 from asprilo.sources import Source
 

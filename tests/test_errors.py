@@ -88,7 +88,7 @@ def test_unknown_domain_is_a_usage_error(capsys):
 
 
 def test_console_script_prints_no_traceback(tmp_path):
-    result = subprocess.run([sys.executable, "-m", "asprilo", "info", str(tmp_path / "x.lp")],
+    result = subprocess.run([sys.executable, "-m", "asprilo.cli", "info", str(tmp_path / "x.lp")],
                             capture_output=True, text=True)
     assert (result.returncode, result.stdout) == (2, "")
     assert result.stderr == f"error: {tmp_path}/x.lp: no such file\n"

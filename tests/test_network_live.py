@@ -12,7 +12,7 @@ import socket  # noqa: E402
 import pytest  # noqa: E402
 from PyQt5.QtCore import QSettings  # noqa: E402
 
-from asprilo.serve import listen  # noqa: E402
+from asprilo.online.serve import listen  # noqa: E402
 from asprilo.visualizer import network  # noqa: E402
 from asprilo.visualizer.window import MainWindow  # noqa: E402
 
@@ -99,6 +99,6 @@ def test_viz_online_options_are_checked(write):
                           (["--solver", "5000"], "error: --solver needs an INSTANCE to plan for"),
                           ([str(write("tiny.lp", TINY)), "--solver", "5000", "--export", "x.png"],
                            "error: --solver and --export do not go together")):
-        result = subprocess.run([sys.executable, "-m", "asprilo", "viz", *args], capture_output=True, text=True,
+        result = subprocess.run([sys.executable, "-m", "asprilo.cli", "viz", *args], capture_output=True, text=True,
                                 timeout=WAIT)
         assert result.returncode == 2 and result.stderr.startswith(message), result.stderr

@@ -11,11 +11,11 @@ import pytest
 
 from asprilo.errors import InputError
 from asprilo.model import Action, Instance, Plan
-from asprilo.online import OnlinePlanner, Schedule, encodings_planner, parse_arrivals, world_at
-from asprilo.protocol import (DONE, END, RESET, Channel, Message, done, parse, read_actions, read_world,
+from asprilo.online.planner import OnlinePlanner, Schedule, encodings_planner, parse_arrivals, world_at
+from asprilo.online.protocol import (DONE, END, RESET, Channel, Message, done, parse, read_actions, read_world,
                               reset)
 from asprilo.reader import read_instance
-from asprilo.serve import listen, serve, simulator_session, solver_session
+from asprilo.online.serve import listen, serve, simulator_session, solver_session
 from asprilo.simulate import simulate
 from asprilo.sources import Source
 
@@ -178,7 +178,7 @@ def test_an_order_injected_at_step_3_is_delivered(servers):
 
 
 def test_serve_command_prints_its_port_and_rejects_bad_input(tmp_path):
-    process = subprocess.Popen([sys.executable, "-m", "asprilo", "serve", "solver", "--port", "0", "--once"],
+    process = subprocess.Popen([sys.executable, "-m", "asprilo.cli", "serve", "solver", "--port", "0", "--once"],
                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         line = process.stdout.readline()
@@ -198,6 +198,6 @@ def test_serve_command_prints_its_port_and_rejects_bad_input(tmp_path):
     for args, message in ((["simulator", str(instance), "--at", "3:9"], f"error: {instance}: the instance has no order 9"),
                           (["simulator", str(tmp_path / "none.lp")], f"error: {tmp_path / 'none.lp'}: no such file"),
                           (["simulator", str(instance), "--every", "0"], "error: --every needs K >= 1")):
-        result = subprocess.run([sys.executable, "-m", "asprilo", "serve", *args, "--port", "0"],
+        result = subprocess.run([sys.executable, "-m", "asprilo.cli", "serve", *args, "--port", "0"],
                                 capture_output=True, text=True, timeout=WAIT)
         assert result.returncode == 2 and result.stderr.startswith(message), result.stderr

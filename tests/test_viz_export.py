@@ -120,7 +120,7 @@ def test_headless_command_reads_piped_input_without_a_screen(tmp_path):
     text = OUTCOME.read_text().replace("\n", " ")
     piped = f"clingo version 5.8.0\nReading from stdin\nSolving...\nAnswer: 1\n{text}\nSATISFIABLE\n"
     env = {key: value for key, value in os.environ.items() if key not in ("QT_QPA_PLATFORM", "DISPLAY")}
-    result = subprocess.run([sys.executable, "-m", "asprilo", "viz", "--export", str(out), "--step", "29"],
+    result = subprocess.run([sys.executable, "-m", "asprilo.cli", "viz", "--export", str(out), "--step", "29"],
                             input=piped, capture_output=True, text=True, env=env, cwd=ROOT, timeout=120)
     assert result.returncode == 0, result.stderr
     assert result.stderr.endswith(f"wrote {out}: {WIDTH}x{HEIGHT}\n")

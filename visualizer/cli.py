@@ -19,7 +19,7 @@ import argparse
 import os
 import sys
 
-from asprilo.cli import domain_argument
+from asprilo.arguments import domain_argument
 from asprilo.errors import InputError
 
 
@@ -73,67 +73,32 @@ def _check_options(args: argparse.Namespace) -> None:
         raise InputError("--solver and --export do not go together: an online session runs in the window")
 
 
-#: Qt warnings that say nothing useful to a user of the viewer (headless runs print them)
-_QUIET = ("XDG_RUNTIME_DIR not set", "does not support propagateSizeHints")
-
-
-def _application():
-    """The running QApplication, or a new one (keep a reference while Qt objects live)."""
-    from PyQt5.QtCore import qInstallMessageHandler
-    from PyQt5.QtWidgets import QApplication
-    app = QApplication.instance()
-    if app is None:
-        def report(_kind, _context, message: str) -> None:
-            if not any(text in message for text in _QUIET):
-                print(message, file=sys.stderr)
-        qInstallMessageHandler(report)
-        app = QApplication(sys.argv[:1])
-        app.setApplicationName("asprilo viz")
-        app.setOrganizationName("asprilo")
-    return app
-
-
-def _step(args: argparse.Namespace, horizon: int) -> int:
-    step = args.step or 0
-    if step > horizon:
-        raise InputError(f"--step {step} lies beyond the plan, whose last step is {horizon}")
-    return step
-
-
 def _export(args: argparse.Namespace, scenario) -> int:
-    from . import export
-    from .animator import Animator
-    from .scene import WarehouseScene
-    from .track import Track
+    from .render import render
 
-    suffix = export.export_format(args.export)  # a bad name fails before any work
-    app = _application()  # noqa: F841 (Qt objects below need it alive)
-    track = Track(scenario.instance, scenario.plan, scenario.domain)
-    scene = WarehouseScene(scenario.instance)
-    animator = Animator(scene, track)
-    if suffix in export.ANIMATIONS:
-        def progress(done: int, total: int) -> None:
-            if done == total or done % 50 == 0:
-                print(f"\rrendering frame {done}/{total}", end="\n" if done == total else "", file=sys.stderr)
-        frames = export.save_animation(args.export, animator, args.frames, args.speed, args.cell, progress)
-        print(f"wrote {args.export}: {frames} frames", file=sys.stderr)
-    else:
-        animator.show(_step(args, track.horizon))
-        size = export.save_picture(args.export, scene, args.cell)
-        print(f"wrote {args.export}: {size.width()}x{size.height()}", file=sys.stderr)
-    del animator, scene  # before the application goes
+    def progress(done: int, total: int) -> None:
+        if done == total or done % 50 == 0:
+            print(f"\rrendering frame {done}/{total}", end="\n" if done == total else "", file=sys.stderr)
+
+    written = render(scenario.instance, scenario.plan, args.export, scenario.domain, args.step,
+                     args.frames, args.speed, args.cell, progress)
+    print(f"wrote {args.export}: {written}", file=sys.stderr)
     return 0
 
 
 def _show(args: argparse.Namespace, scenario) -> int:
-    app = _application()
+    from .render import application
     from .window import MainWindow
+    app = application()
     window = MainWindow()
     if scenario is not None:
         window.show_scenario(scenario)
         window.remember(scenario)
         if args.step:
-            window.go_to(_step(args, window.track.horizon))
+            if args.step > window.track.horizon:
+                raise InputError(f"--step {args.step} lies beyond the plan, whose last step is "
+                                 f"{window.track.horizon}")
+            window.go_to(args.step)
     window.show()
     if args.solver is not None:
         window.live.connect_to(args.host, args.solver, args.simulator)

@@ -12,7 +12,7 @@ from PyQt5.QtNetwork import QAbstractSocket, QTcpSocket
 
 from asprilo.errors import InputError
 from asprilo.model import Action, Instance
-from asprilo.protocol import DONE, END, Message, done, instance_facts, parse, read_actions, read_world, reset
+from asprilo.online.protocol import DONE, END, Message, done, instance_facts, parse, read_actions, read_world, reset
 
 #: seconds to wait for a connection, for the simulator's and for the solver's answers
 CONNECT_SECONDS, SIMULATOR_SECONDS, SOLVER_SECONDS = 10.0, 30.0, 300.0

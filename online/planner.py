@@ -1,7 +1,7 @@
 """The two sides of the online link that are not the visualizer: a planner that re-plans
 when the world changes, and a simulator that releases orders over time.
 
-Both are plain Python (no sockets; ``asprilo.serve`` puts them on the network).
+Both are plain Python (no sockets; ``asprilo.online.serve`` puts them on the network).
 
 - :class:`OnlinePlanner` knows the facts received so far and the actions it has sent.
   Asked for the actions of step T+1 (after ``%$done(T).``), it answers from its current
@@ -18,11 +18,11 @@ from collections import defaultdict
 from dataclasses import dataclass, field, replace
 from typing import Callable
 
-from .domain import Domain, detect_domain
-from .errors import InputError
-from .model import Action, Instance, Order, Plan, Product, Robot, Shelf
+from asprilo.domain import Domain, detect_domain
+from asprilo.errors import InputError
+from asprilo.model import Action, Instance, Order, Plan, Product, Robot, Shelf
 from .protocol import instance_facts, read_world, shifted
-from .simulate import State, simulate
+from asprilo.simulate import State, simulate
 
 
 def world_at(instance: Instance, state: State) -> Instance:
@@ -49,7 +49,7 @@ Planner = Callable[[Instance, Domain, threading.Event], "Plan | None"]
 def encodings_planner(encoding: str = "plain", time_limit: float | None = 60.0) -> Planner:
     """A planner through the reference encodings (minimal makespan)."""
     def plan(instance: Instance, domain: Domain, cancel: threading.Event) -> Plan | None:
-        from .encodings import solve
+        from asprilo.encodings import solve
         outcome = solve(instance, domain, encoding=encoding, time_limit=time_limit, cancel=cancel)
         return outcome.plan if outcome.found else None
     return plan

@@ -12,9 +12,9 @@ import argparse
 import json
 from collections import Counter
 
-from .cli import domain_argument
-from .domain import Domain, detect_domain
-from .reader import read_instance, read_instance_and_plan
+from asprilo.arguments import domain_argument
+from asprilo.domain import Domain, detect_domain
+from asprilo.reader import read_instance, read_instance_and_plan
 
 
 def configure(parser: argparse.ArgumentParser) -> None:

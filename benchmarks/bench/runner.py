@@ -21,12 +21,14 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable, Iterable, TextIO
 
-from ..cli import main as asprilo_main
-from ..domain import Domain
-from ..errors import InputError
-from ..reader import read_instance, read_plan
-from ..sources import Source
-from ..writer import write_text
+from asprilo.domain import Domain
+from asprilo.errors import InputError
+from asprilo.reader import read_instance, read_plan
+from asprilo.sources import Source
+from asprilo.writer import write_text
+from asprilo.checker import check
+from asprilo.generator import generate_batch
+
 from .limits import kill_running, run_limited
 from .results import append_result, load_results, run_key
 from .suite import RunSpec, Suite, existing_files
@@ -80,7 +82,6 @@ def complete(record: dict, path: Path, status: str, wall: float, report: dict, d
 
 def check_plan(path: Path, domain: str, plan_text: str) -> dict:
     """Check a run's plan with the ASP checker: ``solved`` with its metrics, or ``invalid``."""
-    from asprilo.checker import check
     report = check(read_instance(path), read_plan(Source("plan", plan_text)), Domain(domain))
     if report.valid:
         return {"status": "solved", "metrics": report.metrics}
@@ -136,8 +137,7 @@ class Runner:
             if instance_set.batch is not None:
                 target = self.folder / "instances" / instance_set.batch.stem
                 self.stream.write(f"instances: {instance_set.batch.name} -> {target}\n")
-                code = asprilo_main(["gen", "-j", str(instance_set.batch), "-d", str(target), "--skip-existing"])
-                if code != 0:
+                if generate_batch(instance_set.batch, target, skip_existing=True, stream=self.stream):
                     raise InputError(f"generating the instances of set '{instance_set.name}' failed",
                                      str(instance_set.batch))
                 root = target / instance_set.select

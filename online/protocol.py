@@ -19,11 +19,11 @@ import socket
 from dataclasses import dataclass
 from typing import Iterable
 
-from .errors import InputError
-from .model import Action, Instance, Plan
-from .reader import read_instance, read_plan
-from .sources import Source
-from .writer import format_action, format_instance
+from asprilo.errors import InputError
+from asprilo.model import Action, Instance, Plan
+from asprilo.reader import read_instance, read_plan
+from asprilo.sources import Source
+from asprilo.writer import format_action, format_instance
 
 RESET, DONE, END = "RESET", "done", "end"
 #: a control word at the end of a line

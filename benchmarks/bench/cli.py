@@ -25,9 +25,9 @@ import json
 import sys
 from pathlib import Path
 
-from ..cli import domain_argument
-from ..errors import InputError
-from ..writer import write_text
+from asprilo.arguments import domain_argument
+from asprilo.errors import InputError
+from asprilo.writer import write_text
 from . import btool, report
 from .results import load_results
 from .runner import Runner

@@ -22,13 +22,13 @@ import math
 from collections import Counter
 from pathlib import Path
 
-from .errors import InputError
-from .model import Action, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
+from asprilo.errors import InputError
+from asprilo.model import Action, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
 from .movingai import (Map, Result, Task, format_map, format_result, format_scenario, from_cell,
                        octile_lengths, parse_map, parse_result, parse_scenario, to_cell)
-from .reader import instance_from_atoms, read_instance, read_plan
-from .sources import Source, as_sources, ground_atoms
-from .writer import format_instance, format_plan, header_lines, write_text
+from asprilo.reader import instance_from_atoms, read_instance, read_plan
+from asprilo.sources import Source, as_sources, ground_atoms
+from asprilo.writer import format_instance, format_plan, header_lines, write_text
 
 GOALS = ("md", "m")
 

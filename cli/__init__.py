@@ -1,4 +1,4 @@
-"""The ``asprilo`` command and its stand-alone twins ``gen``, ``check`` and ``viz``.
+"""The command line: ``asprilo`` and its stand-alone twins ``gen``, ``check`` and ``viz``.
 
 Each subcommand lives in a module with ``configure(parser)`` and ``run(args) -> int``;
 the module is imported only when its subcommand runs, so ``asprilo --help`` stays quick
@@ -14,19 +14,19 @@ import os
 import sys
 from typing import Callable, Sequence
 
-from . import __version__
-from .errors import InputError
+from asprilo import __version__
+from asprilo.errors import InputError
 
 #: name -> (module, one-line summary); a command is listed here once it works.
 COMMANDS: dict[str, tuple[str, str]] = {
-    "demo": ("asprilo.demo", "generate, solve, check and render a small warehouse: the whole tool chain"),
-    "info": ("asprilo.info", "summarise an instance (and plan): counts, domain, horizon"),
+    "demo": ("asprilo.cli.demo", "generate, solve, check and render a small warehouse: the whole tool chain"),
+    "info": ("asprilo.cli.info", "summarise an instance (and plan): counts, domain, horizon"),
     "check": ("asprilo.checker.cli", "check a plan with the ASP checker: violations in plain words, metrics, bounds"),
     "gen": ("asprilo.generator.cli", "generate instances: random, structured (-H), templates (-T), YAML batches (-j)"),
     "viz": ("asprilo.visualizer.cli", "show a warehouse, animate a plan, export pictures and animations"),
     "bench": ("asprilo.bench.cli", "run benchmark suites under limits, report tables and plots, export for btool"),
-    "convert": ("asprilo.convert", "convert between asprilo, MovingAI maps/scenarios, LaCAM results, M and Md"),
-    "serve": ("asprilo.serve", "serve the online link: a solver that re-plans, or a simulator releasing orders"),
+    "convert": ("asprilo.interop.convert", "convert between asprilo, MovingAI maps/scenarios, LaCAM results, M and Md"),
+    "serve": ("asprilo.online.serve", "serve the online link: a solver that re-plans, or a simulator releasing orders"),
     "solve": ("asprilo.encodings.cli", "find a plan of minimal makespan with a reference encoding or max-flow"),
 }
 
@@ -40,15 +40,6 @@ def _parser(name: str, prog: str, summary: str, parent=None) -> argparse.Argumen
     module.configure(parser)
     parser.set_defaults(run=module.run)
     return parser
-
-
-def domain_argument(text: str):
-    """``--domain`` values for argparse: a|b|c|m|md."""
-    from .domain import Domain
-    try:
-        return Domain.parse(text)
-    except InputError as error:
-        raise argparse.ArgumentTypeError(error.message) from None
 
 
 def run_command(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespace) -> int:

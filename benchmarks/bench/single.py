@@ -14,8 +14,8 @@ import sys
 import time
 from pathlib import Path
 
-from ..domain import Domain
-from ..reader import read_instance
+from asprilo.domain import Domain
+from asprilo.reader import read_instance
 from .runner import Instance, complete, new_record
 from .suite import RunSpec
 from .worker import run

@@ -29,8 +29,8 @@ import sys
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
-from .. import __version__
-from ..writer import write_text
+from asprilo import __version__
+from asprilo.writer import write_text
 from .results import run_key
 from .runner import Runner
 from .suite import RunSpec, Suite

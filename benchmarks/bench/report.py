@@ -188,7 +188,7 @@ def plot(records: list[dict], folder: Path, set_order: list[str] | None = None) 
 
 def _save(figure, path: Path) -> Path:
     """Save a figure atomically (render to memory, then replace the file)."""
-    from ..writer import write_bytes
+    from asprilo.writer import write_bytes
     buffer = io.BytesIO()
     figure.savefig(buffer, format="png", dpi=110)
     write_bytes(path, buffer.getvalue())

@@ -21,9 +21,9 @@ import sys
 import threading
 from typing import Callable
 
-from .cli import domain_argument
-from .errors import InputError
-from .online import OnlinePlanner, Schedule, encodings_planner, parse_arrivals
+from asprilo.arguments import domain_argument
+from asprilo.errors import InputError
+from .planner import OnlinePlanner, Schedule, encodings_planner, parse_arrivals
 from .protocol import DONE, END, RESET, Channel, Message, action_facts
 
 DEFAULT_PORTS = {"solver": 5000, "simulator": 5001}
@@ -75,7 +75,7 @@ def _log(role: str) -> Callable[[str], None]:
 
 
 def _schedule(args: argparse.Namespace) -> Schedule:
-    from .reader import read_instance
+    from asprilo.reader import read_instance
     instance = read_instance(args.instance)
     if args.every is not None:
         if args.every < 1 or args.at:

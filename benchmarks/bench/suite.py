@@ -29,8 +29,8 @@ from typing import Any
 
 import yaml
 
-from ..domain import Domain
-from ..errors import InputError
+from asprilo.domain import Domain
+from asprilo.errors import InputError
 
 
 @dataclass(frozen=True)

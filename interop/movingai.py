@@ -14,9 +14,9 @@ import numpy as np
 from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import shortest_path
 
-from .errors import InputError
-from .model import Cell
-from .sources import Source
+from asprilo.errors import InputError
+from asprilo.model import Cell
+from asprilo.sources import Source
 
 #: Characters of passable terrain: ground, plus swamp and the goal/start markers some maps use.
 PASSABLE = frozenset(".GS")

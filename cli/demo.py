@@ -13,14 +13,13 @@ Examples:
 from __future__ import annotations
 
 import argparse
-import os
 import time
 from pathlib import Path
 
-from .cli import domain_argument
-from .domain import Domain
-from .errors import InputError
-from .writer import format_instance, format_plan, write_text
+from asprilo.arguments import domain_argument
+from asprilo.domain import Domain
+from asprilo.errors import InputError
+from asprilo.writer import format_instance, format_plan, write_text
 
 #: a small scenario per domain that the reference encodings solve in seconds
 SCENARIOS = {
@@ -51,9 +50,9 @@ def _say(text: str) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from .checker import check
-    from .encodings import solve
-    from .generator import GeneratorConfig, generate
+    from asprilo.checker import check
+    from asprilo.encodings import solve
+    from asprilo.generator import GeneratorConfig, generate
 
     domain: Domain = args.domain
     if domain not in SCENARIOS:
@@ -91,19 +90,15 @@ def run(args: argparse.Namespace) -> int:
         _say(f"   {error.message}")
 
     if not args.no_pictures:
-        _render(instance_path, plan_path, folder, outcome.horizon)
+        _render(instance, outcome.plan, folder, domain)
     _say(f"done in {time.perf_counter() - started:.1f} s; look at it with:  viz {instance_path} {plan_path}")
     return 0 if report.valid else 1
 
 
-def _render(instance_path: Path, plan_path: Path, folder: Path, horizon: int) -> None:
+def _render(instance, plan, folder: Path, domain: Domain) -> None:
     """Export the final state as PNG and the plan as GIF, without opening a window."""
-    if not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY"):
-        os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
-    from .cli import main
+    from asprilo.visualizer.render import render
     picture, animation = folder / "final.png", folder / "plan.gif"
-    files = [str(instance_path), str(plan_path), "--export"]
-    if main(["viz", *files, str(picture), "--step", str(horizon)]) or \
-            main(["viz", *files, str(animation), "--frames", "4"]):
-        raise InputError("rendering the pictures failed (see above); --no-pictures skips them")
+    render(instance, plan, picture, domain, step=plan.horizon)
+    render(instance, plan, animation, domain, frames=4)
     _say(f"4. rendered   {picture} (the final state) and {animation} (the whole plan)")

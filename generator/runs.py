@@ -1,0 +1,123 @@
+"""Runs of the generator that write files: one command's configuration, or every run of a
+YAML batch file, with progress, ``--skip-existing`` and one error line per failed instance.
+
+    from asprilo.generator import generate_batch
+    failed = generate_batch("benchmarks/paper-m.yml", "instances/paper-m", skip_existing=True)
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, TextIO
+
+from asprilo.errors import InputError
+from asprilo.writer import format_instance
+
+from .api import generate_one
+from .batch import load_batch
+from .config import GeneratorConfig, RunOptions, parse_values
+from .options import DEFAULT_SEED, split_values
+from .output import Progress, exists, save
+from .pipeline import GenerationFailed
+from .plan import Plan, make_plan
+from .sampling import derive_seed
+
+
+@dataclass
+class Job:
+    """One configuration to generate: a whole command, or one run of a batch."""
+
+    config: GeneratorConfig
+    options: RunOptions
+    directory: Path
+    where: tuple[str | None, int | None] = (None, None)  # batch file and line, for messages
+
+
+def command_job(values: dict[str, Any], directory: Path | None = None, where=(None, None)) -> Job:
+    """The job of checked option values (field name -> value)."""
+    config_values, run_values = split_values(values)
+    options = RunOptions(**run_values)
+    return Job(GeneratorConfig(**config_values), options, directory or Path(options.directory), where)
+
+
+def batch_jobs(path: str | Path, overrides: dict[str, Any] | None = None) -> list[Job]:
+    """The jobs of a batch file; ``overrides`` (checked option values) apply to every run."""
+    jobs = []
+    for item in load_batch(path):
+        values = {**item.values, **(overrides or {})}
+        base = values.get("seed", DEFAULT_SEED)
+        values["seed"] = derive_seed(base, "run", item.directory, item.index)
+        directory = Path(values.get("directory", RunOptions.directory)) / item.directory
+        jobs.append(command_job(values, directory, (str(path), item.line)))
+    return jobs
+
+
+def run_jobs(jobs: list[Job], verbose: bool = False, stream: TextIO | None = None) -> int:
+    """Generate every job's instances; returns how many instances could not be made.
+
+    Inconsistent options are reported (as :class:`InputError`, naming the batch file and
+    line) before anything is generated.
+    """
+    stream = stream or sys.stderr
+    plans = []
+    for job in jobs:
+        try:
+            plans.append(make_plan(job.config))
+        except InputError as error:
+            raise error.at(*job.where) from None
+    # a progress bar when writing files (with -C the instances themselves show the progress)
+    progress = Progress(sum(job.options.count for job in jobs if not job.options.console), stream)
+    return sum(_generate(job, plan, progress, verbose, stream) for job, plan in zip(jobs, plans))
+
+
+def generate_batch(path: str | Path, directory: str | Path, skip_existing: bool = True,
+                   stream: TextIO | None = None, **options: Any) -> int:
+    """Write the instances of a YAML batch file below ``directory``; how many failed.
+
+    ``options`` are further option values by field name (e.g. ``seed=3``), checked as on
+    the command line, that override the file's.
+    """
+    overrides = parse_values({**options, "directory": str(directory), "skip_existing": skip_existing})
+    return run_jobs(batch_jobs(path, overrides), stream=stream)
+
+
+def _generate(job: Job, plan: Plan, progress: Progress, verbose: bool, stream: TextIO) -> int:
+    """Generate (and write or print) the instances of one job; returns the number that failed."""
+    options = job.options
+    command = job.config.command_line(options)
+    failed = 0
+    for number in range(1, options.count + 1):
+        if not options.console and options.skip_existing and \
+                exists(job.directory, number, options.prefix, options.instance_dir):
+            progress.advance(f"{job.directory}: N{number:03d} exists")
+            continue
+        try:
+            item = generate_one(plan, options.seed, number, command)
+        except GenerationFailed as failure:
+            progress.interrupt()
+            print(f"error: {_place(job)}no instance {number}: {failure}", file=stream)
+            failed += 1
+            if not failure.timed_out:
+                break  # unsatisfiable: the other instances of this configuration are too
+            continue
+        if options.console:
+            sys.stdout.write(format_instance(item.instance, item.header) + "\n")
+            label = item.file_name(options.prefix)
+        else:
+            label = str(save(item, job.directory, options.prefix, options.instance_dir))
+        if verbose:
+            stages = ", ".join(f"{stage} {rounds}x {seconds:.2f}s" for stage, (rounds, seconds) in item.stages.items())
+            progress.interrupt()
+            print(f"{label}: {stages}", file=stream)
+        if not options.console:
+            progress.advance(label)
+    return failed
+
+
+def _place(job: Job) -> str:
+    file, line = job.where
+    if file is None:
+        return ""
+    return f"{file}:{line}: " if line else f"{file}: "
