@@ -6,7 +6,7 @@ robots and shelves, so every bound here is admissible: no valid plan does better
 
 from __future__ import annotations
 
-from typing import Iterable, Sequence
+from collections.abc import Iterable, Sequence
 
 import numpy as np
 from scipy.sparse import csr_matrix

@@ -26,7 +26,7 @@ class Domain(str, Enum):
     MD = "md"
 
     @classmethod
-    def parse(cls, text: "str | Domain") -> "Domain":
+    def parse(cls, text: str | Domain) -> Domain:
         """``a``/``B``/``md``... -> Domain; an unknown name is bad input."""
         try:
             return cls(str(text.value if isinstance(text, Domain) else text).lower())

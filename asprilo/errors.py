@@ -16,7 +16,7 @@ class InputError(Exception):
         self.file = file
         self.line = line
 
-    def at(self, file: str | None, line: int | None = None) -> "InputError":
+    def at(self, file: str | None, line: int | None = None) -> InputError:
         """Return this error located in ``file`` (and ``line``) unless it has a place already."""
         if self.file is None:
             self.file, self.line = file, line

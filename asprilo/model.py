@@ -7,8 +7,9 @@ an instance uses the quantity-free forms ``value(on,S)`` / ``value(line,P)``.
 from __future__ import annotations
 
 from collections import defaultdict
+from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Any, Iterator, NamedTuple
+from typing import Any, NamedTuple
 
 Cell = tuple[int, int]
 

@@ -6,15 +6,16 @@ This module and :mod:`asprilo.writer` are the only places that know the shapes o
 
 from __future__ import annotations
 
-from typing import Any, Callable, Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
+from typing import Any
 
 import clingo
 from clingo import SymbolType
 
 from .errors import InputError
 from .model import Action, Cell, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
-from .writer import format_action, format_value
 from .sources import Source, SourceLike, as_sources, line_of, load_facts, locate, symbol_fact
+from .writer import format_action, format_value
 
 
 def read_instance(inputs: SourceLike | Iterable[SourceLike]) -> Instance:

@@ -38,8 +38,9 @@ demand, quickly for steps in sequence and from the nearest checkpoint otherwise.
 from __future__ import annotations
 
 from collections import defaultdict
+from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Any, Iterable
+from typing import Any
 
 import numpy as np
 
@@ -154,7 +155,7 @@ class _Snapshot:
     def resting_at(self, cell: Cell) -> list[int]:
         return [shelf for shelf, at in self.resting.items() if at == cell]
 
-    def copy(self) -> "_Snapshot":
+    def copy(self) -> _Snapshot:
         return _Snapshot(self.step, dict(self.carries), dict(self.resting), dict(self.stock),
                          dict(self.lines))
 

@@ -10,9 +10,10 @@ from __future__ import annotations
 
 import re
 import sys
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Iterable, Sequence, Union
+from typing import Union
 
 import clingo
 import clingo.ast
@@ -30,7 +31,7 @@ class Source:
     text: str
 
     @classmethod
-    def from_path(cls, path: str | Path) -> "Source":
+    def from_path(cls, path: str | Path) -> Source:
         """Read a file; ``-`` reads standard input."""
         if str(path) == STDIN:
             return cls.from_stdin()
@@ -47,7 +48,7 @@ class Source:
             raise InputError(error.strerror or "cannot be read", str(path)) from None
 
     @classmethod
-    def from_stdin(cls) -> "Source":
+    def from_stdin(cls) -> Source:
         if sys.stdin is None or sys.stdin.isatty():
             raise InputError("nothing to read (standard input is a terminal)", "<stdin>")
         return cls("<stdin>", sys.stdin.read())

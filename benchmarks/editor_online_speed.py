@@ -29,7 +29,6 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from PyQt5.QtCore import QEventLoop, QSettings, QTimer  # noqa: E402
 from PyQt5.QtWidgets import QApplication  # noqa: E402
-
 from viz_speed import build_instance  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent

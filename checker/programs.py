@@ -10,7 +10,7 @@ action stays an ``occurs/3`` fact.
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 from pathlib import Path
 
 import clingo
@@ -68,7 +68,7 @@ def plan_facts(instance: Instance, plan: Plan, packed: bool = True) -> str:
     return "\n".join(lines)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _statements(domain: Domain) -> tuple[clingo.ast.AST, ...]:
     """The checker of ``domain`` and packed.lp, parsed once."""
     statements: list[clingo.ast.AST] = []

@@ -12,7 +12,7 @@ import argparse
 import importlib
 import os
 import sys
-from typing import Callable, Sequence
+from collections.abc import Callable, Sequence
 
 from asprilo import __version__
 from asprilo.errors import InputError

@@ -9,8 +9,8 @@ planners read the facts it returns (format in encodings/README.md).
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 

@@ -20,8 +20,8 @@ which forces every goal cell to be covered.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 from scipy.sparse import csr_matrix

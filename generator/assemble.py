@@ -8,8 +8,8 @@ quantities, products and order lines are written without them (``on S``, ``line 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from copy import deepcopy
-from typing import Callable
 
 from asprilo.model import Cell, Instance, Order, PickingStation, Product, Robot, Shelf
 

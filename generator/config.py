@@ -6,8 +6,9 @@ defaults and checks that the options fit together.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field, fields
-from typing import Any, Mapping
+from typing import Any
 
 from asprilo.domain import Domain
 from asprilo.errors import InputError
@@ -60,7 +61,7 @@ class GeneratorConfig:
     one_shot: bool = False              # --one-shot
 
     @classmethod
-    def from_options(cls, options: Mapping[str, Any]) -> "GeneratorConfig":
+    def from_options(cls, options: Mapping[str, Any]) -> GeneratorConfig:
         """A config from ``{"-x": 11, "--prs": 1, "structured": True, ...}`` (flags or field names).
 
         Run options (``-N``, ``--seed``, ``-d`` ...) are rejected here; see :class:`RunOptions`.
@@ -86,7 +87,7 @@ class GeneratorConfig:
                 given[name] = low
         return given
 
-    def command_line(self, run: "RunOptions | None" = None) -> str:
+    def command_line(self, run: RunOptions | None = None) -> str:
         """A ``gen`` command line that makes the same instances."""
         values = self.values()
         if run is not None:

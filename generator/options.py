@@ -8,8 +8,9 @@ generate) or of :class:`RunOptions` (how many, where to, which seed).
 from __future__ import annotations
 
 import shlex
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-from typing import Any, Iterable, Mapping
+from typing import Any
 
 from asprilo.domain import Domain
 from asprilo.errors import InputError

@@ -8,7 +8,8 @@ from __future__ import annotations
 
 import hashlib
 import random
-from typing import Hashable, Iterator, Sequence, TypeVar
+from collections.abc import Hashable, Iterator, Sequence
+from typing import TypeVar
 
 T = TypeVar("T")
 

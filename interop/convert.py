@@ -24,11 +24,24 @@ from pathlib import Path
 
 from asprilo.errors import InputError
 from asprilo.model import Action, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
-from .movingai import (Map, Result, Task, format_map, format_result, format_scenario, from_cell,
-                       octile_lengths, parse_map, parse_result, parse_scenario, to_cell)
 from asprilo.reader import instance_from_atoms, read_instance, read_plan
 from asprilo.sources import Source, as_sources, ground_atoms
 from asprilo.writer import format_instance, format_plan, header_lines, write_text
+
+from .movingai import (
+    Map,
+    Result,
+    Task,
+    format_map,
+    format_result,
+    format_scenario,
+    from_cell,
+    octile_lengths,
+    parse_map,
+    parse_result,
+    parse_scenario,
+    to_cell,
+)
 
 GOALS = ("md", "m")
 

@@ -15,14 +15,15 @@ from __future__ import annotations
 
 import threading
 from collections import defaultdict
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
-from typing import Callable
 
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
 from asprilo.model import Action, Instance, Order, Plan, Product, Robot, Shelf
-from .protocol import instance_facts, read_world, shifted
 from asprilo.simulate import State, simulate
+
+from .protocol import instance_facts, read_world, shifted
 
 
 def world_at(instance: Instance, state: State) -> Instance:
@@ -128,7 +129,7 @@ class Schedule:
         self.arrivals = {order: arrivals.get(order, 0) for order in sorted(instance.orders)}
 
     @classmethod
-    def every(cls, instance: Instance, steps: int, first: int = 0) -> "Schedule":
+    def every(cls, instance: Instance, steps: int, first: int = 0) -> Schedule:
         """Orders in id order, the first at step ``first``, then one every ``steps`` steps."""
         return cls(instance, {order: first + i * steps for i, order in enumerate(sorted(instance.orders))})
 

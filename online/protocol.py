@@ -16,8 +16,8 @@ from __future__ import annotations
 
 import re
 import socket
+from collections.abc import Iterable
 from dataclasses import dataclass
-from typing import Iterable
 
 from asprilo.errors import InputError
 from asprilo.model import Action, Instance, Plan
@@ -112,7 +112,7 @@ class Channel:
         self._reader = connection.makefile("r", encoding="utf-8", newline="\n")
 
     @classmethod
-    def connect(cls, host: str, port: int, timeout: float | None = TIMEOUT) -> "Channel":
+    def connect(cls, host: str, port: int, timeout: float | None = TIMEOUT) -> Channel:
         return cls(socket.create_connection((host, port), timeout=timeout), timeout)
 
     def send(self, message: Message) -> None:

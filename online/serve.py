@@ -19,10 +19,11 @@ import select
 import socket
 import sys
 import threading
-from typing import Callable
+from collections.abc import Callable
 
 from asprilo.arguments import domain_argument
 from asprilo.errors import InputError
+
 from .planner import OnlinePlanner, Schedule, encodings_planner, parse_arrivals
 from .protocol import DONE, END, RESET, Channel, Message, action_facts
 

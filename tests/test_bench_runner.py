@@ -9,14 +9,14 @@ import subprocess
 import sys
 import time
 
+from conftest import EXAMPLES
+
 from asprilo.bench import runner as runner_module
 from asprilo.bench.limits import Outcome
 from asprilo.bench.results import load_results
 from asprilo.bench.runner import Runner
 from asprilo.bench.suite import load_suite
 from asprilo.cli import main
-
-from conftest import EXAMPLES
 
 TINY = EXAMPLES / "encodings-repo/x2_y2_n4_r2_s2_ps1_pr2_u4_o2_N1.lp"
 SMALL = EXAMPLES / "paper-m/1x2x4/x11_y6_n66_r2_s16_ps1_pr16_u16_o2_N001.lp"

@@ -5,12 +5,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from conftest import EXAMPLES
 
 from asprilo.bounds import Floor, bottleneck_assignment, mapf_bounds, min_cost_assignment
-from asprilo.model import Instance, Robot
+from asprilo.model import Robot
 from asprilo.reader import read_instance
-
-from conftest import EXAMPLES
 
 
 def test_distances_around_a_wall():

@@ -5,15 +5,14 @@ from __future__ import annotations
 import re
 
 import pytest
+from conftest import EXAMPLES
 
 from asprilo.cli import main
-from asprilo.interop.convert import md_to_m, m_to_md, result_to_plan
-from asprilo.model import Action, Destination, Instance, Plan, Robot
+from asprilo.interop.convert import m_to_md, md_to_m, result_to_plan
 from asprilo.interop.movingai import octile_lengths, parse_map, parse_result, parse_scenario
+from asprilo.model import Action, Destination, Instance, Plan, Robot
 from asprilo.reader import read_instance, read_plan
 from asprilo.sources import Source
-
-from conftest import EXAMPLES
 
 MAPS = sorted((EXAMPLES / "movingai").glob("*.map"))
 SCEN = EXAMPLES / "movingai/random-32-32-20-random-1.scen"

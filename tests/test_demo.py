@@ -4,9 +4,9 @@ from __future__ import annotations
 
 import os
 
+from asprilo.checker import check
 from asprilo.cli import main
 from asprilo.reader import read_instance, read_plan
-from asprilo.checker import check
 
 
 def test_demo_generates_solves_checks_and_renders(tmp_path, capsys):

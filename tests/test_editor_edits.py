@@ -5,6 +5,7 @@ from __future__ import annotations
 import copy
 
 import pytest
+from conftest import SMALL_A
 
 from asprilo.model import Instance, Order, Product, Robot, Shelf
 from asprilo.reader import read_instance
@@ -12,8 +13,6 @@ from asprilo.sources import Source
 from asprilo.visualizer import edits
 from asprilo.visualizer.edits import EditRefused
 from asprilo.writer import format_instance
-
-from conftest import SMALL_A
 
 
 def facts(instance: Instance) -> list[str]:

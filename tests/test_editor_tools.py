@@ -10,17 +10,16 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 import time  # noqa: E402
 
 import pytest  # noqa: E402
+from conftest import SMALL_A, WRONG_OUTCOME  # noqa: E402
 from PyQt5.QtCore import QSettings, QTimer  # noqa: E402
 from PyQt5.QtWidgets import QMessageBox  # noqa: E402
+from test_serve import TINY  # noqa: E402
 
 from asprilo.generator import populate  # noqa: E402
 from asprilo.model import PickingStation  # noqa: E402
 from asprilo.visualizer import edits  # noqa: E402
 from asprilo.visualizer.window import MainWindow  # noqa: E402
 from asprilo.writer import format_instance  # noqa: E402
-
-from conftest import SMALL_A, WRONG_OUTCOME  # noqa: E402
-from test_serve import TINY  # noqa: E402
 
 pytestmark = pytest.mark.gui
 WAIT_MS = 60_000  # no job may take longer here

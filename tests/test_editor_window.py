@@ -8,6 +8,7 @@ import os
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
+from conftest import OUTCOME, SMALL_A  # noqa: E402
 from PyQt5.QtCore import QEvent, QPointF, QSettings, Qt  # noqa: E402
 from PyQt5.QtGui import QMouseEvent  # noqa: E402
 from PyQt5.QtWidgets import QApplication, QMessageBox  # noqa: E402
@@ -17,8 +18,6 @@ from asprilo.visualizer import style  # noqa: E402
 from asprilo.visualizer.dialogs import GenerateDialog, SizeDialog, StockDialog  # noqa: E402
 from asprilo.visualizer.window import MainWindow  # noqa: E402
 from asprilo.writer import format_instance  # noqa: E402
-
-from conftest import OUTCOME, SMALL_A  # noqa: E402
 
 pytestmark = pytest.mark.gui
 

@@ -3,12 +3,12 @@
 from __future__ import annotations
 
 import pytest
+from conftest import EXAMPLES, SMALL_A
 
 from asprilo.domain import Domain
 from asprilo.encodings import ENCODINGS, SolveStatus, solve
 from asprilo.encodings.assignment import assign_tasks, distance_facts
 from asprilo.reader import read_instance
-from conftest import EXAMPLES, SMALL_A
 
 STYLES = {d: [e.name for e in ENCODINGS if e.domain is d] for d in (Domain.A, Domain.B, Domain.C)}
 TINY = {  # instance -> minimal makespan per domain (several robots may deliver in one step)

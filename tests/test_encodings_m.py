@@ -4,14 +4,14 @@ from __future__ import annotations
 
 import clingo
 import pytest
+from conftest import EXAMPLES
+from test_flow import WALLED
 
 from asprilo.domain import Domain
 from asprilo.encodings import ENCODINGS, SolveStatus, solve
 from asprilo.encodings.flow import flow_plan
 from asprilo.reader import read_instance
 from asprilo.writer import format_instance
-from conftest import EXAMPLES
-from test_flow import WALLED
 
 M_STYLES = [e.name for e in ENCODINGS if e.domain is Domain.M]
 SMALL_PAPER = sorted((EXAMPLES / "paper-m/1x2x4").glob("*.lp"))
@@ -61,8 +61,9 @@ def test_plain_clingo_runs_the_main_files(tmp_path):
     """A student's command line: python -m clingo instance.lp encodings/m/plain.lp -c horizon=N."""
     import subprocess
     import sys
-    from asprilo.reader import read_plan
+
     from asprilo.checker import check
+    from asprilo.reader import read_plan
     instance_file = tmp_path / "walled.lp"
     instance_file.write_text(format_instance(WALLED))
     program = EXAMPLES.parent / "encodings/m/plain.lp"

@@ -6,10 +6,9 @@ import subprocess
 import sys
 
 import pytest
+from conftest import SMALL_A
 
 from asprilo.cli import main
-
-from conftest import SMALL_A
 
 PLAN_FOR_ROBOT_9 = "occurs(object(robot,1),action(move,(1,0)),1).\noccurs(object(robot,9),action(move,(1,0)),2).\n"
 

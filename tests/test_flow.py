@@ -3,14 +3,14 @@
 from __future__ import annotations
 
 import pytest
+from conftest import EXAMPLES
 
+from asprilo.bounds import Floor
 from asprilo.checker import check
 from asprilo.domain import Domain
 from asprilo.encodings.flow import TimeExpandedNetwork, flow_plan
-from asprilo.bounds import Floor
 from asprilo.model import Destination, Instance, Robot
 from asprilo.reader import read_instance
-from conftest import EXAMPLES
 
 #: minimal makespans of the paper's domain-M instances (bottleneck bound = flow optimum)
 PAPER_M = {

@@ -5,11 +5,11 @@ from __future__ import annotations
 from collections import Counter
 
 import pytest
+from conftest import ROOT
+from test_gen_layout import FIGURE_1, check_instance, one
 
 from asprilo.errors import InputError
 from asprilo.generator import GenerationFailed, GeneratorConfig, RunOptions, generate, make_plan
-from conftest import ROOT
-from test_gen_layout import FIGURE_1, check_instance, one
 
 
 def test_generate_returns_instances_and_headers_and_prints_nothing(capsys):

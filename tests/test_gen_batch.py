@@ -5,6 +5,8 @@ from __future__ import annotations
 import textwrap
 
 import pytest
+from conftest import ROOT
+from test_gen_layout import PAPER, check_instance
 
 from asprilo.cli import main
 from asprilo.errors import InputError
@@ -12,8 +14,6 @@ from asprilo.generator import GeneratorConfig, make_plan
 from asprilo.generator.batch import load_batch
 from asprilo.generator.config import split_values
 from asprilo.reader import read_instance
-from conftest import ROOT
-from test_gen_layout import PAPER, check_instance
 
 BENCHMARKS = ROOT / "benchmarks"
 

@@ -9,11 +9,11 @@ from __future__ import annotations
 from collections import Counter, deque
 
 import pytest
+from conftest import EXAMPLES
 
 from asprilo.generator import GeneratorConfig, generate, populate
 from asprilo.model import Cell, Instance
 from asprilo.reader import read_instance
-from conftest import EXAMPLES
 
 PAPER = {  # SPEC.md §6: size directory -> (options, robot counts)
     "1x2x4": ({"-x": 11, "-y": 6, "-X": 4, "-Y": 2, "-p": 1, "-s": 16, "-P": 16, "-u": 16}, (2, 5, 8, 11)),

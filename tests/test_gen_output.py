@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import os
 
+from test_gen_layout import FIGURE_1, cells_of, check_instance
+
 from asprilo.cli import main
 from asprilo.generator import GeneratorConfig, generate
 from asprilo.reader import read_instance
-from test_gen_layout import FIGURE_1, cells_of, check_instance
 
 SMALL = ["-x", "11", "-y", "6", "-X", "4", "-Y", "2", "-p", "1", "-s", "12", "-P", "20", "-u", "60",
          "-H", "-r", "3", "-o", "4", "--olmax", "2"]

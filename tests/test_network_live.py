@@ -11,12 +11,11 @@ import socket  # noqa: E402
 
 import pytest  # noqa: E402
 from PyQt5.QtCore import QSettings  # noqa: E402
+from test_serve import ORDER_2, TINY, WAIT, servers  # noqa: E402,F401  (servers: a fixture)
 
 from asprilo.online.serve import listen  # noqa: E402
 from asprilo.visualizer import network  # noqa: E402
 from asprilo.visualizer.window import MainWindow  # noqa: E402
-
-from test_serve import ORDER_2, TINY, WAIT, servers  # noqa: E402,F401  (servers: a fixture)
 
 pytestmark = pytest.mark.gui
 

@@ -6,14 +6,13 @@ import io
 import sys
 
 import pytest
+from conftest import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
 
 from asprilo.domain import Domain, detect_domain
 from asprilo.model import Action, Order, PickingStation, Product, Robot, Shelf
 from asprilo.reader import read_instance, read_plan
 from asprilo.sources import Source
 from asprilo.writer import format_instance, format_plan
-
-from conftest import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
 
 ALL_FILES = sorted(p for p in EXAMPLES.rglob("*") if p.suffix in (".lp", ".txt", ".plan"))
 

@@ -12,10 +12,9 @@ import pytest
 from asprilo.errors import InputError
 from asprilo.model import Action, Instance, Plan
 from asprilo.online.planner import OnlinePlanner, Schedule, encodings_planner, parse_arrivals, world_at
-from asprilo.online.protocol import (DONE, END, RESET, Channel, Message, done, parse, read_actions, read_world,
-                              reset)
-from asprilo.reader import read_instance
+from asprilo.online.protocol import DONE, END, RESET, Channel, Message, done, parse, read_actions, read_world, reset
 from asprilo.online.serve import listen, serve, simulator_session, solver_session
+from asprilo.reader import read_instance
 from asprilo.simulate import simulate
 from asprilo.sources import Source
 

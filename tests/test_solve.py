@@ -7,12 +7,12 @@ import threading
 import time
 
 import pytest
+from conftest import EXAMPLES, SMALL_A
 
 from asprilo.cli import main
 from asprilo.domain import Domain
 from asprilo.encodings import SolveStatus, solve
 from asprilo.reader import read_plan
-from conftest import EXAMPLES, SMALL_A
 
 M5 = EXAMPLES / "paper-m/1x2x4/x11_y6_n66_r5_s16_ps1_pr16_u16_o5_N001.lp"
 X3 = EXAMPLES / "encodings-repo/x3_y3_n9_r1_s1_ps1_pr1_u1_o1_N1.lp"

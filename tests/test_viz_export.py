@@ -10,13 +10,12 @@ import sys
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
+from conftest import OUTCOME, ROOT, SMALL_A, WRONG_OUTCOME  # noqa: E402
 from PIL import Image  # noqa: E402
 
 from asprilo.cli import main  # noqa: E402
 from asprilo.visualizer import style  # noqa: E402
 from asprilo.visualizer.export import animation_times  # noqa: E402
-
-from conftest import OUTCOME, ROOT, SMALL_A, WRONG_OUTCOME  # noqa: E402
 
 pytestmark = pytest.mark.gui
 

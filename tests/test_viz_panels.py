@@ -7,6 +7,7 @@ import os
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
+from conftest import OUTCOME, WRONG_OUTCOME  # noqa: E402
 
 from asprilo.reader import read_instance, read_plan  # noqa: E402
 from asprilo.visualizer.describe import action_text, actions_text, tooltip  # noqa: E402
@@ -17,8 +18,6 @@ from asprilo.visualizer.robot_list import RobotsModel  # noqa: E402
 from asprilo.visualizer.tables import CURRENT, DONE, TablePanel  # noqa: E402
 from asprilo.visualizer.track import Track  # noqa: E402
 from asprilo.visualizer.violation_list import ViolationsModel  # noqa: E402
-
-from conftest import OUTCOME, WRONG_OUTCOME  # noqa: E402
 
 pytestmark = pytest.mark.gui
 

@@ -7,9 +7,10 @@ import os
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
+from conftest import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME  # noqa: E402
 from PyQt5.QtCore import QPointF  # noqa: E402
 
-from asprilo.model import Instance, Plan, Action, Robot, Shelf  # noqa: E402
+from asprilo.model import Action, Instance, Plan, Robot, Shelf  # noqa: E402
 from asprilo.reader import read_instance, read_plan  # noqa: E402
 from asprilo.simulate import simulate  # noqa: E402
 from asprilo.visualizer import style  # noqa: E402
@@ -18,8 +19,6 @@ from asprilo.visualizer.items import Badge, CellMark  # noqa: E402
 from asprilo.visualizer.paths import PathMode, Trails  # noqa: E402
 from asprilo.visualizer.scene import HIGHWAY, MISSING, STORAGE, WarehouseScene  # noqa: E402
 from asprilo.visualizer.track import Track  # noqa: E402
-
-from conftest import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME  # noqa: E402
 
 pytestmark = pytest.mark.gui
 

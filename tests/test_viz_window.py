@@ -7,6 +7,7 @@ import os
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
+from conftest import OUTCOME, SMALL_A, WRONG_OUTCOME  # noqa: E402
 from PIL import Image  # noqa: E402
 from PyQt5.QtCore import QMimeData, QPoint, QSettings, Qt, QUrl  # noqa: E402
 from PyQt5.QtGui import QDropEvent  # noqa: E402
@@ -15,8 +16,6 @@ from PyQt5.QtWidgets import QAction  # noqa: E402
 from asprilo.simulate import simulate  # noqa: E402
 from asprilo.visualizer import style  # noqa: E402
 from asprilo.visualizer.window import MainWindow  # noqa: E402
-
-from conftest import OUTCOME, SMALL_A, WRONG_OUTCOME  # noqa: E402
 
 pytestmark = pytest.mark.gui
 

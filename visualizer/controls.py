@@ -7,8 +7,18 @@ import math
 
 from PyQt5.QtCore import QPoint, Qt
 from PyQt5.QtGui import QPainter, QPen
-from PyQt5.QtWidgets import (QAction, QComboBox, QHBoxLayout, QLabel, QSlider, QSpinBox, QStyle,
-                             QStyleOptionSlider, QToolButton, QWidget)
+from PyQt5.QtWidgets import (
+    QAction,
+    QComboBox,
+    QHBoxLayout,
+    QLabel,
+    QSlider,
+    QSpinBox,
+    QStyle,
+    QStyleOptionSlider,
+    QToolButton,
+    QWidget,
+)
 
 from . import style
 from .player import SPEEDS, Player

@@ -19,7 +19,7 @@ TOOL = "asprilo viz"
 class EditCommand(QUndoCommand):
     """One :class:`Edit`, done and undone on a :class:`Document`."""
 
-    def __init__(self, document: "Document", edit: Edit):
+    def __init__(self, document: Document, edit: Edit):
         super().__init__(edit.text)
         self.document = document
         self.edit = edit

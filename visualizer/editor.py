@@ -8,13 +8,13 @@ status bar and a tooltip; problems of a loaded instance are marked red like viol
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING
 
 from PyQt5.QtCore import QEvent, QObject, QPoint, Qt
 from PyQt5.QtGui import QColor, QKeySequence, QPen
-from PyQt5.QtWidgets import (QAction, QDockWidget, QFileDialog, QGraphicsRectItem, QMenu, QMessageBox,
-                             QToolTip)
+from PyQt5.QtWidgets import QAction, QDockWidget, QFileDialog, QGraphicsRectItem, QMenu, QMessageBox, QToolTip
 
 from asprilo.model import Cell, Destination, Instance, PickingStation, Robot, Shelf
 from asprilo.sources import Source
@@ -47,7 +47,7 @@ EDIT_ACTIONS: dict[str, tuple[str, str]] = {
 class Editor(QObject):
     """Edits the window's instance through a :class:`Document` (undo stack included)."""
 
-    def __init__(self, window: "MainWindow"):
+    def __init__(self, window: MainWindow):
         super().__init__(window)
         self.window = window
         self.view = window.view

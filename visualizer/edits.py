@@ -14,11 +14,12 @@ station); a carried shelf is where its robot is.
 from __future__ import annotations
 
 import copy
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any, Callable
+from typing import Any
 
-from asprilo.model import (Cell, Destination, Instance, Order, PickingStation, Product, Robot,
-                           Shelf)
+from asprilo.model import Cell, Destination, Instance, Order, PickingStation, Product, Robot, Shelf
+
 
 class _Missing:
     """The value of an entry that does not exist (before an addition, after a removal)."""
@@ -26,7 +27,7 @@ class _Missing:
     def __repr__(self) -> str:
         return "MISSING"
 
-    def __deepcopy__(self, _memo) -> "_Missing":
+    def __deepcopy__(self, _memo) -> _Missing:
         return self
 
 

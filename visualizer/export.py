@@ -9,10 +9,10 @@ from __future__ import annotations
 import importlib.util
 import io
 import math
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from fractions import Fraction
 from pathlib import Path
-from typing import Callable, Iterator
 
 from PyQt5.QtCore import QBuffer, QIODevice, QRectF, QSize, Qt
 from PyQt5.QtGui import QImage, QPainter

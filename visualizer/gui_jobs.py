@@ -12,13 +12,13 @@ from __future__ import annotations
 import copy
 import threading
 import time
-from typing import TYPE_CHECKING, Any, Callable
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 import clingo
 from PyQt5.QtCore import QObject, QSettings, QThread, pyqtSignal
 from PyQt5.QtGui import QKeySequence
-from PyQt5.QtWidgets import (QAction, QActionGroup, QHBoxLayout, QLabel, QMenu, QProgressBar, QToolButton,
-                             QWidget)
+from PyQt5.QtWidgets import QAction, QActionGroup, QHBoxLayout, QLabel, QMenu, QProgressBar, QToolButton, QWidget
 
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
@@ -41,7 +41,7 @@ class Job(QThread):
     succeeded = pyqtSignal(object)
     failed = pyqtSignal(str)
 
-    def __init__(self, title: str, work: Callable[["Job"], Any], parent: QObject | None = None):
+    def __init__(self, title: str, work: Callable[[Job], Any], parent: QObject | None = None):
         super().__init__(parent)
         self.title = title
         self.work = work
@@ -83,7 +83,7 @@ class JobBar(QWidget):
 class GuiTools(QObject):
     """The Tools menu: Generate…, Solve, Check, Cancel."""
 
-    def __init__(self, window: "MainWindow"):
+    def __init__(self, window: MainWindow):
         super().__init__(window)
         self.window = window
         self.job: Job | None = None

@@ -8,12 +8,17 @@ Outlines and labels are dropped at coarse detail, when a cell is only a few pixe
 from __future__ import annotations
 
 import math
-from functools import lru_cache
+from functools import cache
 
 from PyQt5.QtCore import QPointF, QRectF, Qt
 from PyQt5.QtGui import QBrush, QColor, QPainterPath, QPen, QPolygonF
-from PyQt5.QtWidgets import (QGraphicsEllipseItem, QGraphicsItem, QGraphicsPathItem,
-                             QGraphicsRectItem, QGraphicsSimpleTextItem)
+from PyQt5.QtWidgets import (
+    QGraphicsEllipseItem,
+    QGraphicsItem,
+    QGraphicsPathItem,
+    QGraphicsRectItem,
+    QGraphicsSimpleTextItem,
+)
 
 from . import style
 from .style import CELL
@@ -30,7 +35,7 @@ def _pen(colour: QColor, width: float, style_: Qt.PenStyle = Qt.SolidLine) -> QP
     return QPen(_cached_pen(colour.rgba(), width, int(style_)))
 
 
-@lru_cache(maxsize=None)
+@cache
 def _cached_pen(rgba: int, width: float, style_: int) -> QPen:
     pen = QPen(QColor.fromRgba(rgba), width, Qt.PenStyle(style_))
     pen.setJoinStyle(Qt.RoundJoin)
@@ -128,7 +133,7 @@ class RobotItem(QGraphicsEllipseItem, ObjectItem):
             self.ring.setVisible(selected)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _rack_path(size: float) -> QPainterPath:
     """A shelf seen from above: a rounded frame with two slats."""
     box = _square(size)
@@ -141,7 +146,7 @@ def _rack_path(size: float) -> QPainterPath:
     return path
 
 
-@lru_cache(maxsize=None)
+@cache
 def _block_path(size: float) -> QPainterPath:
     """A shelf when cells are tiny: a plain square, the cheapest shape to fill."""
     path = QPainterPath()
@@ -230,7 +235,7 @@ class ShelfLayer(QGraphicsPathItem):
         self.setPath(path)
 
 
-@lru_cache(maxsize=None)
+@cache
 def _stripes() -> QPainterPath:
     """Diagonal bands clipped to a cell: the striped look of a picking station."""
     box = _square(1.0)

@@ -28,7 +28,7 @@ if TYPE_CHECKING:
 class LiveControl(QObject):
     """Starts, follows and ends the window's online session."""
 
-    def __init__(self, window: "MainWindow"):
+    def __init__(self, window: MainWindow):
         super().__init__(window)
         self.window = window
         self.session: LiveSession | None = None

@@ -9,7 +9,7 @@ the scene can back an editor as well as the viewer.
 from __future__ import annotations
 
 import math
-from typing import Iterable, Iterator
+from collections.abc import Iterable, Iterator
 
 import numpy as np
 from PyQt5.QtCore import QRectF, Qt

@@ -7,7 +7,7 @@ downwards, as in SPEC.md.
 
 from __future__ import annotations
 
-from functools import lru_cache
+from functools import cache
 
 from PyQt5.QtCore import QPointF, QRectF
 from PyQt5.QtGui import QColor, QFont
@@ -75,7 +75,7 @@ def font(pixel_size: float, bold: bool = True) -> QFont:
     return QFont(_font(max(1, int(round(pixel_size))), bold))
 
 
-@lru_cache(maxsize=None)
+@cache
 def _font(pixel_size: int, bold: bool) -> QFont:
     result = QFont("DejaVu Sans")
     result.setPixelSize(pixel_size)

@@ -4,14 +4,24 @@ from __future__ import annotations
 
 import gc
 import json
+from collections.abc import Iterable
 from pathlib import Path
-from typing import Iterable
 
 from PyQt5.QtCore import QPointF, QSettings, Qt
 from PyQt5.QtGui import QKeySequence
-from PyQt5.QtWidgets import (QAction, QApplication, QDockWidget, QFileDialog,
-                             QInputDialog, QLabel, QMainWindow, QMessageBox,
-                             QProgressDialog, QSizePolicy, QToolBar)
+from PyQt5.QtWidgets import (
+    QAction,
+    QApplication,
+    QDockWidget,
+    QFileDialog,
+    QInputDialog,
+    QLabel,
+    QMainWindow,
+    QMessageBox,
+    QProgressDialog,
+    QSizePolicy,
+    QToolBar,
+)
 
 from asprilo.errors import InputError
 from asprilo.model import Instance

@@ -31,6 +31,7 @@ from xml.sax.saxutils import quoteattr
 
 from asprilo import __version__
 from asprilo.writer import write_text
+
 from .results import run_key
 from .runner import Runner
 from .suite import RunSpec, Suite

@@ -28,6 +28,7 @@ from pathlib import Path
 from asprilo.arguments import domain_argument
 from asprilo.errors import InputError
 from asprilo.writer import write_text
+
 from . import btool, report
 from .results import load_results
 from .runner import Runner

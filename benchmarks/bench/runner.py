@@ -16,18 +16,19 @@ from __future__ import annotations
 import json
 import sys
 import time
+from collections.abc import Callable, Iterable
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable, Iterable, TextIO
+from typing import TextIO
 
+from asprilo.checker import check
 from asprilo.domain import Domain
 from asprilo.errors import InputError
+from asprilo.generator import generate_batch
 from asprilo.reader import read_instance, read_plan
 from asprilo.sources import Source
 from asprilo.writer import write_text
-from asprilo.checker import check
-from asprilo.generator import generate_batch
 
 from .limits import kill_running, run_limited
 from .results import append_result, load_results, run_key

@@ -16,6 +16,7 @@ from pathlib import Path
 
 from asprilo.domain import Domain
 from asprilo.reader import read_instance
+
 from .runner import Instance, complete, new_record
 from .suite import RunSpec
 from .worker import run
