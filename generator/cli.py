@@ -33,7 +33,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     groups: dict[str, argparse._ArgumentGroup] = {}
     for option in OPTIONS:
         group = groups.get(option.group) or groups.setdefault(option.group, parser.add_argument_group(option.group))
-        kwargs: dict[str, Any] = {"dest": option.name, "help": option.help, "default": argparse.SUPPRESS}
+        kwargs: dict[str, Any] = {"dest": option.name, "help": option.help_text, "default": argparse.SUPPRESS}
         if option.kind == "flag":
             kwargs["action"] = "store_true"
         elif option.kind == "paths":

@@ -36,7 +36,7 @@ def save(item: Generated, directory: str | Path, prefix: str = "", instance_dir:
     return path
 
 
-class Progress:
+class WriteProgress:
     """A progress bar on stderr: redrawn in place on a terminal, a line per tenth otherwise."""
 
     WIDTH = 30

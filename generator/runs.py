@@ -19,9 +19,9 @@ from .api import generate_one
 from .batch import load_batch
 from .config import GeneratorConfig, RunOptions, parse_values
 from .options import DEFAULT_SEED, split_values
-from .output import Progress, exists, save
+from .output import WriteProgress, exists, save
 from .pipeline import GenerationFailed
-from .plan import Plan, make_plan
+from .plan import GenerationPlan, make_plan
 from .sampling import derive_seed
 
 
@@ -68,8 +68,8 @@ def run_jobs(jobs: list[Job], verbose: bool = False, stream: TextIO | None = Non
         except InputError as error:
             raise error.at(*job.where) from None
     # a progress bar when writing files (with -C the instances themselves show the progress)
-    progress = Progress(sum(job.options.count for job in jobs if not job.options.console), stream)
-    return sum(_generate(job, plan, progress, verbose, stream) for job, plan in zip(jobs, plans))
+    progress = WriteProgress(sum(job.options.count for job in jobs if not job.options.console), stream)
+    return sum(_generate(job, plan, progress, verbose, stream) for job, plan in zip(jobs, plans, strict=True))
 
 
 def generate_batch(path: str | Path, directory: str | Path, skip_existing: bool = True,
@@ -83,7 +83,7 @@ def generate_batch(path: str | Path, directory: str | Path, skip_existing: bool 
     return run_jobs(batch_jobs(path, overrides), stream=stream)
 
 
-def _generate(job: Job, plan: Plan, progress: Progress, verbose: bool, stream: TextIO) -> int:
+def _generate(job: Job, plan: GenerationPlan, progress: WriteProgress, verbose: bool, stream: TextIO) -> int:
     """Generate (and write or print) the instances of one job; returns the number that failed."""
     options = job.options
     command = job.config.command_line(options)
