@@ -12,7 +12,7 @@ import time
 from conftest import EXAMPLES
 
 from asprilo.bench import runner as runner_module
-from asprilo.bench.limits import Outcome
+from asprilo.bench.limits import LimitedRun
 from asprilo.bench.results import load_results
 from asprilo.bench.runner import Runner
 from asprilo.bench.suite import load_suite
@@ -33,9 +33,9 @@ def test_an_invalid_plan_is_a_failure(write, tmp_path, monkeypatch, capsys):
 
     def fake_run(job, time_limit, memory_mb):
         if job["kind"] == "makespan":
-            return Outcome("done", 0.1, {"status": "found", "horizon": 1, "minimal": True})
+            return LimitedRun("done", 0.1, {"status": "found", "horizon": 1, "minimal": True})
         plan = "occurs(object(robot,1),action(move,(0,-1)),1)."  # off the 2x2 floor
-        return Outcome("done", 0.2, {"status": "found", "time": 0.2, "plan": plan, "stats": {}})
+        return LimitedRun("done", 0.2, {"status": "found", "time": 0.2, "plan": plan, "stats": {}})
 
     monkeypatch.setattr(runner_module, "run_limited", fake_run)
     suite = load_suite(suite_file(write, [TINY], "[{domain: m}]"))

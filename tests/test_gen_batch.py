@@ -140,3 +140,16 @@ def test_bad_batch_file_through_the_command(write, capsys):
         f"stations and robots (-x, -y, -n, -p, -r)\n"
     assert main(["gen", "-j", str(path.parent / "missing.yml")]) == 2
     assert capsys.readouterr().err == f"error: {path.parent / 'missing.yml'}: no such file\n"
+
+
+@pytest.mark.parametrize("data, message", [
+    (b"run_configs:\n  a: {args: {'-f': 'caf\xe9'}}\n", "2: not UTF-8 text (byte 0xe9)"),
+    (b"\x89PNG\r\n\x1a\n\x00\x00", "3: a binary file, not YAML text"),  # the NUL follows two line ends
+])
+def test_batch_files_that_are_not_utf8_text_are_bad_input(tmp_path, capsys, data, message):
+    path = tmp_path / "bad.yml"
+    path.write_bytes(data)
+    assert main(["gen", "-j", str(path), "-d", str(tmp_path / "out")]) == 2
+    assert capsys.readouterr().err == f"error: {path}:{message}\n"
+    assert not (tmp_path / "out").exists()
+

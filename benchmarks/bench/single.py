@@ -17,7 +17,7 @@ from pathlib import Path
 from asprilo.domain import Domain
 from asprilo.reader import read_instance
 
-from .runner import Instance, complete, new_record
+from .runner import SuiteInstance, complete, new_record
 from .suite import RunSpec
 from .worker import run
 
@@ -34,7 +34,7 @@ def main(argv: list[str] | None = None) -> int:
     makespans = json.loads((args.instance.parent / "makespans.json").read_text())
     horizon = makespans.get(args.instance.name, {}).get(spec.label)
     robots = len(read_instance(args.instance).robots)
-    record = new_record(Instance(args.instance.parent.name, args.instance, args.instance.name, robots),
+    record = new_record(SuiteInstance(args.instance.parent.name, args.instance, args.instance.name, robots),
                         spec, horizon, args.time_limit)
     if horizon is not None:
         started = time.perf_counter()
