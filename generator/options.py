@@ -173,6 +173,9 @@ OPTIONS: tuple[Option, ...] = (
     _o("--instance-dir", "instance_dir", "flag", "one directory per instance", OUTPUT, run=True),
     _o("--se --skip-existing", "skip_existing", "flag",
        "keep instance files that exist already (resume an interrupted run or batch)", OUTPUT, run=True),
+    _o("--force", "force", "flag",
+       "replace instance files of the same name (without it or --skip-existing, gen refuses to write "
+       "over them)", OUTPUT, run=True),
 )
 
 #: flag (short and long) -> option

@@ -19,7 +19,7 @@ from .api import generate_one
 from .batch import load_batch
 from .config import GeneratorConfig, RunOptions, parse_values
 from .options import DEFAULT_SEED, split_values
-from .output import WriteProgress, exists, save
+from .output import WriteProgress, check_output_folder, exists, save
 from .pipeline import GenerationFailed
 from .plan import GenerationPlan, make_plan
 from .sampling import derive_seed
@@ -65,8 +65,12 @@ def run_jobs(jobs: list[Job], verbose: bool = False, stream: TextIO | None = Non
     for job in jobs:
         try:
             plans.append(make_plan(job.config))
+            _check_output(job.options)
         except InputError as error:
             raise error.at(*job.where) from None
+    for job in jobs:
+        if not job.options.console:
+            check_output_folder(job.directory, "-d")
     # a progress bar when writing files (with -C the instances themselves show the progress)
     progress = WriteProgress(sum(job.options.count for job in jobs if not job.options.console), stream)
     return sum(_generate(job, plan, progress, verbose, stream) for job, plan in zip(jobs, plans, strict=True))
@@ -106,7 +110,11 @@ def _generate(job: Job, plan: GenerationPlan, progress: WriteProgress, verbose: 
             sys.stdout.write(format_instance(item.instance, item.header) + "\n")
             label = item.file_name(options.prefix)
         else:
-            label = str(save(item, job.directory, options.prefix, options.instance_dir))
+            try:
+                label = str(save(item, job.directory, options.prefix, options.instance_dir, options.force))
+            except InputError:
+                progress.interrupt()
+                raise
         if verbose:
             stages = ", ".join(f"{stage} {rounds}x {seconds:.2f}s" for stage, (rounds, seconds) in item.stages.items())
             progress.interrupt()
@@ -114,6 +122,11 @@ def _generate(job: Job, plan: GenerationPlan, progress: WriteProgress, verbose: 
         if not options.console:
             progress.advance(label)
     return failed
+
+
+def _check_output(options: RunOptions) -> None:
+    if options.force and options.skip_existing:
+        raise InputError("give either --force (replace files) or --skip-existing (keep them), not both")
 
 
 def _place(job: Job) -> str:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import json
 import os
 import signal
@@ -28,16 +29,17 @@ def suite_file(write, files, runs="[{domain: m, encoding: [plain, split]}]"):
                               f"instances: {{tiny: {{files: [{listed}]}}}}\nruns: {runs}\n")
 
 
+def off_the_floor(job, time_limit, memory_mb):
+    """A solver whose makespan is 1 and whose plan breaks the rules."""
+    if job["kind"] == "makespan":
+        return LimitedRun("done", 0.1, {"status": "found", "horizon": 1, "minimal": True})
+    plan = "occurs(object(robot,1),action(move,(0,-1)),1)."  # off the 2x2 floor
+    return LimitedRun("done", 0.2, {"status": "found", "time": 0.2, "plan": plan, "stats": {}})
+
+
 def test_an_invalid_plan_is_a_failure(write, tmp_path, monkeypatch, capsys):
     """A solver that returns a plan breaking the rules: the runner's own check catches it."""
-
-    def fake_run(job, time_limit, memory_mb):
-        if job["kind"] == "makespan":
-            return LimitedRun("done", 0.1, {"status": "found", "horizon": 1, "minimal": True})
-        plan = "occurs(object(robot,1),action(move,(0,-1)),1)."  # off the 2x2 floor
-        return LimitedRun("done", 0.2, {"status": "found", "time": 0.2, "plan": plan, "stats": {}})
-
-    monkeypatch.setattr(runner_module, "run_limited", fake_run)
+    monkeypatch.setattr(runner_module, "run_limited", off_the_floor)
     suite = load_suite(suite_file(write, [TINY], "[{domain: m}]"))
     records = Runner(suite, tmp_path / "out").run()
     assert [(r["status"], r["horizon"]) for r in records] == [("invalid", 1)]
@@ -102,3 +104,58 @@ def test_btool_export_and_its_results_read_back(write, tmp_path, capsys):
     assert records[1]["time"] == 30
     assert main(["bench", "report", str(folder)]) == 0
     assert "                  split     30(1)\n" in capsys.readouterr().out  # the time-out counts at the limit
+
+
+def test_a_rerun_with_other_limits_is_refused_or_restarted(write, tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(runner_module, "run_limited", off_the_floor)
+    suite, out = suite_file(write, [TINY], "[{domain: m}]"), tmp_path / "out"
+    assert main(["bench", str(suite), "-o", str(out)]) == 0
+    before = (out / "results.jsonl").read_text()
+    capsys.readouterr()
+    assert main(["bench", str(suite), "-o", str(out), "--time-limit", "5", "--memory-limit", "1000"]) == 2
+    assert capsys.readouterr().err == (
+        f"error: {out}: its results were run with --time-limit 30.0 (this run: 5.0), --memory-limit 2048 "
+        f"(this run: 1000); give --restart to discard them and run again, or -o ANOTHER_FOLDER\n")
+    assert (out / "results.jsonl").read_text() == before
+    assert main(["bench", str(suite), "-o", str(out)]) == 0  # the same limits: resumes
+    assert (out / "results.jsonl").read_text() == before
+    assert main(["bench", str(suite), "-o", str(out), "--time-limit", "5", "--restart"]) == 0
+    assert f"{out}: earlier results discarded (--restart)\n" in capsys.readouterr().err
+    assert [(r["time_limit"], r["status"]) for r in load_results(out)] == [(5.0, "invalid")]
+
+
+def test_a_folder_of_an_older_version_is_checked_by_its_records(write, tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(runner_module, "run_limited", off_the_floor)
+    suite, out = suite_file(write, [TINY], "[{domain: m}]"), tmp_path / "out"
+    assert main(["bench", str(suite), "-o", str(out)]) == 0
+    (out / "suite.json").write_text('{"name": "t", "sets": ["tiny"]}\n')  # no limits recorded
+    assert main(["bench", str(suite), "-o", str(out), "--time-limit", "5"]) == 2
+    assert "its results were run with --time-limit 30.0 (this run: 5.0);" in capsys.readouterr().err
+
+
+def test_a_corrupt_makespans_file_is_reported_and_recomputed(write, tmp_path, monkeypatch):
+    monkeypatch.setattr(runner_module, "run_limited", off_the_floor)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "makespans.json").write_text('{"a.lp": {"M": 3')  # cut off
+    stream = io.StringIO()
+    records = Runner(load_suite(suite_file(write, [TINY], "[{domain: m}]")), out, stream=stream).run()
+    assert stream.getvalue().splitlines()[0] == (
+        f"warning: {out}/makespans.json: not a makespans file (Expecting ',' delimiter: line 1 column 17 "
+        f"(char 16)); finding the minimal makespans again")
+    assert json.loads((out / "makespans.json").read_text()) == {str(TINY): {"M": 1}}
+    assert [r["horizon"] for r in records] == [1]
+    (out / "makespans.json").write_text('{"a.lp": [1, 2]}')  # valid JSON, wrong shape
+    stream = io.StringIO()
+    Runner(load_suite(suite_file(write, [TINY], "[{domain: m}]")), out, stream=stream).run()
+    assert "not a makespans file (not a mapping of instances to makespans by domain)" in stream.getvalue()
+
+
+def test_an_output_folder_that_is_a_file_is_bad_input(write, tmp_path, capsys):
+    suite, taken = suite_file(write, [TINY], "[{domain: m}]"), write("taken", "")
+    assert main(["bench", str(suite), "-o", str(taken)]) == 2
+    assert capsys.readouterr().err == f"error: {taken}: is a file, not a folder (-o names the output folder)\n"
+    assert main(["bench", str(suite), "-o", str(taken / "sub")]) == 2
+    assert capsys.readouterr().err == \
+        f"error: {taken / 'sub'}: cannot make the output folder (-o): {taken} is a file\n"
+

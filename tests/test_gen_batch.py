@@ -121,6 +121,8 @@ BAD = [
     ("run_configs:\n  ../up: {}\n", 2, "'../up' cannot name a directory"),
     ("runs: {}\n", 1, "unknown key 'runs' (expected global_settings, run_configs)"),
     ("run_configs:\n  a: {}\n  a: {}\n", 3, "duplicate key 'a'"),
+    ("run_configs:\n  a:\n    args:\n      '-f': ../../x-\n", 4,
+     "-f must be part of a file name (no '/'), got '../../x-'"),
 ]
 
 

@@ -108,8 +108,20 @@ def test_skip_existing_keeps_files_and_fills_gaps(tmp_path):
     assert gen(*SMALL, "-N", "3", "-d", str(tmp_path), "--skip-existing") == 0
     assert sorted(tmp_path.iterdir()) == [first, second, third]
     assert first.stat().st_mtime == 1  # kept, not written again
-    assert gen(*SMALL, "-N", "3", "-d", str(tmp_path)) == 0
-    assert first.stat().st_mtime != 1  # without the option, files are written again
+
+
+
+def test_existing_files_are_replaced_only_with_force(tmp_path, capsys):
+    assert gen(*SMALL, "-N", "2", "-d", str(tmp_path)) == 0
+    first, second = sorted(tmp_path.iterdir())
+    second.write_text("% my own file\n")
+    capsys.readouterr()
+    assert gen(*SMALL, "-N", "2", "-d", str(tmp_path)) == 2
+    assert capsys.readouterr().err == \
+        f"error: {first}: exists already; give --force to replace it or --skip-existing to keep it\n"
+    assert second.read_text() == "% my own file\n"
+    assert gen(*SMALL, "-N", "2", "-d", str(tmp_path), "--force") == 0
+    assert "% instance: 2" in second.read_text() and read_instance(second).counts()["robots"] == 3
 
 
 def test_template_from_stdin(tmp_path, monkeypatch, capsys):

@@ -4,7 +4,8 @@
       make the suite's instances, find their minimal makespans, run every (instance,
       domain, encoding, assignment) under OS-enforced limits, check every plan, append
       one JSON line per run to DIR/results.jsonl and print the summary table;
-      rerunning resumes where a previous run stopped
+      rerunning resumes where a previous run stopped (with the same limits: results of
+      other limits are not mixed in; --restart discards them)
   asprilo bench report DIR
       print the paper's summary table and the tables by robot count, and write
       DIR/report/{summary.txt,results.csv,cactus.png,time-by-robots.png}; reads
@@ -27,11 +28,12 @@ from pathlib import Path
 
 from asprilo.arguments import domain_argument
 from asprilo.errors import InputError
+from asprilo.generator.output import check_output_folder
 from asprilo.writer import write_text
 
 from . import btool, report
-from .results import load_results
-from .runner import Runner
+from .results import RESULTS, load_results
+from .runner import Runner, forget_unknown_makespans
 from .suite import load_suite
 
 SUITE_ORDER = "suite.json"
@@ -45,6 +47,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--memory-limit", type=int, metavar="MB", help="MB per run (default: the suite's)")
     parser.add_argument("--domain", type=domain_argument, action="append", metavar="D",
                         help="only the runs of this domain (a|b|c|m|md; may be repeated)")
+    parser.add_argument("--restart", action="store_true",
+                        help="discard the output folder's results (e.g. to run again with other limits)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -66,11 +70,52 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("give one suite file (or: report DIR, export-btool SUITE.yml DIR)")
     suite = load_suite(words[0])
     folder = Path(args.output or Path("out") / suite.name)
+    check_output_folder(folder, "-o")
     runner = _runner(suite, folder, args)
+    limits = {"time_limit": runner.time_limit, "memory_limit": runner.memory_limit,
+              "makespan_time_limit": suite.makespan_time_limit}
+    _same_limits(folder, limits, args.restart)
     folder.mkdir(parents=True, exist_ok=True)
-    write_text(folder / SUITE_ORDER, json.dumps({"name": suite.name, "sets": [s.name for s in suite.sets]}) + "\n")
+    write_text(folder / SUITE_ORDER, json.dumps({"name": suite.name, "sets": [s.name for s in suite.sets],
+                                                  "limits": limits}) + "\n")
     runner.run()
     return _report(folder)
+
+
+#: how each limit is set, for messages
+LIMIT_NAMES = {"time_limit": "--time-limit", "memory_limit": "--memory-limit",
+               "makespan_time_limit": "the suite's makespan_time_limit"}
+
+
+def _same_limits(folder: Path, limits: dict, restart: bool) -> None:
+    """Results of runs under other limits are not mixed with this run's: refuse, or with
+    ``restart`` discard them (and the makespans not found, to search them again)."""
+    results = folder / RESULTS
+    if not results.exists():
+        return
+    if restart:
+        results.unlink()
+        forget_unknown_makespans(folder)
+        print(f"{folder}: earlier results discarded (--restart)", file=sys.stderr)
+        return
+    earlier = _recorded_limits(folder)
+    changed = [f"{LIMIT_NAMES[key]} {earlier[key]} (this run: {value})" for key, value in limits.items()
+               if key in earlier and earlier[key] != value]
+    if changed:
+        raise InputError(f"its results were run with {', '.join(changed)}; give --restart to discard them "
+                         f"and run again, or -o ANOTHER_FOLDER", str(folder))
+
+
+def _recorded_limits(folder: Path) -> dict:
+    """The limits of a folder's runs: from suite.json, or (older folders) the time limit of its records."""
+    try:
+        recorded = json.loads((folder / SUITE_ORDER).read_text(encoding="utf-8")).get("limits")
+    except (OSError, ValueError, AttributeError):
+        recorded = None
+    if isinstance(recorded, dict):
+        return recorded
+    limits = {record.get("time_limit") for record in load_results(folder)}
+    return {"time_limit": limits.pop()} if len(limits) == 1 else {}
 
 
 def _runner(suite, folder: Path, args: argparse.Namespace) -> Runner:

@@ -110,6 +110,33 @@ def makespan_status(run: LimitedRun) -> str:
     return TIMEOUT if status in (SolveStatus.LIMIT.value, SolveStatus.FOUND.value) else ERROR
 
 
+def read_makespans(path: Path, stream: TextIO) -> dict[str, dict[str, int | None]]:
+    """The makespans found before (instance -> domain label -> makespan or None); a file that is
+    not a makespans file is reported on ``stream`` and its makespans are found again."""
+    if not path.exists():
+        return {}
+    try:
+        known = json.loads(path.read_text(encoding="utf-8"))
+        if not isinstance(known, dict) or not all(
+                isinstance(spans, dict) and all(v is None or type(v) is int for v in spans.values())
+                for spans in known.values()):
+            raise ValueError("not a mapping of instances to makespans by domain")
+    except (ValueError, UnicodeDecodeError) as error:
+        stream.write(f"warning: {path}: not a makespans file ({error}); finding the minimal makespans again\n")
+        return {}
+    return known
+
+
+def forget_unknown_makespans(folder: Path) -> None:
+    """Drop the makespans not found before (null), so that they are searched again."""
+    path = folder / MAKESPANS
+    known = read_makespans(path, sys.stderr)
+    if path.exists():
+        kept = {name: {label: span for label, span in spans.items() if span is not None}
+                for name, spans in known.items()}
+        write_text(path, json.dumps(kept, indent=1, sort_keys=True) + "\n")
+
+
 class BenchProgress:
     """``[done/total]`` with solved, time-outs and failures, elapsed time and an estimate."""
 
@@ -182,7 +209,7 @@ class Runner:
     def makespans(self, instances: list[SuiteInstance]) -> dict[str, dict[str, int | None]]:
         """Minimal makespan of every instance for every domain (and assignment) the runs use."""
         path = self.folder / MAKESPANS
-        known: dict[str, dict[str, int | None]] = json.loads(path.read_text()) if path.exists() else {}
+        known = read_makespans(path, self.stream)
         todo = list(dict.fromkeys(
             (instance, spec.domain, spec.assign, spec.label) for instance in instances
             for spec in self.suite.runs
