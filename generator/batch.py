@@ -113,12 +113,20 @@ class _Batch:
         for conf in confs:
             yield from self.walk(conf, path, values)
         for key, child in children.items():
-            name = str(key)
-            if not _NAME.match(name) or name in (".", ".."):
-                raise self.fail(f"{name!r} cannot name a directory", node.key_lines[key])
-            if child is None:
-                raise self.fail(f"{'/'.join(path + (name,))} is empty", node.key_lines[key])
+            name = self.directory_name(node, key, path)
             yield from self.walk(child, path + (name,), values)
+
+    def directory_name(self, node: YamlMapping, key: Any, path: tuple[str, ...]) -> str:
+        """A key of the tree as the name of a sub-directory (checked)."""
+        name = str(key)
+        if name.startswith("-"):
+            raise self.fail(f"{name!r}: an option where a sub-directory is expected; options go under "
+                            f"'args:' (see generator/README.md)", node.key_lines[key])
+        if not _NAME.match(name) or name in (".", ".."):
+            raise self.fail(f"{name!r} cannot name a directory", node.key_lines[key])
+        if node[key] is None:
+            raise self.fail(f"{'/'.join(path + (name,))} is empty", node.key_lines[key])
+        return name
 
 
 def _first_bad_key(args: dict, error: InputError) -> Any:

@@ -20,10 +20,11 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from asprilo import __version__
 from asprilo.arguments import domain_argument
 
 from .config import parse_values
-from .options import BY_NAME, OPTIONS
+from .options import ALWAYS_ON, BY_NAME, OPTIONS, REFUSED, refuse_original
 from .runs import batch_jobs, command_job, run_jobs
 
 _TYPES = {"int": int, "float": float, "str": str, "domain": domain_argument}
@@ -47,9 +48,28 @@ def configure(parser: argparse.ArgumentParser) -> None:
                             "every run and override the file's")
     batch.add_argument("-V", "--verbose", action="store_true",
                        help="report each instance's stages (rounds and seconds) on stderr")
+    parser.add_argument("-v", "--version", action="version", version=f"gen (asprilo) {__version__}")
+    _original_flags(parser)
+
+
+class _Refused(argparse.Action):
+    """Notes a flag of the original generator that is refused (after parsing, as bad input)."""
+
+    def __call__(self, parser, namespace, values, option_string=None) -> None:
+        namespace.refused = option_string
+
+
+def _original_flags(parser: argparse.ArgumentParser) -> None:
+    """The original's flags that old command lines use: refused with advice, or taken (--random)."""
+    for flags in REFUSED:
+        parser.add_argument(*flags, action=_Refused, nargs="*", dest="refused", default=None, help=argparse.SUPPRESS)
+    for flag in ALWAYS_ON:
+        parser.add_argument(flag, action="store_true", help=argparse.SUPPRESS)
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.refused:
+        refuse_original(args.refused)
     given = {name: value for name, value in vars(args).items() if name in BY_NAME}
     values = parse_values(given)
     jobs = batch_jobs(args.batch, values) if args.batch else [command_job(values)]

@@ -15,7 +15,7 @@ from asprilo.domain import Domain
 from asprilo.errors import InputError
 from asprilo.model import Instance
 
-from .options import OPTIONS, SHORTHANDS, Option, convert, format_command, option_for, split_values
+from .options import ALWAYS_ON, OPTIONS, SHORTHANDS, Option, convert, format_command, option_for, split_values
 
 _TYPES = {"int": int, "float": float, "str": str, "flag": bool, "paths": tuple[str, ...], "domain": Domain}
 
@@ -60,8 +60,9 @@ class _ConfigMethods:
 
 class _RunMethods:
     def values(self) -> dict[str, Any]:
-        """Count and seed (what decides the instances; where they are written does not)."""
-        return {"count": self.count, "seed": self.seed}
+        """Count, seed and first number (what decides the instances; where they are written does not)."""
+        first = {"first": self.first} if self.first != 1 else {}
+        return {"count": self.count, "seed": self.seed, **first}
 
 
 def _config_field(option: Option) -> tuple[str, Any, Any]:
@@ -107,6 +108,8 @@ def parse_values(options: Mapping[str, Any]) -> dict[str, Any]:
     """
     values = {}
     for key, value in options.items():
+        if key in ALWAYS_ON:
+            continue
         option = option_for(str(key))
         values[option.name] = convert(option, value)
     for name in SHORTHANDS:

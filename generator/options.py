@@ -171,6 +171,9 @@ OPTIONS: tuple[Option, ...] = (
     _o("-f --name-prefix", "prefix", "str", "prefix of every file name", OUTPUT, "PREFIX", default="",
        checks=(name_part,), run=True),
     _o("--instance-dir", "instance_dir", "flag", "one directory per instance", OUTPUT, run=True),
+    _o("--instance-count", "first", "int",
+       "number of the first instance (default {default}): instance K is the same whatever -N is", OUTPUT, "K",
+       default=1, checks=SIZE, run=True),
     _o("--se --skip-existing", "skip_existing", "flag",
        "keep instance files that exist already (resume an interrupted run or batch)", OUTPUT, run=True),
     _o("--force", "force", "flag",
@@ -235,6 +238,7 @@ def option_for(key: str) -> Option:
     """The option named by a flag (``-x``, ``--grid-x``) or a field name (``width``)."""
     option = BY_FLAG.get(key) or BY_NAME.get(key)
     if option is None:
+        refuse_original(key)
         raise InputError(f"unknown option {key!r}")
     return option
 
@@ -265,3 +269,46 @@ def split_values(values: Mapping[str, Any]) -> tuple[dict[str, Any], dict[str, A
     config = {name: value for name, value in values.items() if not BY_NAME[name].run}
     run = {name: value for name, value in values.items() if BY_NAME[name].run}
     return config, run
+
+
+# --- flags of the original generator that this one does not take --------------------------
+
+#: flags -> what to do instead (one line each)
+REFUSED: dict[tuple[str, ...], str] = {
+    ("--rand-freq", "--sign-def"): "not needed: every choice is random, drawn from --seed "
+                                   "(give another --seed for other instances)",
+    ("--sopts", "--solve-opts"): "clingo options are not passed through (use -t for threads, -w for the "
+                                 "time limit)",
+    ("--im", "--inc-im"): "intermediate instances of -I are not written (generate them with smaller "
+                          "counts, or -V for each stage's rounds)",
+    ("--gstats",): "no grounding statistics (use -V for each stage's rounds and seconds)",
+    ("-D", "--debug"): "there is no debug output (use -V for each stage's rounds and seconds)",
+    ("--instance-dir-suffix",): "use --instance-dir (one directory per instance) or -f PREFIX",
+    ("--ph-pickstas",): "not needed: -H keeps the top row for picking stations whatever -p is (give -p)",
+    ("--ph-robots",): "not needed: -H keeps the bottom row for robots whatever -r is (give -r)",
+    ("--prj-warehouse",): "generate the warehouse without orders (leave out -o), then add orders with "
+                          "-T FILE -o N",
+    ("--prj-orders",): "add orders to an existing warehouse with -T FILE -o N",
+    ("--split",): "make the warehouses without orders (-N W, no -o), then the orders of each with "
+                  "-T FILE -o O -N K",
+    ("-c", "--cat"): "there is no category filter: run a batch file that holds only those sub-directories",
+    ("--su", "--skip-existing-sub"): "use --skip-existing: it keeps every instance file that exists, so an "
+                                     "interrupted batch resumes",
+    ("--tr", "--template-relative"): "templates in a batch file are relative to the batch file",
+    ("--preo", "--pre-only", "--pret", "--pre-too"): "batch files have no pre/var presets: every leaf of "
+                                                     "run_configs runs (see generator/README.md)",
+}
+
+#: refused flag -> its message
+REFUSED_BY_FLAG: dict[str, str] = {flag: f"{flag}: {advice}" for flags, advice in REFUSED.items()
+                                   for flag in flags}
+
+
+def refuse_original(flag: str) -> None:
+    """Raise the one-line advice for a flag of the original generator that is not taken here."""
+    if flag in REFUSED_BY_FLAG:
+        raise InputError(REFUSED_BY_FLAG[flag])
+
+
+#: flags of the original that are taken and change nothing, because what they ask for always holds
+ALWAYS_ON: dict[str, str] = {"--random": "every choice is random, drawn from --seed"}

@@ -92,7 +92,7 @@ def _generate(job: Job, plan: GenerationPlan, progress: WriteProgress, verbose: 
     options = job.options
     command = job.config.command_line(options)
     failed = 0
-    for number in range(1, options.count + 1):
+    for number in range(options.first, options.first + options.count):
         if not options.console and options.skip_existing and \
                 exists(job.directory, number, options.prefix, options.instance_dir):
             progress.advance(f"{job.directory}: N{number:03d} exists")
