@@ -48,6 +48,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
                             "every run and override the file's")
     batch.add_argument("-V", "--verbose", action="store_true",
                        help="report each instance's stages (rounds and seconds) on stderr")
+    batch.add_argument("-q", "--quiet", action="store_true",
+                       help="no progress bar and no closing line saying where the files went")
     parser.add_argument("-v", "--version", action="version", version=f"gen (asprilo) {__version__}")
     _original_flags(parser)
 
@@ -73,4 +75,4 @@ def run(args: argparse.Namespace) -> int:
     given = {name: value for name, value in vars(args).items() if name in BY_NAME}
     values = parse_values(given)
     jobs = batch_jobs(args.batch, values) if args.batch else [command_job(values)]
-    return 1 if run_jobs(jobs, args.verbose) else 0
+    return 1 if run_jobs(jobs, args.verbose, quiet=args.quiet) else 0

@@ -62,7 +62,9 @@ def test_generating_a_batch_writes_one_directory_per_leaf(tmp_path, capsys):
     assert main([*command, "-d", str(tmp_path / "again")]) == 0
     again, = (tmp_path / "again").iterdir()
     assert again.read_bytes() == (out / files[0]).read_bytes()
-    assert capsys.readouterr().err.splitlines()[-1].startswith("[12/12] ")
+    assert capsys.readouterr().err.splitlines()[-3:] == [
+        f"[12/12] {out}/{files[-1]}", f"wrote 12 instance files below {out} (12 folders)",
+        f"wrote 1 instance file to {tmp_path / 'again'}"]
 
 
 def test_presets_conf_and_lists(write):

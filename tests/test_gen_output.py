@@ -97,7 +97,7 @@ def test_prefix_instance_directories_and_progress(tmp_path, capsys):
     assert names == [f"pre_x11_y6_n66_r3_s12_ps1_pr20_u60_o4_N00{k}/pre_x11_y6_n66_r3_s12_ps1_pr20_u60_o4_N00{k}.lp"
                      for k in (1, 2)]
     err = capsys.readouterr().err
-    assert err.splitlines()[-1] == f"[2/2] {tmp_path}/{names[1]}"
+    assert err.splitlines()[-2:] == [f"[2/2] {tmp_path}/{names[1]}", f"wrote 2 instance files to {tmp_path}"]
 
 
 def test_skip_existing_keeps_files_and_fills_gaps(tmp_path):
@@ -108,6 +108,18 @@ def test_skip_existing_keeps_files_and_fills_gaps(tmp_path):
     assert gen(*SMALL, "-N", "3", "-d", str(tmp_path), "--skip-existing") == 0
     assert sorted(tmp_path.iterdir()) == [first, second, third]
     assert first.stat().st_mtime == 1  # kept, not written again
+
+
+def test_one_closing_line_says_where_the_files_went_and_q_silences_it(tmp_path, capsys):
+    assert gen(*SMALL, "-d", str(tmp_path)) == 0
+    assert capsys.readouterr().err == f"wrote 1 instance file to {tmp_path}\n"
+    assert gen(*SMALL, "-N", "3", "-d", str(tmp_path), "--se") == 0
+    assert capsys.readouterr().err.splitlines()[-1] == f"wrote 2 instance files to {tmp_path}, kept 1 that existed"
+    assert gen(*SMALL, "-N", "4", "-d", str(tmp_path), "--se", "-q") == 0
+    assert capsys.readouterr() == ("", "")
+    assert len(list(tmp_path.iterdir())) == 4
+    assert gen(*SMALL, "-C") == 0
+    assert capsys.readouterr().err == ""  # the instance on stdout is what was made
 
 
 
