@@ -5,14 +5,19 @@ from __future__ import annotations
 import io
 import json
 import os
+import re
+import shutil
 import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
+import pytest
 from conftest import EXAMPLES
 
 from asprilo.bench import runner as runner_module
+from asprilo.bench.btool import read_results
 from asprilo.bench.limits import LimitedRun
 from asprilo.bench.results import load_results
 from asprilo.bench.runner import Runner
@@ -73,37 +78,52 @@ def test_a_killed_runner_resumes_without_repeating_runs(write, tmp_path):
         str(TINY): {"M": 1}, str(SMALL): {"M": 6}}
 
 
-def test_btool_export_and_its_results_read_back(write, tmp_path, capsys):
-    """export-btool writes a runscript btool understands; report reads what such runs leave."""
-    from asprilo.bench import single
-    from asprilo.bench.btool import read_results
-    suite = suite_file(write, [SMALL])
-    folder = tmp_path / "cluster"
-    assert main(["bench", "export-btool", str(suite), str(folder)]) == 0
-    script = (folder / "runscripts/t.xml").read_text()
-    assert '<setting name="M-plain" tag="all" cmdline="--domain m --encoding plain"/>' in script
-    assert '<seqjob name="seq" timeout="30s" memout="2048"' in script
-    assert '<folder path="benchmarks/tiny"/>' in script
-    assert "{args} {files}" in (folder / "templates/asprilo.sh").read_text()
-    copied = folder / "benchmarks/tiny" / SMALL.name
-    assert json.loads((folder / "benchmarks/tiny/makespans.json").read_text()) == {SMALL.name: {"M": 6}}
-    # what btool leaves behind: a finished run of M-plain and a run of M-split that runlim stopped
-    runs = folder / "output/t-seq-tiny/cluster/results/tiny"
-    solved = runs / "asprilo-0.1.0-M-plain/tiny" / SMALL.name / "run1"
-    solved.mkdir(parents=True)
+BTOOL = shutil.which("btool", path=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}")
+
+
+def masked(summary: str) -> str:
+    """A report with the run times (and so the best-encoding marks, which follow them, and the
+    column widths) left out."""
+    return re.sub(r" +", " ", re.sub(r"-{2,}", "-", re.sub(r"\b\d+(\.\d)?\((\d+)\)( !\d+)?\*?", r"T(\2)\3", summary)))
+
+
+@pytest.mark.skipif(shutil.which("runlim") is None,
+                    reason="runlim is not installed (Debian/Ubuntu: apt-get install runlim); btool's runs need it")
+@pytest.mark.skipif(BTOOL is None, reason="btool is not installed (pip install -e '.[test]' brings "
+                                          "potassco-benchmark-tool)")
+def test_the_btool_round_trip_gives_the_local_summary(write, tmp_path, capsys):
+    """export-btool -> btool gen -> the sequential job -> btool eval -> bench report, against a local run."""
+    suite = write("suite.yml", f"name: t\ntime_limit: 60\nmemory_limit: 2048\nmakespan_time_limit: 60\n"
+                               f"instances: {{tiny: {{files: ['{TINY}']}}, small: {{files: ['{SMALL}']}}}}\n"
+                               f"runs: [{{domain: m, encoding: [plain, split]}}, {{domain: a, sets: [tiny]}}]\n")
+    cluster = tmp_path / "cluster"
+    assert main(["bench", "export-btool", str(suite), str(cluster)]) == 0
+    assert not list(cluster.glob("benchmarks/*/*.makespans.json"))  # the runs find them, not the export
+    for command in (["gen", "runscripts/t.xml"], [sys.executable, "output/t-seq/cluster/start.py"]):
+        done = subprocess.run([BTOOL, *command] if command[0] == "gen" else command, cwd=cluster,
+                              capture_output=True, text=True, timeout=300)
+        assert done.returncode == 0, done.stderr
+    evaluated = subprocess.run([BTOOL, "eval", "runscripts/t.xml"], cwd=cluster, capture_output=True, text=True,
+                               timeout=300)
+    assert evaluated.returncode == 0, evaluated.stderr
+    (cluster / "results.xml").write_text(evaluated.stdout)
     capsys.readouterr()
-    assert single.main([str(copied), "--domain", "m", "--encoding", "plain", "--time-limit", "30"]) == 0
-    (solved / "runsolver.solver").write_text(capsys.readouterr().out)
-    stopped = runs / "asprilo-0.1.0-M-split/tiny" / SMALL.name / "run1"
-    stopped.mkdir(parents=True)
-    (stopped / "runsolver.solver").write_text("")
-    (stopped / "runsolver.watcher").write_text("[runlim] time limit:\t30 seconds\n[runlim] status:\tout of time\n")
-    records = sorted(read_results(folder), key=lambda r: r["encoding"])
-    assert [(r["label"], r["encoding"], r["status"], r["horizon"]) for r in records] == [
-        ("M", "plain", "solved", 6), ("M", "split", "timeout", None)]
-    assert records[1]["time"] == 30
-    assert main(["bench", "report", str(folder)]) == 0
-    assert "                  split     30(1)\n" in capsys.readouterr().out  # the time-out counts at the limit
+    assert main(["bench", "report", str(cluster / "results.xml")]) == 0
+    from_btool = capsys.readouterr().out
+    assert main(["bench", str(suite), "-o", str(tmp_path / "local")]) == 0
+    local = capsys.readouterr().out
+    assert masked(from_btool) == masked(local)
+    assert masked(local).splitlines()[2:6] == [  # M's makespans: 1 (2x2) and 6 (the paper's r02 instance)
+        "domain makespan encoding tiny small", "- - - - -", "M 1/6 plain T(0) T(0)", " split T(0) T(0)"]
+    records = read_results(cluster / "results.xml")
+    assert sorted((r["set"], r["label"], r["encoding"], r["status"]) for r in records) == [
+        ("small", "M", "plain", "solved"), ("small", "M", "split", "solved"), ("tiny", "A", "plain", "solved"),
+        ("tiny", "M", "plain", "solved"), ("tiny", "M", "split", "solved")]
+    local_spans = json.loads((tmp_path / "local/makespans.json").read_text())
+    for instance in (TINY, SMALL):  # the runs cached the minimal makespans they found beside the instances
+        cached = json.loads((cluster / "benchmarks" / ("tiny" if instance == TINY else "small")
+                             / f"{instance.name}.makespans.json").read_text())
+        assert cached == local_spans[str(instance)]
 
 
 def test_a_rerun_with_other_limits_is_refused_or_restarted(write, tmp_path, monkeypatch, capsys):
