@@ -19,7 +19,7 @@ from conftest import EXAMPLES
 from asprilo.bench import runner as runner_module
 from asprilo.bench.btool import read_results
 from asprilo.bench.limits import LimitedRun
-from asprilo.bench.results import load_results
+from asprilo.bench.results import STATUSES, load_results
 from asprilo.bench.runner import Runner
 from asprilo.bench.suite import load_suite
 from asprilo.cli import main
@@ -87,10 +87,29 @@ def masked(summary: str) -> str:
     return re.sub(r" +", " ", re.sub(r"-{2,}", "-", re.sub(r"\b\d+(\.\d)?\((\d+)\)( !\d+)?\*?", r"T(\2)\3", summary)))
 
 
-@pytest.mark.skipif(shutil.which("runlim") is None,
-                    reason="runlim is not installed (Debian/Ubuntu: apt-get install runlim); btool's runs need it")
-@pytest.mark.skipif(BTOOL is None, reason="btool is not installed (pip install -e '.[test]' brings "
-                                          "potassco-benchmark-tool)")
+needs_runlim = pytest.mark.skipif(
+    shutil.which("runlim") is None,
+    reason="runlim is not installed (Debian/Ubuntu: apt-get install runlim); btool's runs need it")
+needs_btool = pytest.mark.skipif(
+    BTOOL is None, reason="btool is not installed (pip install -e '.[test]' brings potassco-benchmark-tool)")
+
+
+def btool_round_trip(cluster: Path) -> list[dict]:
+    """btool gen, the sequential job, btool eval (into results.xml) in an export folder; the records."""
+    for command in ([BTOOL, "gen", "runscripts/t.xml"], [sys.executable, "output/t-seq/cluster/start.py"]):
+        done = subprocess.run(command, cwd=cluster, capture_output=True, text=True, timeout=300)
+        assert done.returncode == 0, done.stderr
+    evaluated = subprocess.run([BTOOL, "eval", "runscripts/t.xml"], cwd=cluster, capture_output=True, text=True,
+                               timeout=300)
+    assert evaluated.returncode == 0, evaluated.stderr
+    (cluster / "results.xml").write_text(evaluated.stdout)
+    records = read_results(cluster / "results.xml")
+    assert {r["status"] for r in records} <= set(STATUSES)
+    return records
+
+
+@needs_runlim
+@needs_btool
 def test_the_btool_round_trip_gives_the_local_summary(write, tmp_path, capsys):
     """export-btool -> btool gen -> the sequential job -> btool eval -> bench report, against a local run."""
     suite = write("suite.yml", f"name: t\ntime_limit: 60\nmemory_limit: 2048\nmakespan_time_limit: 60\n"
@@ -99,14 +118,7 @@ def test_the_btool_round_trip_gives_the_local_summary(write, tmp_path, capsys):
     cluster = tmp_path / "cluster"
     assert main(["bench", "export-btool", str(suite), str(cluster)]) == 0
     assert not list(cluster.glob("benchmarks/*/*.makespans.json"))  # the runs find them, not the export
-    for command in (["gen", "runscripts/t.xml"], [sys.executable, "output/t-seq/cluster/start.py"]):
-        done = subprocess.run([BTOOL, *command] if command[0] == "gen" else command, cwd=cluster,
-                              capture_output=True, text=True, timeout=300)
-        assert done.returncode == 0, done.stderr
-    evaluated = subprocess.run([BTOOL, "eval", "runscripts/t.xml"], cwd=cluster, capture_output=True, text=True,
-                               timeout=300)
-    assert evaluated.returncode == 0, evaluated.stderr
-    (cluster / "results.xml").write_text(evaluated.stdout)
+    records = btool_round_trip(cluster)
     capsys.readouterr()
     assert main(["bench", "report", str(cluster / "results.xml")]) == 0
     from_btool = capsys.readouterr().out
@@ -115,7 +127,6 @@ def test_the_btool_round_trip_gives_the_local_summary(write, tmp_path, capsys):
     assert masked(from_btool) == masked(local)
     assert masked(local).splitlines()[2:6] == [  # M's makespans: 1 (2x2) and 6 (the paper's r02 instance)
         "domain makespan encoding tiny small", "- - - - -", "M 1/6 plain T(0) T(0)", " split T(0) T(0)"]
-    records = read_results(cluster / "results.xml")
     assert sorted((r["set"], r["label"], r["encoding"], r["status"]) for r in records) == [
         ("small", "M", "plain", "solved"), ("small", "M", "split", "solved"), ("tiny", "A", "plain", "solved"),
         ("tiny", "M", "plain", "solved"), ("tiny", "M", "split", "solved")]
@@ -124,6 +135,22 @@ def test_the_btool_round_trip_gives_the_local_summary(write, tmp_path, capsys):
         cached = json.loads((cluster / "benchmarks" / ("tiny" if instance == TINY else "small")
                              / f"{instance.name}.makespans.json").read_text())
         assert cached == local_spans[str(instance)]
+
+
+@needs_runlim
+@needs_btool
+def test_a_run_that_runlim_stops_counts_as_a_memout(write, tmp_path, capsys):
+    """40 MB are less than Python with clingo needs to start: runlim stops the run, whatever the machine."""
+    suite = write("suite.yml", f"name: t\ntime_limit: 60\nmemory_limit: 40\n"
+                               f"instances: {{tiny: {{files: ['{TINY}']}}}}\nruns: [{{domain: m}}]\n")
+    cluster = tmp_path / "cluster"
+    assert main(["bench", "export-btool", str(suite), str(cluster)]) == 0
+    records = btool_round_trip(cluster)
+    assert [(r["label"], r["status"], r["time"], r["time_limit"], r["robots"]) for r in records] == [
+        ("M", "memout", 60.0, 60.0, 2)]
+    capsys.readouterr()
+    assert main(["bench", "report", str(cluster / "results.xml")]) == 0
+    assert "M       -         plain     60(1)\n" in capsys.readouterr().out  # unsolved, at the limit
 
 
 def test_a_rerun_with_other_limits_is_refused_or_restarted(write, tmp_path, monkeypatch, capsys):
