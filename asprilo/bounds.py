@@ -1,7 +1,9 @@
-"""Shortest paths on the floor and the assignment lower bounds of anonymous MAPF (M, Md).
+"""Lower bounds on the makespan (and, for M/Md, the sum of costs) of every plan.
 
-Distances are 4-connected shortest paths over the floor's nodes, ignoring all other
-robots and shelves, so every bound here is admissible: no valid plan does better.
+:func:`makespan_bound` is the one bound that ``check``, ``solve`` and the benchmark reports
+use.  Distances are 4-connected shortest paths over the floor's nodes; whatever they ignore
+(other robots, shelves that could move away) only makes them smaller, so every bound here
+is admissible: no valid plan does better.
 """
 
 from __future__ import annotations
@@ -12,6 +14,7 @@ import numpy as np
 from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import shortest_path
 
+from .domain import Domain
 from .model import DIRECTIONS, Cell, Instance
 
 INFINITE = float("inf")
@@ -45,7 +48,7 @@ class Floor:
         rows = shortest_path(self.graph, method="D", unweighted=True,
                              indices=[self.index[sources[k]] for k in known])
         columns = [self.index.get(cell, -1) for cell in targets]
-        for k, row in zip(known, np.atleast_2d(rows)):
+        for k, row in zip(known, np.atleast_2d(rows), strict=True):
             result[k] = [row[c] if c >= 0 else INFINITE for c in columns]
         return result
 
@@ -128,42 +131,15 @@ def mapf_bounds(instance: Instance, floor: Floor | None = None) -> tuple[float, 
     return makespan, total
 
 
-def delivery_makespan_bound(instance: Instance, floor: Floor | None = None) -> float:
-    """An admissible makespan bound for A, B and C: the largest, over open order lines, of
-    the fewest steps any robot needs to bring a shelf holding the product to the order's
-    picking station (reach the shelf, pick it up, carry it there, deliver); ``inf`` when
-    some line cannot be served at all, 0 when there is nothing to deliver.
+def makespan_bound(instance: Instance, domain: Domain, floor: Floor | None = None) -> float:
+    """A makespan no valid plan of ``domain`` beats (``inf``: no plan exists at all).
 
-    Every line needs one delivery at least, and the shelf it comes from has to travel
-    from where it starts to the station after a robot reached and lifted it (a shelf a
-    robot starts with needs no pickup); other robots and shelves are ignored.
+    M/Md: the bottleneck assignment of robots to goal cells.  A/B/C: the delivery bounds
+    of :mod:`asprilo.delivery_bound` (order lines released no earlier than a robot can bring
+    a shelf, stations serving one robot at a time, robots one line at a time).
     """
     floor = floor or Floor(instance.cells)
-    carried = {r.carries: r.at for r in instance.robots.values() if r.carries is not None}
-    shelf_cells = {s.id: s.at for s in instance.shelves.values()}
-    shelf_cells.update(carried)
-    robot_cells = [r.at for r in instance.robots.values()]
-    lines = [(order, product) for order in instance.orders.values()
-             for product, units in order.lines.items() if units is None or units > 0]
-    if not lines:
-        return 0.0
-    shelves = sorted({shelf for _order, product in lines if product in instance.products
-                      for shelf in instance.products[product].stock if shelf in shelf_cells})
-    stations = sorted({s.at for s in instance.stations.values()})
-    column = {cell: i for i, cell in enumerate(stations)}
-    sources = [shelf_cells[s] for s in shelves]
-    to_stations = floor.distances(sources, stations)
-    to_robots = floor.distances(sources, robot_cells).min(axis=1, initial=INFINITE)
-    row = {shelf: i for i, shelf in enumerate(shelves)}
-    bound = 0.0
-    for order, product in lines:
-        station = instance.stations.get(order.station)
-        best = INFINITE
-        if station is not None and station.at in column and product in instance.products:
-            for shelf in instance.products[product].stock:
-                if shelf not in row:
-                    continue
-                fetch = 0.0 if shelf in carried else to_robots[row[shelf]] + 1
-                best = min(best, fetch + to_stations[row[shelf], column[station.at]] + 1)
-        bound = max(bound, best)
-    return float(bound)
+    if not domain.delivers:
+        return mapf_bounds(instance, floor)[0]
+    from .delivery_bound import delivery_bound
+    return delivery_bound(instance, domain, floor)

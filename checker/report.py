@@ -10,7 +10,7 @@ from typing import Any
 import clingo
 import numpy as np
 
-from asprilo.bounds import Floor, delivery_makespan_bound, mapf_bounds
+from asprilo.bounds import Floor, makespan_bound, mapf_bounds
 from asprilo.domain import Domain
 from asprilo.model import Instance, Plan
 from asprilo.reader import value_of
@@ -98,7 +98,7 @@ def metrics(instance: Instance, plan: Plan, domain: Domain, errors: list[Violati
         result["orders_fulfilled"] = len(set(instance.orders) - missed)
     floor = Floor(instance.cells)
     if domain.delivers:
-        result["makespan_bound"] = _number(delivery_makespan_bound(instance, floor))
+        result["makespan_bound"] = _number(makespan_bound(instance, domain, floor))
     else:
         makespan, total = mapf_bounds(instance, floor)
         result["makespan_bound"] = _number(makespan)

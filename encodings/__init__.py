@@ -6,7 +6,7 @@
 """
 
 from .registry import ENCODINGS, Encoding, encoding_names, find_encoding
-from .solve import Attempt, Outcome, SolveStatus, check_plan, solve
+from .search import Attempt, Outcome, Phase, SolveStatus, solve
 
 __all__ = ["ENCODINGS", "Encoding", "encoding_names", "find_encoding",
-           "Attempt", "Outcome", "SolveStatus", "check_plan", "solve"]
+           "Attempt", "Outcome", "Phase", "SolveStatus", "solve"]

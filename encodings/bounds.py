@@ -1,10 +1,7 @@
-"""Admissible makespan lower bounds, and pruning hints for the M encodings.
+"""What the planners know beyond the instance: goal pairs no plan of a given length uses
+(a pruning hint for the M encodings) and the bound of plans that follow a task assignment.
 
-No valid plan is shorter than :func:`lower_bound`, so the minimal-makespan search may start
-there.  M/Md: the bottleneck assignment of robots to goal cells.  A/B/C: every order line
-needs a shelf that holds its product brought to its station (fetch, pick up, carry,
-deliver), and deliveries at one station happen one per step.  Distances ignore robots and
-shelves in the way, which only makes the bounds smaller.
+The makespan bound of every plan is :func:`asprilo.bounds.makespan_bound`.
 """
 
 from __future__ import annotations
@@ -17,63 +14,10 @@ import numpy as np
 from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import connected_components, maximum_bipartite_matching
 
-from asprilo.bounds import Floor, goal_cells, mapf_bounds
-from asprilo.domain import Domain
+from asprilo.bounds import Floor, goal_cells
 from asprilo.model import Cell, Instance
 
 INFINITE = math.inf
-
-
-def lower_bound(instance: Instance, domain: Domain, floor: Floor | None = None) -> float:
-    """A makespan no valid plan of ``domain`` beats (``inf``: no plan exists at all)."""
-    floor = floor or Floor(instance.cells)
-    if not domain.delivers:
-        return mapf_bounds(instance, floor)[0]
-    return _delivery_bound(instance, domain, floor)
-
-
-def _delivery_bound(instance: Instance, domain: Domain, floor: Floor) -> float:
-    shelves = {s.id: s.at for s in instance.shelves.values()}
-    carriers = {r.carries: r.at for r in instance.robots.values() if r.carries is not None}
-    shelves.update(carriers)
-    if not instance.orders:
-        return 0.0
-    ids = sorted(shelves)
-    cells = [shelves[s] for s in ids]
-    robots = [r.at for r in instance.robots.values()]
-    # the earliest step at which each shelf can be carried: reached by a robot, picked up
-    fetch = floor.distances(cells, robots).min(axis=1, initial=INFINITE) + 1
-    fetch[[k for k, s in enumerate(ids) if s in carriers]] = 0
-    stations = {ps.id: ps.at for ps in instance.stations.values()}
-    station_ids = sorted(stations)
-    carry = floor.distances(cells, [stations[p] for p in station_ids])  # shelves x stations
-    stock = instance.shelf_stock()
-    bound = 0.0
-    for station_index, station in enumerate(station_ids):
-        orders = [o for o in instance.orders.values() if o.station == station]
-        lines = [(o, p) for o in orders for p in o.lines]
-        if not lines:
-            continue
-        arrivals = []
-        for order, product in lines:
-            holders = [k for k, s in enumerate(ids) if product in stock.get(s, {})]
-            arrival = min((fetch[k] + carry[k, station_index] for k in holders), default=INFINITE)
-            arrivals.append(arrival)
-            bound = max(bound, arrival + 1)  # the line's first delivery
-        deliveries = 1 if domain is Domain.C else sum(
-            _deliveries(order.lines[product], product, stock, domain) for order, product in lines)
-        bound = max(bound, min(arrivals) + deliveries)
-    if any(o.station not in stations for o in instance.orders.values()):
-        return INFINITE
-    return float(bound)
-
-
-def _deliveries(units: int | None, product: int, stock: dict, domain: Domain) -> int:
-    """How many deliveries one order line needs at least."""
-    if domain is not Domain.A or units is None:
-        return 1
-    largest = max((amounts[product] or 1 for amounts in stock.values() if product in amounts), default=0)
-    return math.ceil(units / largest) if largest else 1
 
 
 def unusable_goals(instance: Instance, horizon: int, floor: Floor | None = None) -> list[tuple[int, tuple]]:
@@ -101,7 +45,7 @@ def unusable_goals(instance: Instance, horizon: int, floor: Floor | None = None)
     heads = np.concatenate([n + columns[unmatched], np.arange(n)])
     graph = csr_matrix((np.ones(len(tails)), (tails, heads)), shape=(2 * n, 2 * n))
     _, component = connected_components(graph, directed=True, connection="strong")
-    return [(robots[r], goals[g]) for r, g in zip(rows, columns)
+    return [(robots[r], goals[g]) for r, g in zip(rows, columns, strict=True)
             if matching[r] != g and component[r] != component[n + g]]
 
 

@@ -25,7 +25,7 @@ from asprilo.errors import InputError
 from asprilo.writer import format_action, format_plan, write_text
 
 from .registry import ENCODINGS
-from .solve import Attempt, Outcome, solve
+from .search import Attempt, Outcome, solve
 
 
 def configure(parser: argparse.ArgumentParser) -> None:

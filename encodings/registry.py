@@ -9,8 +9,6 @@ from asprilo.domain import Domain
 from asprilo.errors import InputError
 
 HERE = Path(__file__).resolve().parent
-M_DOMAINS = frozenset({Domain.M, Domain.MD})
-
 
 @dataclass(frozen=True)
 class Encoding:
@@ -19,7 +17,8 @@ class Encoding:
     ``program`` is the main file (it includes the rest); ``theory`` the clingo extension it
     needs (``"clingcon"``, ``"dl"`` or ``None``); an ``incremental`` encoding has
     ``#program step(t)`` / ``check(t)`` parts and a ``query(t)`` external instead of a
-    ``horizon`` constant.
+    ``horizon`` constant.  ``names`` is the program that turns a model of an encoding
+    with anonymous robots into a plan (``None``: the model shows ``occurs/3`` itself).
     """
 
     name: str
@@ -28,6 +27,7 @@ class Encoding:
     theory: str | None
     incremental: bool
     summary: str
+    names: Path | None = None
 
 
 def _m(name: str, file: str, theory: str | None, summary: str) -> list[Encoding]:
@@ -37,8 +37,8 @@ def _m(name: str, file: str, theory: str | None, summary: str) -> list[Encoding]
 
 def _abc(name: str, folder: str, theory: str | None, summary: str,
          domains: str = "abc") -> list[Encoding]:
-    return [Encoding(name, Domain(d), HERE / folder / f"{d}.lp", theory,
-                     folder.endswith("incremental"), summary) for d in domains]
+    return [Encoding(name, Domain(d), HERE / folder / f"{d}.lp", theory, False, summary,
+                     names=HERE / "abc" / "names.lp") for d in domains]
 
 
 ENCODINGS: tuple[Encoding, ...] = tuple([
@@ -49,11 +49,8 @@ ENCODINGS: tuple[Encoding, ...] = tuple([
     *_m("plain-inc", "incremental/plain.lp", None, "plain, multi-shot over the horizon"),
     *_m("split-inc", "incremental/split.lp", None, "split, multi-shot over the horizon"),
     *_m("clingcon-inc", "incremental/clingcon.lp", "clingcon", "clingcon, multi-shot over the horizon"),
-    *_abc("plain", "abc", None, "shared action theory + the domain's delivery and goal"),
-    *_abc("plain-inc", "abc/incremental", None, "plain, multi-shot over the horizon"),
-    *_abc("clingcon", "abc/clingcon", "clingcon", "quantities as clingcon integer variables", "a"),
-    *_abc("clingcon-inc", "abc/clingcon/incremental", "clingcon",
-          "clingcon, multi-shot over the horizon", "a"),
+    *_abc("plain", "abc", None, "anonymous robots, named shelves in distance bands + the domain's deliveries"),
+    *_abc("clingcon", "abc/clingcon", "clingcon", "plain, with quantities as clingcon integer variables", "a"),
 ])
 
 

@@ -5,11 +5,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import pytest
 from conftest import EXAMPLES
 
-from asprilo.bounds import Floor, bottleneck_assignment, mapf_bounds, min_cost_assignment
-from asprilo.model import Robot
+from asprilo.bounds import Floor, bottleneck_assignment, makespan_bound, mapf_bounds, min_cost_assignment
+from asprilo.domain import Domain
+from asprilo.model import Instance, Robot
 from asprilo.reader import read_instance
+from asprilo.sources import Source
 
 
 def test_distances_around_a_wall():
@@ -40,3 +43,84 @@ def test_md_bounds_count_each_destination_once():
     from asprilo.model import Destination
     instance.destinations = {1: Destination(1, (2, 1)), 2: Destination(2, (3, 2))}
     assert mapf_bounds(instance) == (1.0, 2.0)
+
+
+# --- A, B, C: releases, blocked carrying, station sequencing, the scheduling relaxation ------
+
+def _row_world(width: int, height: int, robots: dict, shelves: dict, station: tuple, lines: dict,
+               units: int = 1, demand: int = 1, carries: dict | None = None) -> Instance:
+    """A full grid; ``shelves`` id -> cell, product k on shelf k; ``lines`` order -> product."""
+    facts = [f"init(object(grid,1),value(xsize,{width})). init(object(grid,1),value(ysize,{height}))."]
+    facts += [f"init(object(robot,{r}),value(at,{cell}))." for r, cell in robots.items()]
+    facts += [f"init(object(robot,{r}),value(carries,{s}))." for r, s in (carries or {}).items()]
+    facts += [f"init(object(shelf,{s}),value(at,{cell})). init(object(product,{s}),value(on,({s},{units})))."
+              for s, cell in shelves.items()]
+    facts.append(f"init(object(pickingStation,1),value(at,{station})).")
+    facts += [f"init(object(order,{o}),value(line,({p},{demand}))). init(object(order,{o}),value(pickingStation,1))."
+              for o, p in lines.items()]
+    return read_instance(Source("<world>", "\n".join(facts)))
+
+
+def test_a_line_is_released_after_reaching_lifting_and_carrying_its_shelf():
+    # R.S.P: 2 moves to the shelf, a pickup, 2 moves to the station, the delivery
+    instance = _row_world(5, 1, {1: (1, 1)}, {1: (3, 1)}, (5, 1), {1: 1})
+    assert [makespan_bound(instance, d) for d in (Domain.A, Domain.B, Domain.C)] == [6, 6, 6]
+    # a robot that starts carrying the shelf needs neither the walk nor the pickup
+    carried = _row_world(5, 1, {1: (3, 1)}, {1: (3, 1)}, (5, 1), {1: 1}, carries={1: 1})
+    assert makespan_bound(carried, Domain.B) == 3
+
+
+def test_a_carried_shelf_waits_until_the_shelf_in_its_way_can_be_gone():
+    # R.SSP: shelf 2 on (4,1) blocks the way; the robot reaches it at 3 at the earliest, lifts
+    # it at 4, and the cell is free at 5: shelf 1 (lifted at 3) is on (4,1) at 5 and on the
+    # station at 6, delivered at 7 (one more than on an empty floor)
+    instance = _row_world(5, 1, {1: (1, 1)}, {1: (3, 1), 2: (4, 1)}, (5, 1), {1: 1})
+    assert makespan_bound(instance, Domain.B) == 7
+
+
+def test_one_station_and_one_near_robot_serve_two_lines_in_turn():
+    # 8x2 floor, station (1,1), shelves (3,1) and (4,1), robot 1 at (4,2), robot 2 far at (8,2).
+    # Releases: shelf 1 at 6 (robot 1: 2 moves, pickup, 2 moves, deliver), shelf 2 at 7 (its way
+    # west waits for shelf 1 to be lifted, at 3, gone at 4).  One station: 6, then 8 at best.
+    # But both are robot 1's: its second delivery needs a whole cycle (>= 7 steps), and robot 2
+    # delivers at 10 at the earliest (5 moves, pickup, 3 moves, deliver): the bound is 10.
+    instance = _row_world(8, 2, {1: (4, 2), 2: (8, 2)}, {1: (3, 1), 2: (4, 1)}, (1, 1), {1: 1, 2: 2})
+    assert makespan_bound(instance, Domain.B) == 10
+    # the same with robot 2 next to robot 1: robot 1 at 6, robot 2 at 8 (station bound)
+    close = _row_world(8, 2, {1: (4, 2), 2: (5, 2)}, {1: (3, 1), 2: (4, 1)}, (1, 1), {1: 1, 2: 2})
+    assert makespan_bound(close, Domain.B) == 8
+
+
+def test_a_line_that_needs_two_shelves_needs_two_visits():
+    # A: the line asks for 2 units, each shelf holds 1: two deliveries from two shelves, so the
+    # second comes two steps after the first at the earliest
+    facts = """
+        init(object(grid,1),value(xsize,5)). init(object(grid,1),value(ysize,2)).
+        init(object(robot,1),value(at,(1,2))). init(object(robot,2),value(at,(2,2))).
+        init(object(shelf,1),value(at,(3,1))). init(object(shelf,2),value(at,(3,2))).
+        init(object(product,1),value(on,(1,1))). init(object(product,1),value(on,(2,1))).
+        init(object(pickingStation,1),value(at,(5,1))).
+        init(object(order,1),value(line,(1,2))). init(object(order,1),value(pickingStation,1)).
+    """
+    instance = read_instance(Source("<world>", facts))
+    # shelf 1: robot 1 walks (1,2)->(3,1) in 3, lifts at 4, carries 2 moves: station at 6,
+    # delivers at 7; shelf 2 likewise (robot 2, 1 move + lift = 2; (3,2)->(5,1) 3 moves) at 6.
+    # Two visits: 6 + 1 delivery + 1 change of shelf = 8 in A; B needs one delivery: 6
+    assert makespan_bound(instance, Domain.A) == 8
+    assert makespan_bound(instance, Domain.B) == 6
+
+
+def test_no_line_or_an_unreachable_line():
+    assert makespan_bound(_row_world(5, 1, {1: (1, 1)}, {1: (3, 1)}, (5, 1), {}), Domain.B) == 0
+    missing = _row_world(5, 1, {1: (1, 1)}, {1: (3, 1)}, (5, 1), {1: 7})
+    assert makespan_bound(missing, Domain.B) == math.inf
+
+
+@pytest.mark.parametrize("name, domain, minimal", [
+    ("x2_y2_n4_r2_s2_ps1_pr2_u4_o2_N1", Domain.C, 4), ("x2_y2_n4_r2_s2_ps1_pr2_u4_o2_N1", Domain.B, 5),
+    ("x3_y3_n9_r1_s1_ps1_pr1_u1_o1_N1", Domain.B, 9), ("x4_y4_n16_r2_s3_ps1_pr2_u4_o2_N1", Domain.C, 7),
+    ("x4_y4_n16_r2_s3_ps1_pr2_u4_o2_N1", Domain.A, 8)])
+def test_the_delivery_bound_never_exceeds_a_minimal_makespan(name, domain, minimal):
+    """Minimal makespans found by brute force over all joint moves (tests/test_brute_force.py)."""
+    bound = makespan_bound(read_instance(EXAMPLES / f"encodings-repo/{name}.lp"), domain)
+    assert 0 < bound <= minimal

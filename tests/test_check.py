@@ -11,7 +11,7 @@ import pytest
 from conftest import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
 from test_check_world import plan, walk, world
 
-from asprilo.bounds import delivery_makespan_bound
+from asprilo.bounds import makespan_bound
 from asprilo.checker import check
 from asprilo.checker.programs import run_checker
 from asprilo.cli import main
@@ -63,10 +63,12 @@ def test_packed_and_plain_facts_give_the_same_atoms(small_a):
 
 def test_metrics_of_the_outcome(small_a):
     report = check(small_a, read_plan(OUTCOME))
+    bound = makespan_bound(small_a, Domain.A)  # its value is tested on hand-made cases in test_bounds.py
     assert report.metrics == {
         "horizon": 29, "actions": {"deliver": 11, "move": 58, "pickup": 5, "putdown": 5},
         "sum_of_costs": 87, "idle_steps": 8, "orders": 3, "orders_fulfilled": 3,
-        "makespan_bound": 12, "makespan_ratio": round(29 / 12, 3)}
+        "makespan_bound": bound, "makespan_ratio": round(29 / bound, 3)}
+    assert 0 < bound <= 29  # the outcome is a valid plan of 29 steps
     assert check(small_a, read_plan(WRONG_OUTCOME)).metrics["orders_fulfilled"] == 2
 
 
@@ -88,26 +90,6 @@ def test_md_metrics_count_destinations():
     assert report.domain is Domain.MD
     assert (report.metrics["destinations"], report.metrics["destinations_reached"]) == (2, 1)
     assert [e.atom for e in report.errors] == ["err(goal,unoccupiedDestination,(2,2))"]
-
-
-def test_delivery_bound_is_reach_lift_carry_deliver(small_a):
-    # robot at (1,1), shelf at (3,1), station at (5,1): 2 moves + pickup + 2 moves + deliver
-    instance = world("R.S.P", products={1: {1: 1}}, orders={1: ({1: 1}, 1)})
-    assert delivery_makespan_bound(instance) == 6
-    instance.robots[1].carries = 1
-    instance.robots[1].at = (3, 1)
-    assert delivery_makespan_bound(instance) == 3  # no pickup for a shelf it carries already
-    assert delivery_makespan_bound(world("R.S.P", products={1: {1: 1}}, orders={1: ({2: 1}, 1)})) == math.inf
-    assert delivery_makespan_bound(world("R.S.P")) == 0
-    assert delivery_makespan_bound(small_a) == 12
-
-
-@pytest.mark.parametrize("name, minimal", [("x2_y2_n4_r2_s2_ps1_pr2_u4_o2_N1", 5), ("x3_y3_n9_r1_s1_ps1_pr1_u1_o1_N1", 10),
-                                           ("x4_y4_n16_r2_s3_ps1_pr2_u4_o2_N1", 8),
-                                           ("x19_y9_n171_r5_s45_ps3_pr10_u40_o6_N1", 18)])
-def test_delivery_bound_stays_below_the_known_minimal_c_horizons(name, minimal):
-    bound = delivery_makespan_bound(read_instance(EXAMPLES / f"encodings-repo/{name}.lp"))
-    assert 0 < bound <= minimal
 
 
 # --- raw facts ---------------------------------------------------------------------------
@@ -161,6 +143,9 @@ def _run(capsys, *argv, stdin: str | None = None) -> tuple[int, str, str]:
     return code, out, err
 
 
+BOUND = int(makespan_bound(read_instance(SMALL_A), Domain.A))
+
+
 def test_check_prints_one_line_per_violation_then_a_summary(capsys):
     code, out, _ = _run(capsys, SMALL_A, WRONG_OUTCOME)
     assert code == 1
@@ -171,8 +156,15 @@ def test_check_prints_one_line_per_violation_then_a_summary(capsys):
         "invalid plan: 3 violations (domain A (detected), horizon 29)",
         "actions: 79 (11 deliver, 58 move, 5 pickup, 5 putdown); sum of costs 87, idle steps 8",
         "orders fulfilled: 2 of 3",
-        "lower bounds: makespan 12 (plan/bound 2.42)",
+        f"lower bounds: makespan {BOUND} (plan/bound {29 / BOUND:.2f})",
     ]
+
+
+def test_check_and_solve_report_the_same_bound(small_a):
+    from asprilo.encodings import solve
+    for domain in (Domain.A, Domain.B, Domain.C):
+        checked = check(small_a, read_plan(OUTCOME), domain).metrics["makespan_bound"]
+        assert solve(small_a, domain, horizon=1).lower_bound == checked
 
 
 def test_check_valid_plan_exits_0_and_reads_clingo_output_from_stdin(capsys):

@@ -1,11 +1,15 @@
 """Find a plan of minimal makespan: a reference encoding over growing horizons, or max-flow.
 
-Without a horizon, the search starts at an admissible lower bound (:mod:`.bounds`) and
-goes up one step at a time.  Single-shot encodings are grounded afresh for every horizon
-(their pruning depends on it); incremental ones ground one more ``step(t)`` part and move
-the ``query(t)`` external instead.  The first horizon with a plan is the minimal makespan
-when every horizon below it was proven to have none.  Every plan is checked before it is
-returned.
+Without a horizon, the search starts at an admissible lower bound (:func:`asprilo.bounds.
+makespan_bound`) and goes up one step at a time.  Every horizon is grounded afresh (the
+encodings prune with distances to the horizon); incremental encodings instead ground one
+more ``step(t)`` part and move the ``query(t)`` external.  The first horizon with a plan
+is the minimal makespan when every horizon below it was refuted.  Every plan is checked
+before it is returned.
+
+clingo cannot be interrupted while it grounds, so ``solve(..., isolate=True)`` runs the
+whole search in a child process that is killed at the time limit: the limit then holds in
+every phase, and the horizons refuted so far still prove a bound.
 """
 
 from __future__ import annotations
@@ -20,18 +24,18 @@ from typing import Any
 
 import clingo
 
-from asprilo.bounds import Floor
-from asprilo.checker import check
-from asprilo.checker.report import Report
+from asprilo.bounds import Floor, makespan_bound
+from asprilo.checker import Report, check
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
+from asprilo.isolation import run_isolated
 from asprilo.model import Instance, Plan
 from asprilo.reader import plan_from_atoms, read_instance
 from asprilo.solver import Result, Solver, Statistics, Status
 from asprilo.writer import format_instance
 
 from .assignment import Assignment, assign_tasks
-from .bounds import assignment_bound, lower_bound, unusable_goals
+from .bounds import assignment_bound, unusable_goals
 from .flow import flow_plan
 from .registry import Encoding, find_encoding
 
@@ -40,12 +44,14 @@ ASSIGNMENT_SHARE = 0.2
 ASSIGNMENT_SECONDS = 10.0
 #: after a plan along an assignment, how long to look for shorter plans without it
 TIGHTEN_SECONDS = 10.0
+#: the clasp configuration of the A/B/C searches (measured best on the paper's instances)
+ABC_OPTIONS = ("--configuration=trendy",)
 
 
 class SolveStatus(str, Enum):
     FOUND = "found"          # a plan, checked
     NONE = "none"            # proven: no plan (at the given horizon, or at any horizon)
-    LIMIT = "limit"          # the time limit or the largest horizon came first
+    LIMIT = "limit"          # the time or memory limit, or the largest horizon, came first
     CANCELLED = "cancelled"  # stopped by the caller
     INVALID = "invalid"      # the plan failed the check (a bug in an encoding)
 
@@ -62,6 +68,14 @@ class Attempt:
     result: str
     seconds: float
     note: str = ""
+
+
+@dataclass
+class Phase:
+    """What the search is doing now: ``grounding``, ``solving`` or ``assigning`` (horizon 0)."""
+
+    name: str
+    horizon: int
 
 
 @dataclass
@@ -92,39 +106,167 @@ class Outcome:
     def found(self) -> bool:
         return self.status is SolveStatus.FOUND
 
+    @property
+    def refuted(self) -> list[int]:
+        """The horizons proven to have no plan (with an assignment: only those tried without)."""
+        return sorted({a.horizon for a in self.horizons_tried
+                       if a.result == "unsat" and (a.note or self.assignment is None)})
+
+    @property
+    def proven_bound(self) -> float:
+        """No plan is shorter: the lower bound raised past every horizon refuted in a row."""
+        bound = self.lower_bound
+        for horizon in self.refuted:
+            if horizon == bound:
+                bound += 1
+        return bound
+
 
 Progress = Callable[[Attempt], None]
+PhaseListener = Callable[[Phase], None]
 
+
+def solve(instance: Instance | str | Path, domain: Domain | str | None = None, encoding: str = "plain",
+          horizon: int | None = None, assign: bool = False, time_limit: float | None = None,
+          method: str = "asp", on_progress: Progress | None = None,
+          cancel: threading.Event | None = None, max_horizon: int | None = None,
+          on_phase: PhaseListener | None = None, isolate: bool = False,
+          memory_limit: int | None = None) -> Outcome:
+    """Find a plan for ``instance`` (an :class:`Instance` or a path).
+
+    ``domain``: a|b|c|m|md or a :class:`Domain` (default: detected).  ``encoding``: a name
+    from :data:`ENCODINGS` (``method="asp"``).  ``horizon``: solve at this makespan only;
+    without it, search the minimal makespan upwards from a lower bound, up to
+    ``max_horizon``.  ``assign``: compute a task assignment first and make the planner
+    follow it.  ``method="flow"``: the exact max-flow solver of M/Md.  ``on_progress`` is
+    called after every horizon, ``on_phase`` when grounding or solving starts; setting
+    ``cancel`` stops the search from another thread.  ``isolate``: search in a child
+    process, so that ``time_limit`` and ``memory_limit`` (MB) hold while clingo grounds.
+    """
+    if not isinstance(instance, Instance):
+        instance = read_instance(instance)
+    domain = detect_domain(instance) if domain is None else Domain.parse(domain)
+    _check_request(instance, domain, horizon, assign, method)
+    program = find_encoding(domain, encoding) if method == "asp" else None
+    if isolate:
+        return _solve_isolated(instance, domain, program, horizon, assign, time_limit, method,
+                               on_progress, on_phase, cancel, max_horizon, memory_limit)
+    return _solve_here(instance, domain, program, horizon, assign, time_limit, method,
+                       on_progress, on_phase, cancel, max_horizon)
+
+
+def _check_request(instance: Instance, domain: Domain, horizon: int | None, assign: bool, method: str) -> None:
+    if horizon is not None and horizon < 0:
+        raise InputError(f"the horizon must be at least 0, got {horizon}")
+    if method not in ("asp", "flow"):
+        raise InputError(f"unknown method '{method}' (choose asp or flow)")
+    if method == "flow" and domain.delivers:
+        raise InputError(f"the flow method solves domains M and Md only, not {domain.label}")
+    if instance.assignment and method == "flow":
+        raise InputError("the instance assigns goals to robots; the flow method solves anonymous "
+                         "goals only (use --method asp)")
+    if instance.assignment and assign:
+        raise InputError("the instance assigns goals to robots already; leave out --assign")
+
+
+def _solve_here(instance: Instance, domain: Domain, program: Encoding | None, horizon: int | None,
+                assign: bool, time_limit: float | None, method: str, on_progress: Progress | None,
+                on_phase: PhaseListener | None, cancel: threading.Event | None,
+                max_horizon: int | None) -> Outcome:
+    watch = _Watch(time_limit, cancel, on_progress, on_phase)
+    try:
+        if method == "flow":
+            outcome = _solve_flow(instance, domain, horizon, watch)
+        else:
+            outcome = _Search(instance, domain, program, horizon, assign, watch, max_horizon).run()
+    finally:
+        watch.close()
+    outcome.stats = watch.totals()
+    if outcome.plan is not None:
+        outcome.check = check(instance, outcome.plan, domain)
+        if not outcome.check.valid:
+            outcome.status = SolveStatus.INVALID
+            outcome.message = "the plan failed the check: " + "; ".join(
+                error.message for error in outcome.check.errors[:3])
+    return outcome
+
+
+def _solve_isolated(instance: Instance, domain: Domain, program: Encoding | None, horizon: int | None,
+                    assign: bool, time_limit: float | None, method: str, on_progress: Progress | None,
+                    on_phase: PhaseListener | None, cancel: threading.Event | None,
+                    max_horizon: int | None, memory_limit: int | None) -> Outcome:
+    def forward(message: Attempt | Phase) -> None:
+        if isinstance(message, Attempt) and on_progress is not None:
+            on_progress(message)
+        elif isinstance(message, Phase) and on_phase is not None:
+            on_phase(message)
+
+    child = run_isolated(_search_in_child, (instance, domain, program, horizon, assign, time_limit,
+                                            method, max_horizon),
+                         time_limit=None if time_limit is None else time_limit + 0.5,
+                         memory_mb=memory_limit, on_message=forward, cancel=cancel)
+    if child.done:
+        return child.value
+    outcome = Outcome(SolveStatus.CANCELLED if cancel is not None and cancel.is_set() else SolveStatus.LIMIT,
+                      domain, method, program.name if program else "flow")
+    outcome.horizons_tried = [m for m in child.messages if isinstance(m, Attempt)]
+    outcome.lower_bound = next((m.horizon for m in child.messages if isinstance(m, Phase)
+                                and m.name == "bound"), 0)
+    outcome.message = {"timeout": f"stopped at the time limit ({time_limit:g} s)" if time_limit else "stopped",
+                       "memout": f"stopped at the memory limit ({memory_limit} MB)",
+                       "crashed": f"the solver process died ({child.detail})"}[child.status]
+    if outcome.status is SolveStatus.CANCELLED:
+        outcome.message = "cancelled"
+    return outcome
+
+
+def _search_in_child(instance, domain, program, horizon, assign, time_limit, method, max_horizon,
+                     report) -> Outcome:
+    return _solve_here(instance, domain, program, horizon, assign, time_limit, method,
+                       report, report, None, max_horizon)
+
+
+# --- time, cancellation, statistics ------------------------------------------------------
 
 class _Watch:
-    """Time budget and cancellation of one :func:`solve` call.
+    """Time budget, cancellation, progress and statistics of one search.
 
     A helper thread interrupts the running clingo solver as soon as ``cancel`` is set;
     grounding is not interruptible, so a cancelled search stops at its next solve call.
     """
 
-    def __init__(self, time_limit: float | None, cancel: threading.Event | None):
+    def __init__(self, time_limit: float | None, cancel: threading.Event | None,
+                 on_progress: Progress | None, on_phase: PhaseListener | None):
         self.started = time.perf_counter()
         self.deadline = None if time_limit is None else self.started + time_limit
         self.cancel = cancel
+        self.on_progress, self.on_phase = on_progress, on_phase
         self.current: Solver | None = None
+        self.solvers: list[Statistics] = []
         self.done = threading.Event()
-        self.stats = Statistics()
         if cancel is not None:
             threading.Thread(target=self._watch, daemon=True).start()
 
     def _watch(self) -> None:
         while not self.done.is_set():
             if self.cancel.wait(0.05):
-                solver = self.current
-                if solver is not None:
-                    solver.control.interrupt()
+                if self.current is not None:
+                    self.current.control.interrupt()
                 return
 
     def attach(self, solver: Solver) -> None:
         self.current = solver
+        self.solvers.append(solver.stats)
         if self.cancelled:
             solver.control.interrupt()
+
+    def phase(self, name: str, horizon: int) -> None:
+        if self.on_phase is not None:
+            self.on_phase(Phase(name, horizon))
+
+    def progress(self, attempt: Attempt) -> None:
+        if self.on_progress is not None:
+            self.on_progress(attempt)
 
     @property
     def cancelled(self) -> bool:
@@ -137,92 +279,35 @@ class _Watch:
     def expired(self) -> bool:
         return self.deadline is not None and time.perf_counter() >= self.deadline
 
-    def solve(self, solver: Solver, limit: float | None = None) -> Result:
-        self.attach(solver)
-        before = Statistics(**solver.stats.as_dict())
-        remaining = self.remaining()
-        if limit is not None:
-            remaining = limit if remaining is None else min(limit, remaining)
-        result = solver.solve(time_limit=remaining)
-        after = solver.stats
-        self.stats.solve_time += after.solve_time - before.solve_time
-        self.stats.choices += after.choices - before.choices
-        self.stats.conflicts += after.conflicts - before.conflicts
-        self.stats.rules, self.stats.atoms = after.rules, after.atoms
-        return result
-
-    def ground(self, solver: Solver, parts=(("base", ()),)) -> None:
-        started = time.perf_counter()
-        solver.ground(parts)
-        self.stats.ground_time += time.perf_counter() - started
+    def totals(self) -> dict[str, Any]:
+        """Ground and solve time, choices and conflicts of all solvers; rules and atoms of the last."""
+        total = Statistics()
+        for stats in self.solvers:
+            total.ground_time += stats.ground_time
+            total.solve_time += stats.solve_time
+            total.choices += stats.choices
+            total.conflicts += stats.conflicts
+        if self.solvers:
+            total.rules, total.atoms = self.solvers[-1].rules, self.solvers[-1].atoms
+        figures = total.as_dict()
+        figures.pop("models", None)
+        return figures
 
     def close(self) -> None:
         self.done.set()
 
 
-def solve(instance: Instance | str | Path, domain: Domain | str | None = None, encoding: str = "plain",
-          horizon: int | None = None, assign: bool = False, time_limit: float | None = None,
-          method: str = "asp", on_progress: Progress | None = None,
-          cancel: threading.Event | None = None, max_horizon: int | None = None) -> Outcome:
-    """Find a plan for ``instance`` (an :class:`Instance` or a path).
-
-    ``domain``: a|b|c|m|md or a :class:`Domain` (default: detected).  ``encoding``: a name
-    from :data:`ENCODINGS` (``method="asp"``).  ``horizon``: solve at this makespan only;
-    without it, search the minimal makespan upwards from a lower bound, up to
-    ``max_horizon``.  ``assign``: compute a task assignment first and make the planner
-    follow it.  ``method="flow"``: the exact max-flow solver of M/Md.  ``on_progress`` is
-    called after every horizon; setting ``cancel`` stops the search from another thread.
-    """
-    if not isinstance(instance, Instance):
-        instance = read_instance(instance)
-    domain = detect_domain(instance) if domain is None else Domain.parse(domain)
-    if horizon is not None and horizon < 0:
-        raise InputError(f"the horizon must be at least 0, got {horizon}")
-    if method not in ("asp", "flow"):
-        raise InputError(f"unknown method '{method}' (choose asp or flow)")
-    if method == "flow" and domain.delivers:
-        raise InputError(f"the flow method solves domains M and Md only, not {domain.label}")
-    if instance.assignment and method == "flow":
-        raise InputError("the instance assigns goals to robots; the flow method solves anonymous "
-                         "goals only (use --method asp)")
-    if instance.assignment and assign:
-        raise InputError("the instance assigns goals to robots already; leave out --assign")
-    program = find_encoding(domain, encoding) if method == "asp" else None
-    watch = _Watch(time_limit, cancel)
-    try:
-        if method == "flow":
-            outcome = _solve_flow(instance, domain, horizon, watch, on_progress)
-        else:
-            outcome = _Search(instance, domain, program, horizon, assign, watch, on_progress,
-                              max_horizon).run()
-    finally:
-        watch.close()
-    outcome.stats = watch.stats.as_dict()
-    outcome.stats.pop("models", None)
-    if outcome.plan is not None:
-        outcome.check = check_plan(instance, outcome.plan, domain)
-        if not outcome.check.valid:
-            outcome.status = SolveStatus.INVALID
-            outcome.message = "the plan failed the check: " + "; ".join(
-                error.message for error in outcome.check.errors[:3])
-    return outcome
-
-
-def check_plan(instance: Instance, plan: Plan, domain: Domain) -> Report:
-    """The ASP checker's report on ``plan`` (``.valid``, ``.errors`` with ``.message``)."""
-    return check(instance, plan, domain)
-
-
 # --- max-flow ------------------------------------------------------------------------------
 
-def _solve_flow(instance: Instance, domain: Domain, horizon: int | None, watch: _Watch,
-                on_progress: Progress | None) -> Outcome:
+def _solve_flow(instance: Instance, domain: Domain, horizon: int | None, watch: _Watch) -> Outcome:
+    flow_stats = Statistics()
+    watch.solvers.append(flow_stats)
+
     def report(attempt) -> None:
         tried = Attempt(attempt.horizon, "sat" if attempt.feasible else "unsat", attempt.seconds)
         outcome.horizons_tried.append(tried)
-        watch.stats.solve_time += attempt.seconds
-        if on_progress is not None:
-            on_progress(tried)
+        flow_stats.solve_time += attempt.seconds
+        watch.progress(tried)
 
     outcome = Outcome(SolveStatus.LIMIT, domain, "flow", "flow")
     search = flow_plan(instance, horizon, watch.remaining(), lambda: watch.cancelled, report)
@@ -241,7 +326,7 @@ def _solve_flow(instance: Instance, domain: Domain, horizon: int | None, watch: 
 
 def _with_values(symbol: clingo.Symbol, values: dict[str, int]) -> clingo.Symbol:
     """``symbol`` with every subterm that names a theory variable replaced by its value
-    (clingcon encodings print deliveries as ``deliver(O,P,given(S,O,P))``)."""
+    (clingcon encodings show deliveries as ``serve(O,P,given(S,O,P),T)``)."""
     if not values or symbol.type is not clingo.SymbolType.Function:
         return symbol
     name = str(symbol)
@@ -252,36 +337,44 @@ def _with_values(symbol: clingo.Symbol, values: dict[str, int]) -> clingo.Symbol
     return clingo.Function(symbol.name, [_with_values(a, values) for a in symbol.arguments], symbol.positive)
 
 
+def name_robots(encoding: Encoding, facts: str, symbols: list[clingo.Symbol]) -> Plan:
+    """The plan of a model: its ``occurs/3`` atoms, or -- for an encoding with anonymous
+    robots -- the plan its ``names`` program makes of the model's atoms."""
+    if encoding.names is None:
+        return plan_from_atoms(symbols)
+    solver = Solver(options=["--warn=none"])
+    solver.load(encoding.names)
+    solver.add(facts)
+    solver.add_facts(symbols)
+    solver.ground()
+    return plan_from_atoms(solver.solve().symbols)
+
+
 class _Search:
     """The horizon search of one encoding on one instance."""
 
     def __init__(self, instance: Instance, domain: Domain, encoding: Encoding, horizon: int | None,
-                 assign: bool, watch: _Watch, on_progress: Progress | None, max_horizon: int | None):
+                 assign: bool, watch: _Watch, max_horizon: int | None):
         self.instance, self.domain, self.encoding = instance, domain, encoding
         self.horizon, self.assign, self.watch = horizon, assign, watch
-        self.on_progress = on_progress
         self.floor = Floor(instance.cells)
         self.facts = format_instance(instance, [])
         self.outcome = Outcome(SolveStatus.LIMIT, domain, "asp", encoding.name)
         self.max_horizon = max_horizon
         self.follow_assignment = False
+        self.options = ABC_OPTIONS if domain.delivers else ()
 
     def run(self) -> Outcome:
-        outcome, watch = self.outcome, self.watch
-        outcome.lower_bound = bound = lower_bound(self.instance, self.domain, self.floor)
+        outcome = self.outcome
+        outcome.lower_bound = bound = makespan_bound(self.instance, self.domain, self.floor)
+        self.watch.phase("bound", int(bound) if bound != float("inf") else 0)
         if bound == float("inf") and self.horizon is None:
             outcome.status, outcome.minimal = SolveStatus.NONE, True
             outcome.message = "some goal or order line can never be reached"
             return outcome
         if self.assign and not self._assign():
             return outcome
-        if self.horizon is not None:
-            first = last = self.horizon
-        else:
-            first = int(bound)
-            if self.assign:
-                first = max(first, int(assignment_bound(self.instance, outcome.assignment.facts, self.floor)))
-            last = self.max_horizon if self.max_horizon is not None else self._largest_horizon(first)
+        first, last = self._horizons(bound)
         if self.encoding.incremental:
             self._incremental(first, last)
         else:
@@ -295,14 +388,22 @@ class _Search:
                 self._tighten()
         return outcome
 
+    def _horizons(self, bound: float) -> tuple[int, int]:
+        if self.horizon is not None:
+            return self.horizon, self.horizon
+        first = int(bound)
+        if self.assign:
+            first = max(first, int(assignment_bound(self.instance, self.outcome.assignment.facts, self.floor)))
+        last = self.max_horizon if self.max_horizon is not None else self._largest_horizon(first)
+        return first, last
+
     def _assign(self) -> bool:
         """Compute the task assignment the planner will follow; whether there is one."""
         outcome, watch = self.outcome, self.watch
         budget = watch.remaining()
         budget = ASSIGNMENT_SECONDS if budget is None else min(ASSIGNMENT_SECONDS, ASSIGNMENT_SHARE * budget)
+        watch.phase("assigning", 0)
         outcome.assignment = assign_tasks(self.instance, self.domain, budget, watch.attach)
-        watch.stats.ground_time += outcome.assignment.stats.ground_time
-        watch.stats.solve_time += outcome.assignment.stats.solve_time
         if not outcome.assignment.facts:
             outcome.status = SolveStatus.CANCELLED if watch.cancelled else (
                 SolveStatus.NONE if outcome.assignment.status is Status.UNSAT else SolveStatus.LIMIT)
@@ -352,12 +453,11 @@ class _Search:
 
     def _record(self, attempt: Attempt) -> None:
         self.outcome.horizons_tried.append(attempt)
-        if self.on_progress is not None:
-            self.on_progress(attempt)
+        self.watch.progress(attempt)
 
-    @staticmethod
-    def _plan(result: Result) -> Plan:
-        return plan_from_atoms([_with_values(symbol, result.assignment) for symbol in result.symbols])
+    def _plan(self, result: Result) -> Plan:
+        symbols = [_with_values(symbol, result.assignment) for symbol in result.symbols]
+        return name_robots(self.encoding, self.facts, symbols)
 
     def _tried(self, horizon: int, result: Result, seconds: float) -> bool:
         """Record one horizon of the search; whether the search goes on."""
@@ -381,21 +481,30 @@ class _Search:
             return True
         return False
 
+    def _solve(self, solver: Solver, horizon: int, limit: float | None = None) -> Result:
+        remaining = self.watch.remaining()
+        if limit is not None:
+            remaining = limit if remaining is None else min(limit, remaining)
+        self.watch.phase("solving", horizon)
+        return solver.solve(time_limit=remaining)
+
     def _solve_at(self, horizon: int, limit: float | None = None) -> Result:
         """Ground and solve the encoding for exactly this horizon, in a fresh solver."""
         if self.encoding.incremental:
-            solver = Solver(self.encoding.theory)
+            solver = Solver(self.encoding.theory, self.options)
             self._program(solver, None)
             self.watch.attach(solver)
+            self.watch.phase("grounding", horizon)
             steps = [("step", [t]) for t in range(1, horizon + 1)]
-            self.watch.ground(solver, [("base", []), *steps, ("check", [horizon])])
+            solver.ground([("base", []), *steps, ("check", [horizon])])
             solver.assign_external(f"query({horizon})", True)
         else:
-            solver = Solver(self.encoding.theory, constants={"horizon": horizon})
+            solver = Solver(self.encoding.theory, self.options, constants={"horizon": horizon})
             self._program(solver, horizon)
             self.watch.attach(solver)
-            self.watch.ground(solver)
-        return self.watch.solve(solver, limit)
+            self.watch.phase("grounding", horizon)
+            solver.ground()
+        return self._solve(solver, horizon, limit)
 
     def _single_shot(self, first: int, last: int) -> None:
         for horizon in range(first, last + 1):
@@ -409,20 +518,22 @@ class _Search:
 
     def _incremental(self, first: int, last: int) -> None:
         """One solver for all horizons: ground one more step, move the query, solve again."""
-        solver = Solver(self.encoding.theory)
+        solver = Solver(self.encoding.theory, self.options)
         self._program(solver, None)
         self.watch.attach(solver)
         started = time.perf_counter()
-        self.watch.ground(solver, [("base", [])] + [("step", [t]) for t in range(1, first + 1)])
+        self.watch.phase("grounding", first)
+        solver.ground([("base", [])] + [("step", [t]) for t in range(1, first + 1)])
         for horizon in range(first, last + 1):
             if self._stopped():
                 return
             if horizon > first:
                 started = time.perf_counter()
-                self.watch.ground(solver, [("step", [horizon])])
-            self.watch.ground(solver, [("check", [horizon])])
+                self.watch.phase("grounding", horizon)
+                solver.ground([("step", [horizon])])
+            solver.ground([("check", [horizon])])
             solver.assign_external(f"query({horizon})", True)
-            going_on = self._tried(horizon, self.watch.solve(solver), time.perf_counter() - started)
+            going_on = self._tried(horizon, self._solve(solver, horizon), time.perf_counter() - started)
             solver.release_external(f"query({horizon})")
             if not going_on:
                 return

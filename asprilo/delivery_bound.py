@@ -1,0 +1,227 @@
+"""Lower bounds on the makespan of domains A, B and C (used through :mod:`asprilo.bounds`).
+
+Every order line needs a shelf that holds its product at its order's picking station.  A
+shelf moves only on a robot: a robot must walk to it, lift it and carry it there, and a
+robot carrying a shelf cannot pass a cell where another shelf rests until that shelf has
+been lifted away.  That gives each line a *release*: the earliest step its first delivery
+can happen.  A station serves one robot at a time, and a robot that delivers has to leave
+before the next one comes in, so deliveries of different shelves at one station are at
+least two steps apart (:func:`station_bound`).  Where every shelf serves one line at most
+(the paper's M-aligned instances), a scheduling relaxation in ASP also takes into account
+that a robot delivers one line at a time (:func:`schedule_bound`).  Nothing here is ever
+more than a valid plan needs.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .domain import Domain
+from .model import DIRECTIONS, Cell, Instance
+
+INFINITE = math.inf
+#: the scheduling relaxation: conflicts per horizon (a deterministic budget) and horizons tried
+SCHEDULE_CONFLICTS = 20_000
+SCHEDULE_STEPS = 64
+_PROGRAM = Path(__file__).resolve().parent / "delivery_bound.lp"
+
+
+def carry_arrivals(cells: set[Cell], start: Cell, lifted: float, free_at: dict[Cell, float]) -> dict[Cell, float]:
+    """The earliest step a shelf lifted on ``start`` at step ``lifted`` can be on each cell,
+    when a cell in ``free_at`` can be entered no earlier than the step given there."""
+    best = {start: lifted}
+    queue = [(lifted, start)]
+    while queue:
+        step, (x, y) = heapq.heappop(queue)
+        if step > best[(x, y)]:
+            continue
+        for dx, dy in DIRECTIONS:
+            cell = (x + dx, y + dy)
+            if cell not in cells:
+                continue
+            arrival = max(step + 1, free_at.get(cell, 0))
+            if arrival < best.get(cell, INFINITE):
+                best[cell] = arrival
+                heapq.heappush(queue, (arrival, cell))
+    return best
+
+
+@dataclass(frozen=True)
+class Line:
+    """An order line still to be delivered: its station cell and the shelves holding its product."""
+
+    order: int
+    product: int
+    station: Cell | None
+    holders: tuple[int, ...]
+    deliveries: int  # how many deliveries it needs at least (A: quantities)
+
+
+class Deliveries:
+    """What the bounds of one instance share: lines, shelf positions, robot distances."""
+
+    def __init__(self, instance: Instance, domain: Domain, floor):
+        self.instance, self.domain, self.floor = instance, domain, floor
+        carried = {r.carries: r.at for r in instance.robots.values() if r.carries is not None}
+        self.carried = carried
+        self.shelves = {s.id: s.at for s in instance.shelves.values()} | carried
+        self.stock = instance.shelf_stock()
+        self.lines = self._lines()
+        self.robots = sorted(instance.robots)
+        ids = sorted(self.shelves)
+        walks = floor.distances([self.shelves[s] for s in ids], [instance.robots[r].at for r in self.robots])
+        self.walk = {s: walks[k] for k, s in enumerate(ids)}  # shelf -> distances from each robot
+        self.lifted = {s: 0 if s in carried else float(walks[k].min(initial=INFINITE)) + 1
+                       for k, s in enumerate(ids)}
+        self._arrivals: dict[int, dict[Cell, float]] = {}
+
+    def _lines(self) -> list[Line]:
+        lines = []
+        for order in self.instance.orders.values():
+            station = self.instance.stations.get(order.station)
+            for product, units in order.lines.items():
+                if units == 0:
+                    continue
+                stock = self.instance.products[product].stock if product in self.instance.products else {}
+                holders = tuple(sorted(s for s in stock if s in self.shelves))
+                lines.append(Line(order.id, product, station.at if station else None, holders,
+                                  self._deliveries(product, units, holders)))
+        return lines
+
+    def _deliveries(self, product: int, units: int | None, holders: tuple[int, ...]) -> int:
+        """A: the fewest shelves whose stock covers the line (each shelf gives at most once)."""
+        if self.domain is not Domain.A or units is None:
+            return 1
+        stocks = sorted((self.stock[s][product] or 1 for s in holders), reverse=True)
+        total = 0
+        for count, stock in enumerate(stocks, 1):
+            total += stock
+            if total >= units:
+                return count
+        return 1
+
+    def arrival(self, shelf: int, station: Cell) -> float:
+        """The earliest step ``shelf`` can stand on ``station``, carried."""
+        if shelf not in self._arrivals:
+            free_at = {cell: self.lifted[other] + 1 for other, cell in self.shelves.items()
+                       if other != shelf and other not in self.carried}
+            self._arrivals[shelf] = carry_arrivals(self.instance.cells, self.shelves[shelf],
+                                                   self.lifted[shelf], free_at)
+        return self._arrivals[shelf].get(station, INFINITE)
+
+    def release(self, line: Line) -> float:
+        """The earliest step of the line's first delivery."""
+        if line.station is None:
+            return INFINITE
+        return min((self.arrival(s, line.station) + 1 for s in line.holders), default=INFINITE)
+
+
+def station_bound(facts: Deliveries) -> float:
+    """The latest of the stations' last deliveries, each station serving its lines in order
+    of release: one delivery per step, and one more step whenever the shelf changes."""
+    bound = 0.0
+    for station in {line.station for line in facts.lines}:
+        lines = [line for line in facts.lines if line.station == station]
+        per_shelf = max(sum(1 for line in lines if s in line.holders) for line in lines for s in line.holders)
+        releases = sorted((facts.release(line), line.deliveries) for line in lines)
+        for k in range(len(releases)):
+            rest = releases[k:]
+            # a line that needs d deliveries needs d different shelves, so d visits
+            visits = max(math.ceil(len(rest) / per_shelf), max(count for _, count in rest))
+            if facts.domain is Domain.C:
+                last = rest[0][0] + 2 * (visits - 1)
+            else:
+                last = rest[0][0] + sum(count for _, count in rest) - 1 + visits - 1
+            bound = max(bound, last)
+    return bound
+
+
+def schedulable(facts: Deliveries) -> bool:
+    """Whether the scheduling relaxation applies: no shelf serves two lines, every line has
+    a shelf and a station, and there are robots."""
+    served: dict[int, int] = {}
+    for line in facts.lines:
+        if line.station is None or not line.holders:
+            return False
+        for shelf in line.holders:
+            served[shelf] = served.get(shelf, 0) + 1
+    return bool(facts.lines) and bool(facts.robots) and max(served.values()) == 1
+
+
+def schedule_bound(facts: Deliveries, start: float) -> float:
+    """The first horizon from ``start`` on that the scheduling relaxation does not refute."""
+    import clingo
+
+    text = _schedule_facts(facts)
+    horizon = int(start)
+    for _ in range(SCHEDULE_STEPS):
+        control = clingo.Control(["--warn=none", f"-c horizon={horizon}",
+                                  f"--solve-limit={SCHEDULE_CONFLICTS}"])
+        control.load(str(_PROGRAM))
+        control.add("base", [], text)
+        control.ground([("base", [])])
+        if not control.solve().unsatisfiable:
+            return float(horizon)
+        horizon += 1
+    return float(horizon)
+
+
+def _schedule_facts(facts: Deliveries) -> str:
+    stations = {cell: k for k, cell in enumerate(sorted({line.station for line in facts.lines}))}
+    out = []
+    for index, line in enumerate(facts.lines):
+        out.append(f"line({index}). station_of({index},{stations[line.station]}).")
+        for position, robot in enumerate(facts.robots):
+            release = min(_robot_release(facts, robot, position, shelf, line.station) for shelf in line.holders)
+            if math.isfinite(release):
+                out.append(f"release({index},{robot},{int(release)}).")
+    out.append(f"gap({int(min(_cycle(facts), 10**6))}).")
+    return "\n".join(out)
+
+
+def _robot_release(facts: Deliveries, robot: int, position: int, shelf: int, station: Cell) -> float:
+    """When ``robot`` can deliver from ``shelf`` at ``station`` first: after walking to it,
+    lifting it and carrying it there (and no earlier than any robot could)."""
+    carrier = facts.instance.robots[robot].carries
+    walk = 0.0 if carrier == shelf else float(facts.walk[shelf][position]) + 1
+    carry = float(facts.floor.distances([facts.shelves[shelf]], [station])[0, 0])
+    return max(facts.arrival(shelf, station), walk + carry) + 1
+
+
+def _cycle(facts: Deliveries) -> float:
+    """The fewest steps between two deliveries of one robot from different shelves: carry
+    the first shelf to a storage cell, put it down, walk to the next, lift it, bring it,
+    deliver."""
+    storage = sorted(facts.instance.storage_cells)
+    if not storage:
+        return INFINITE
+    stations = sorted({line.station for line in facts.lines})
+    shelves = sorted({s for line in facts.lines for s in line.holders})
+    to_storage = facts.floor.distances(stations, storage).min(axis=0)  # nearest station per cell
+    shelf_cells = [facts.shelves[s] for s in shelves]
+    via = (facts.floor.distances(shelf_cells, storage) + to_storage[np.newaxis, :]).min(axis=1)
+    best = INFINITE
+    for line in facts.lines:
+        for shelf in line.holders:
+            k = shelves.index(shelf)
+            carry = facts.floor.distances([facts.shelves[shelf]], [line.station])[0, 0]
+            best = min(best, 3 + via[k] + carry)
+    return best
+
+
+def delivery_bound(instance: Instance, domain: Domain, floor) -> float:
+    """An admissible makespan bound for A, B and C (``inf``: some line can never be served)."""
+    facts = Deliveries(instance, domain, floor)
+    if not facts.lines:
+        return 0.0
+    if not all(math.isfinite(facts.release(line)) for line in facts.lines):
+        return INFINITE
+    bound = station_bound(facts)
+    if schedulable(facts):
+        bound = schedule_bound(facts, bound)
+    return bound
