@@ -1,8 +1,5 @@
-"""Read instances and plans (SPEC.md §2-3) from files, strings or stdin, through clingo.
-
-This module and :mod:`asprilo.writer` are the only places that know the shapes of the
-``init/2`` and ``occurs/3`` facts.
-"""
+"""Read instances and plans (SPEC.md §2-3) from files, strings or stdin, through clingo
+(the shapes of the facts are :mod:`asprilo.facts`')."""
 
 from __future__ import annotations
 
@@ -10,12 +7,15 @@ from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 import clingo
-from clingo import SymbolType
 
 from .errors import InputError
+from .facts import ATTRIBUTES, action_of, assign_terms, format_action, format_value, init_terms, value_of
 from .model import Action, Cell, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
-from .sources import Source, SourceLike, as_sources, line_of, load_facts, locate, symbol_fact
-from .writer import format_action, format_value
+from .sources import Source, SourceLike, as_sources, line_of, load_facts, locate
+
+#: value_of is the tools' way to read single terms
+__all__ = ["instance_from_atoms", "plan_from_atoms", "read_instance", "read_instance_and_plan", "read_plan",
+           "require_known_robots", "value_of"]
 
 
 def read_instance(inputs: SourceLike | Iterable[SourceLike]) -> Instance:
@@ -40,49 +40,7 @@ def read_instance_and_plan(instance: SourceLike | Iterable[SourceLike],
     return the_instance, the_plan
 
 
-def text_source(text: str, name: str = "<string>") -> Source:
-    """A source for ASP text held in a string."""
-    return Source(name, text)
-
-
-# --- terms -------------------------------------------------------------------------------
-
-def value_of(symbol: clingo.Symbol) -> Any:
-    """A term as a Python value: numbers -> int, tuples -> tuple, anything else -> its text."""
-    kind = symbol.type
-    if kind == SymbolType.Number:
-        return symbol.number
-    if kind == SymbolType.Function and symbol.name == "":
-        return tuple(value_of(argument) for argument in symbol.arguments)
-    if kind == SymbolType.Function and not symbol.arguments and not symbol.negative:
-        return symbol.name
-    return str(symbol)
-
-
-def _is_cell(value: Any) -> bool:
-    return type(value) is tuple and len(value) == 2 and type(value[0]) is int and type(value[1]) is int
-
-
-def _is_int(value: Any) -> bool:
-    return isinstance(value, int)
-
-
 # --- instances ---------------------------------------------------------------------------
-
-#: object type -> attribute -> (test of the value's shape, description used in messages)
-_ATTRIBUTES: dict[str, dict[str, tuple[Callable[[Any], bool], str]]] = {
-    "node": {"at": (_is_cell, "a cell (X,Y)")},
-    "highway": {"at": (_is_cell, "a cell (X,Y)")},
-    "robot": {"at": (_is_cell, "a cell (X,Y)"), "carries": (_is_int, "a shelf id")},
-    "shelf": {"at": (_is_cell, "a cell (X,Y)")},
-    "pickingStation": {"at": (_is_cell, "a cell (X,Y)")},
-    "destination": {"at": (_is_cell, "a cell (X,Y)")},
-    "product": {"on": (lambda v: _is_int(v) or _is_cell(v), "(Shelf,Units) or Shelf")},
-    "order": {"line": (lambda v: _is_int(v) or _is_cell(v), "(Product,Units) or Product"),
-              "pickingStation": (_is_int, "a picking station id")},
-    "grid": {"xsize": (_is_int, "an integer"), "ysize": (_is_int, "an integer")},
-}
-
 
 class _InstanceBuilder:
     """Collects ``init/2`` facts, rejecting unknown shapes and conflicting duplicates.
@@ -108,9 +66,9 @@ class _InstanceBuilder:
         self.seen[key] = (value, origin)
 
     def add(self, kind: Any, ident: Any, attribute: Any, value: Any, origin: Any) -> None:
-        attributes = _ATTRIBUTES.get(kind)
+        attributes = ATTRIBUTES.get(kind)
         if attributes is None:
-            raise self.fail(f"unknown object type '{kind}' (known: {', '.join(_ATTRIBUTES)})", origin)
+            raise self.fail(f"unknown object type '{kind}' (known: {', '.join(ATTRIBUTES)})", origin)
         if attribute not in attributes:
             raise self.fail(f"unknown attribute '{attribute}' of {kind} "
                             f"(known: {', '.join(attributes)})", origin)
@@ -124,24 +82,20 @@ class _InstanceBuilder:
 
     def add_symbol(self, atom: clingo.Symbol) -> None:
         """Add an ``init/2`` atom of any shape (the slow path for unusual terms)."""
-        plain = symbol_fact(atom)
-        if plain is not None:
-            return self.add(*plain[1], atom)
-        obj, val = atom.arguments
-        if not (obj.match("object", 2) and val.match("value", 2)):
-            raise self.fail(f"expected init(object(Type,Id),value(Attribute,Value)), got {atom}", atom)
-        self.add(*(value_of(term) for term in (*obj.arguments, *val.arguments)), atom)
+        try:
+            terms = init_terms(atom)
+        except InputError as error:
+            raise error.at(*_where(atom, self.sources)) from None
+        self.add(*terms, atom)
 
     def assign(self, atom: clingo.Symbol) -> None:
         """Add a labelled goal ``assign(robot(R),shelf(S))`` or ``assign(robot(R),destination(D))``."""
-        robot, goal = atom.arguments
-        if not (robot.match("robot", 1) and (goal.match("shelf", 1) or goal.match("destination", 1))
-                and all(term.arguments[0].type == SymbolType.Number for term in (robot, goal))):
-            raise self.fail(f"expected assign(robot(R),shelf(S)) or assign(robot(R),destination(D)), "
-                            f"got {atom}", atom)
-        ident = robot.arguments[0].number
-        self.single(("assign", ident), str(goal), atom, f"robot {ident} is assigned two goals")
-        self.goals[ident] = (goal.name, goal.arguments[0].number)
+        try:
+            ident, kind, goal = assign_terms(atom)
+        except InputError as error:
+            raise error.at(*_where(atom, self.sources)) from None
+        self.single(("assign", ident), f"{kind}({goal})", atom, f"robot {ident} is assigned two goals")
+        self.goals[ident] = (kind, goal)
 
     # one method per object type --------------------------------------------------------
 
@@ -279,19 +233,10 @@ def instance_from_atoms(atoms: Iterable[clingo.Symbol], sources: Sequence[Source
 # --- plans -------------------------------------------------------------------------------
 
 def _action_of(atom: clingo.Symbol, sources: Sequence[Source]) -> Action:
-    plain = symbol_fact(atom)
-    if plain is not None:
-        kind, robot, name, args, step = plain[1]
-        return Action(step, robot, name, args, kind)
-    obj, action, step = atom.arguments
-    if not (obj.match("object", 2) and action.match("action", 2)):
-        raise InputError(f"expected occurs(object(robot,R),action(Name,Args),T), got {atom}",
-                         *locate(sources, atom))
-    if step.type != SymbolType.Number:
-        raise InputError(f"the time step of {atom} must be an integer", *locate(sources, atom))
-    return Action(step=step.number, robot=value_of(obj.arguments[1]),
-                  name=str(value_of(action.arguments[0])), args=value_of(action.arguments[1]),
-                  kind=str(value_of(obj.arguments[0])))
+    try:
+        return action_of(atom)
+    except InputError as error:
+        raise error.at(*locate(sources, atom)) from None
 
 
 def _build_plan(sources: Sequence[Source], facts: list | None, atoms: list[clingo.Symbol]) -> Plan:

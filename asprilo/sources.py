@@ -19,6 +19,7 @@ import clingo
 import clingo.ast
 
 from .errors import InputError
+from .facts import scan_facts
 
 STDIN = "-"
 
@@ -124,65 +125,6 @@ def answer_facts(text: str, name: str) -> str:
 
 
 # --- facts ------------------------------------------------------------------------------
-
-#: A fact of interest: predicate name, arguments as Python values, and where it came from
-#: (``(source, offset)`` for scanned text, ``(sources, symbol)`` for grounded atoms).
-Fact = tuple[str, tuple, tuple]
-
-_INT = r"(-?\d+)"
-_INIT = re.compile(
-    r"init\(\s*object\(\s*(\w+)\s*,\s*" + _INT + r"\s*\)\s*,\s*value\(\s*(\w+)\s*,\s*"
-    r"(?:\(\s*" + _INT + r"\s*,\s*" + _INT + r"\s*\)|" + _INT + r")\s*\)\s*\)\s*\.")
-_OCCURS = re.compile(
-    r"occurs\(\s*object\(\s*(\w+)\s*,\s*" + _INT + r"\s*\)\s*,\s*action\(\s*(\w+)\s*,\s*"
-    r"\(\s*((?:-?\d+\s*(?:,\s*-?\d+\s*)*)?)\)\s*\)\s*,\s*" + _INT + r"\s*\)\s*\.")
-_SKIP = re.compile(r"(?:\s+|%(?!\*)[^\n]*|#program\s+base\s*\.)+")
-
-
-def _init_fact(match: re.Match) -> tuple:
-    kind, ident, attribute, x, y, single = match.groups()
-    return (kind, int(ident), attribute, (int(x), int(y)) if single is None else int(single))
-
-
-def _occurs_fact(match: re.Match) -> tuple:
-    kind, ident, name, args, step = match.groups()
-    values = tuple(map(int, args.split(","))) if args.strip() else ()
-    return (kind, int(ident), name, values, int(step))
-
-
-def scan_facts(text: str) -> list[tuple[str, tuple, int]] | None:
-    """Read text made only of plain ``init/2`` / ``occurs/3`` facts, comments and
-    ``#program base.`` without clingo; ``None`` when it holds anything else."""
-    facts, position, end = [], 0, len(text)
-    skip, init, occurs = _SKIP.match, _INIT.match, _OCCURS.match
-    while True:
-        gap = skip(text, position)
-        if gap:
-            position = gap.end()
-        if position >= end:
-            return facts
-        match = init(text, position)
-        if match:
-            facts.append(("init", _init_fact(match), position))
-        else:
-            match = occurs(text, position)
-            if not match:
-                return None
-            facts.append(("occurs", _occurs_fact(match), position))
-        position = match.end()
-
-
-def symbol_fact(symbol: clingo.Symbol) -> tuple[str, tuple] | None:
-    """An ``init/2`` or ``occurs/3`` atom as ``(name, arguments)`` when it has the plain shape."""
-    text = str(symbol) + "."
-    match = _INIT.fullmatch(text)
-    if match:
-        return "init", _init_fact(match)
-    match = _OCCURS.fullmatch(text)
-    if match:
-        return "occurs", _occurs_fact(match)
-    return None
-
 
 def load_facts(sources: Sequence[Source]) -> tuple[list[tuple[str, tuple, int]] | None, list[clingo.Symbol]]:
     """The sources' facts, scanned directly when they are plain facts (fast), else grounded.

@@ -6,25 +6,17 @@ import os
 import tempfile
 from collections.abc import Iterable
 from pathlib import Path
-from typing import Any
 
 from . import __version__
-from .model import Action, Instance, Plan
+from .facts import fact_groups, format_action, format_value
+from .model import Instance, Plan
+
+#: format_action and format_value are the tools' way to write single terms and actions
+__all__ = ["format_action", "format_instance", "format_plan", "format_value", "header_lines", "write_bytes",
+           "write_instance", "write_plan", "write_text"]
 
 _UMASK = os.umask(0)
 os.umask(_UMASK)
-
-
-def format_value(value: Any) -> str:
-    """A Python value (as produced by :func:`asprilo.reader.value_of`) as an ASP term."""
-    if isinstance(value, tuple):
-        inner = ",".join(format_value(item) for item in value)
-        return f"({inner},)" if len(value) == 1 else f"({inner})"
-    return str(value)
-
-
-def _init(kind: str, ident: int, attribute: str, value: Any) -> str:
-    return f"init(object({kind},{ident}),value({attribute},{format_value(value)}))."
 
 
 def header_lines(instance: Instance, command: str | None = None, seed: int | None = None,
@@ -55,44 +47,9 @@ def format_instance(instance: Instance, header: Iterable[str] | None = None) -> 
         header = header_lines(instance)
     out = ["%" * 60, *(f"% {line}" if line else "%" for line in header), "%" * 60, "",
            "#program base.", ""]
-
-    def group(title: str, facts: list[str]) -> None:
-        if facts:
-            out.extend([f"% {title}", *facts, ""])
-
-    group("nodes", [_init("node", i, "at", cell) for i, cell in sorted(instance.nodes.items())])
-    group("highways", [_init("highway", i, "at", cell) for i, cell in sorted(instance.highways.items())])
-    group("picking stations", [_init("pickingStation", i, "at", s.at)
-                               for i, s in sorted(instance.stations.items())])
-    robots = []
-    for i, robot in sorted(instance.robots.items()):
-        robots.append(_init("robot", i, "at", robot.at))
-        if robot.carries is not None:
-            robots.append(_init("robot", i, "carries", robot.carries))
-    group("robots", robots)
-    group("shelves", [_init("shelf", i, "at", s.at) for i, s in sorted(instance.shelves.items())])
-    group("products on shelves", [
-        _init("product", i, "on", shelf if units is None else (shelf, units))
-        for i, product in sorted(instance.products.items())
-        for shelf, units in sorted(product.stock.items())])
-    orders = []
-    for i, order in sorted(instance.orders.items()):
-        orders += [_init("order", i, "line", product if units is None else (product, units))
-                   for product, units in sorted(order.lines.items())]
-        if order.station is not None:
-            orders.append(_init("order", i, "pickingStation", order.station))
-    group("orders", orders)
-    group("destinations", [_init("destination", i, "at", d.at)
-                           for i, d in sorted(instance.destinations.items())])
-    group("labelled goals: robot -> goal", [f"assign(robot({robot}),{kind}({goal}))."
-                                            for robot, (kind, goal) in sorted(instance.assignment.items())])
+    for title, facts in fact_groups(instance):
+        out.extend([f"% {title}", *facts, ""])
     return "\n".join(out)
-
-
-def format_action(action: Action) -> str:
-    """The ``occurs/3`` atom of an action (without the final period)."""
-    return (f"occurs(object({action.kind},{action.robot}),"
-            f"action({action.name},{format_value(action.args)}),{action.step})")
 
 
 def format_plan(plan: Plan) -> str:

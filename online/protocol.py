@@ -20,10 +20,11 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from asprilo.errors import InputError
+from asprilo.facts import format_action
+from asprilo.facts import instance_facts as all_facts
 from asprilo.model import Action, Instance, Plan
 from asprilo.reader import read_instance, read_plan
 from asprilo.sources import Source
-from asprilo.writer import format_action, format_instance
 
 RESET, DONE, END = "RESET", "done", "end"
 #: a control word at the end of a line
@@ -77,8 +78,8 @@ def done(step: int) -> Message:
 # --- facts in one line ------------------------------------------------------------------------------
 
 def instance_facts(instance: Instance) -> str:
-    """The instance's ``init/2`` facts on one line."""
-    return " ".join(line for line in format_instance(instance, []).splitlines() if line.startswith("init("))
+    """The instance's facts on one line."""
+    return " ".join(all_facts(instance))
 
 
 def action_facts(actions: Iterable[Action]) -> str:
