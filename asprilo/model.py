@@ -7,7 +7,6 @@ an instance uses the quantity-free forms ``value(on,S)`` / ``value(line,P)``.
 from __future__ import annotations
 
 from collections import defaultdict
-from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
@@ -96,14 +95,6 @@ class Instance:
         """Nodes where a shelf may rest: neither highway nor picking station."""
         blocked = set(self.highways.values()) | {station.at for station in self.stations.values()}
         return self.cells - blocked
-
-    def neighbours(self, cell: Cell) -> Iterator[Cell]:
-        """The floor cells adjacent to ``cell``."""
-        cells = self.cells
-        x, y = cell
-        for dx, dy in DIRECTIONS:
-            if (x + dx, y + dy) in cells:
-                yield (x + dx, y + dy)
 
     def assigned_cells(self) -> dict[int, Cell]:
         """Robot id -> the cell its labelled goal (shelf or destination) starts on."""

@@ -97,7 +97,6 @@ class Solver:
         self.messages: list[str] = []
         arguments = [*options, *(f"-c{name}={value}" for name, value in (constants or {}).items())]
         self.control = clingo.Control(arguments, logger=self._log)
-        self.theory_name = theory
         self.theory = _theory(theory)
         if self.theory is not None:
             self.theory.register(self.control)

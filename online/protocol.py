@@ -48,10 +48,6 @@ class Message:
             control = f"%${self.control}" + (f"({self.step})" if self.step is not None else "") + "."
         return " ".join(part for part in (self.facts, control) if part) + "\n"
 
-    @property
-    def empty(self) -> bool:
-        return not self.facts.strip()
-
 
 def parse(line: str) -> Message:
     """A received line as a :class:`Message` (facts are not checked here)."""
