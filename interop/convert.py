@@ -29,8 +29,8 @@ from asprilo.sources import Source, as_sources, ground_atoms
 from asprilo.writer import format_instance, format_plan, header_lines, write_text
 
 from .movingai import (
+    LacamResult,
     Map,
-    Result,
     Task,
     format_map,
     format_result,
@@ -263,7 +263,7 @@ def _copy(instance: Instance) -> Instance:
 # --- plans -------------------------------------------------------------------------------
 
 
-def result_to_plan(result: Result, instance: Instance | None = None) -> Plan:
+def result_to_plan(result: LacamResult, instance: Instance | None = None) -> Plan:
     """Agent k's path (0-based) becomes robot k+1's moves; waiting is no action."""
     configurations = result.configurations
     if instance is not None:
@@ -282,7 +282,7 @@ def result_to_plan(result: Result, instance: Instance | None = None) -> Plan:
     return Plan(actions)
 
 
-def plan_to_result(instance: Instance, plan: Plan) -> Result:
+def plan_to_result(instance: Instance, plan: Plan) -> LacamResult:
     """Robot positions at every step (moves only) as a LaCAM/PIBT result."""
     robots = sorted(instance.robots)
     position = {r: from_cell(instance.robots[r].at) for r in robots}
@@ -304,7 +304,7 @@ def plan_to_result(instance: Instance, plan: Plan) -> Result:
               "soc": str(sum(last_move.values())), "makespan": str(plan.horizon),
               "starts": "".join(f"({x},{y})," for x, y in configurations[0]),
               "goals": "".join(f"({x},{y})," for x, y in goals), "solution": ""}
-    return Result(fields, configurations)
+    return LacamResult(fields, configurations)
 
 
 # --- the command -------------------------------------------------------------------------
