@@ -9,7 +9,7 @@ import subprocess
 import sys
 import time
 
-from conftest import EXAMPLES
+from helpers import EXAMPLES
 
 from asprilo.bench import runner as runner_module
 from asprilo.bench.limits import Outcome

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from conftest import EXAMPLES
+from helpers import EXAMPLES
 
 from asprilo.bounds import Floor, bottleneck_assignment, mapf_bounds, min_cost_assignment
 from asprilo.model import Robot

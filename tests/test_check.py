@@ -8,8 +8,8 @@ import math
 import sys
 
 import pytest
-from conftest import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
-from test_check_world import plan, walk, world
+from helpers import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
+from helpers.worlds import plan, walk, world
 
 from asprilo.bounds import delivery_makespan_bound
 from asprilo.checker import check
@@ -102,7 +102,8 @@ def test_delivery_bound_is_reach_lift_carry_deliver(small_a):
     assert delivery_makespan_bound(small_a) == 12
 
 
-@pytest.mark.parametrize("name, minimal", [("x2_y2_n4_r2_s2_ps1_pr2_u4_o2_N1", 5), ("x3_y3_n9_r1_s1_ps1_pr1_u1_o1_N1", 10),
+@pytest.mark.parametrize("name, minimal", [("x2_y2_n4_r2_s2_ps1_pr2_u4_o2_N1", 5),
+                                           ("x3_y3_n9_r1_s1_ps1_pr1_u1_o1_N1", 10),
                                            ("x4_y4_n16_r2_s3_ps1_pr2_u4_o2_N1", 8),
                                            ("x19_y9_n171_r5_s45_ps3_pr10_u40_o6_N1", 18)])
 def test_delivery_bound_stays_below_the_known_minimal_c_horizons(name, minimal):
@@ -119,7 +120,8 @@ def _raw(text: str, domain: Domain = Domain.M) -> list[str]:
 def test_a_grid_instance_gives_all_nodes_of_the_rectangle():
     grid = "init(object(grid,1),value(xsize,3)). init(object(grid,1),value(ysize,2)). " \
            "init(object(robot,1),value(at,(1,1))). "
-    assert _raw(grid + "occurs(object(robot,1),action(move,(1,0)),1). occurs(object(robot,1),action(move,(0,1)),2).") == []
+    assert _raw(grid + "occurs(object(robot,1),action(move,(1,0)),1). "
+                       "occurs(object(robot,1),action(move,(0,1)),2).") == []
     assert _raw(grid + "occurs(object(robot,1),action(move,(0,-1)),1).") == ["err(move,offFloor,(1,1))"]
 
 

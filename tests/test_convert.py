@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 
 import pytest
-from conftest import EXAMPLES
+from helpers import EXAMPLES
 
 from asprilo.cli import main
 from asprilo.interop.convert import m_to_md, md_to_m, result_to_plan
@@ -43,7 +43,7 @@ def test_octile_lengths_agree_with_the_scenario():
     tasks = parse_scenario(Source.from_path(SCEN))
     lengths = octile_lengths(grid, [(t.start, t.goal) for t in tasks])
     assert len(tasks) == 409
-    assert max(abs(length - t.optimal) for length, t in zip(lengths, tasks)) < 2e-8
+    assert max(abs(length - t.optimal) for length, t in zip(lengths, tasks, strict=True)) < 2e-8
 
 
 def test_scenario_to_md_and_back(tmp_path):
@@ -55,7 +55,7 @@ def test_scenario_to_md_and_back(tmp_path):
     original = SCEN.read_text().splitlines()[1:51]
     written = (tmp_path / "a.scen").read_text().splitlines()
     assert written[0] == "version 1" and len(written) == 51
-    for mine, theirs in zip(written[1:], original):
+    for mine, theirs in zip(written[1:], original, strict=True):
         assert mine.split("\t")[:8] == theirs.split("\t")[:8]
         assert abs(float(mine.split("\t")[8]) - float(theirs.split("\t")[8])) < 2e-8
 
@@ -163,7 +163,7 @@ def test_labelled_goals_are_checked_and_followed(write):
 def test_labelled_m_and_md_convert_both_ways():
     m = read_instance(EXAMPLES / "paper-m/2x3x5/x19_y9_n171_r5_s60_ps3_pr60_u60_o5_N001.lp")
     ordered = [next(iter(m.products[next(iter(o.lines))].stock)) for _id, o in sorted(m.orders.items())]
-    m.assignment = {robot: ("shelf", shelf) for robot, shelf in zip(sorted(m.robots), ordered)}
+    m.assignment = {robot: ("shelf", shelf) for robot, shelf in zip(sorted(m.robots), ordered, strict=True)}
     md = m_to_md(m)
     assert md.assigned_cells() == m.assigned_cells()
     assert set(kind for kind, _ in md.assignment.values()) == {"destination"}

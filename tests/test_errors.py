@@ -6,7 +6,7 @@ import subprocess
 import sys
 
 import pytest
-from conftest import SMALL_A
+from helpers import SMALL_A
 
 from asprilo.cli import main
 

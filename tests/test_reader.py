@@ -6,7 +6,7 @@ import io
 import sys
 
 import pytest
-from conftest import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
+from helpers import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
 
 from asprilo.domain import Domain, detect_domain
 from asprilo.model import Action, Order, PickingStation, Product, Robot, Shelf
@@ -133,7 +133,8 @@ CPU Time     : 0.002s
 
 
 def test_clingo_quiet_output_with_atom_format():
-    output = "occurs(object(robot,1),action(move,(1,0)),1). occurs(object(robot,1),action(move,(0,1)),2).\nSATISFIABLE\n"
+    output = ("occurs(object(robot,1),action(move,(1,0)),1). occurs(object(robot,1),action(move,(0,1)),2).\n"
+              "SATISFIABLE\n")
     assert read_plan(Source("out", output)).horizon == 2
 
 
