@@ -13,7 +13,6 @@ import sys
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Union
 
 import clingo
 import clingo.ast
@@ -55,7 +54,7 @@ class Source:
         return cls("<stdin>", sys.stdin.read())
 
 
-SourceLike = Union[str, Path, Source]
+SourceLike = str | Path | Source
 
 
 def as_sources(inputs: SourceLike | Iterable[SourceLike]) -> list[Source]:
@@ -198,19 +197,25 @@ def locate(sources: Sequence[Source], atom: clingo.Symbol | str) -> tuple[str | 
     """Return ``(file, line)`` of the first fact ``atom`` in the sources (for messages)."""
     wanted = str(atom).replace(" ", "")
     for source in sources:
-        found: list[int] = []
-
-        def visit(statement: clingo.ast.AST) -> None:
-            if found or statement.ast_type != clingo.ast.ASTType.Rule or statement.body:
-                return
-            head = statement.head
-            if head.ast_type == clingo.ast.ASTType.Literal and str(head).replace(" ", "") == wanted:
-                found.append(statement.location.begin.line)
-
-        try:
-            clingo.ast.parse_string(_program_text(source), visit, logger=lambda _c, _m: None)
-        except (RuntimeError, InputError):
-            continue
-        if found:
-            return source.name, found[0]
+        line = _fact_line(source, wanted)
+        if line is not None:
+            return source.name, line
     return (sources[0].name if len(sources) == 1 else None), None
+
+
+def _fact_line(source: Source, wanted: str) -> int | None:
+    """The line of the first fact of ``source`` whose text (without spaces) is ``wanted``."""
+    found: list[int] = []
+
+    def visit(statement: clingo.ast.AST) -> None:
+        if found or statement.ast_type != clingo.ast.ASTType.Rule or statement.body:
+            return
+        head = statement.head
+        if head.ast_type == clingo.ast.ASTType.Literal and str(head).replace(" ", "") == wanted:
+            found.append(statement.location.begin.line)
+
+    try:
+        clingo.ast.parse_string(_program_text(source), visit, logger=lambda _c, _m: None)
+    except (RuntimeError, InputError):
+        return None
+    return found[0] if found else None

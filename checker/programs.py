@@ -64,7 +64,7 @@ def plan_facts(instance: Instance, plan: Plan, packed: bool = True) -> str:
     weights = 5 ** np.arange(_DIGITS, dtype=np.int64)
     packed_codes = digits.reshape(len(robots), blocks, _DIGITS) @ weights
     lines = [f"packedMoves({robots[r]},{1 + b * _DIGITS},{packed_codes[r, b]})."
-             for r, b in zip(*np.nonzero(packed_codes))]
+             for r, b in zip(*np.nonzero(packed_codes), strict=True)]
     lines += [format_action(actions[i]) + "." for i in np.nonzero(~packable)[0]]
     return "\n".join(lines)
 

@@ -172,10 +172,10 @@ def instance_to_scenario(instance: Instance, map_name: str) -> list[Task]:
     """One scenario row per robot, with its goal, octile optimum and bucket."""
     grid = instance_to_map(instance)
     pairs = [(from_cell(robot.at), from_cell(goal))
-             for (_id, robot), goal in zip(sorted(instance.robots.items()), goals_of(instance))]
+             for (_id, robot), goal in zip(sorted(instance.robots.items()), goals_of(instance), strict=True)]
     lengths = octile_lengths(grid, pairs)
     tasks = []
-    for (start, goal), length in zip(pairs, lengths):
+    for (start, goal), length in zip(pairs, lengths, strict=True):
         if math.isinf(length):
             raise InputError(f"no path from {to_cell(*start)} to {to_cell(*goal)}")
         tasks.append(Task(start, goal, int(length // 4), length, map_name, grid.width, grid.height))
@@ -272,7 +272,7 @@ def result_to_plan(result: LacamResult, instance: Instance | None = None) -> Pla
             raise InputError("the result's first configuration is not the instance's robot positions")
     actions = []
     for step in range(1, len(configurations)):
-        for agent, (before, after) in enumerate(zip(configurations[step - 1], configurations[step])):
+        for agent, (before, after) in enumerate(zip(configurations[step - 1], configurations[step], strict=True)):
             dx, dy = after[0] - before[0], after[1] - before[1]
             if (dx, dy) == (0, 0):
                 continue
@@ -356,18 +356,26 @@ def convert(args: argparse.Namespace) -> str:
             raise InputError(f"a {source_format} converts to an asprilo instance (.lp), not {target_format}")
         return _from_movingai(args, source_format)
     if source_format == "asprilo":
-        instance, terrain = _instance_and_terrain(args.source)
-        if target_format == "map":
-            return format_map(instance_to_map(instance, terrain))
-        if target_format == "scen":
-            map_name = Path(args.map).name if args.map else terrain.get(
-                "map", Path(args.target).with_suffix(".map").name)
-            return format_scenario(instance_to_scenario(instance, map_name))
-        if target_format == "md":
-            return format_instance(m_to_md(instance))
-        if target_format == "m":
-            return format_instance(md_to_m(instance))
-        raise InputError("say --to m or --to md to convert an asprilo instance into another instance")
+        return _from_instance(args, target_format)
+    return _plan_or_result(args, source_format, target_format)
+
+
+def _from_instance(args: argparse.Namespace, target_format: str) -> str:
+    instance, terrain = _instance_and_terrain(args.source)
+    if target_format == "map":
+        return format_map(instance_to_map(instance, terrain))
+    if target_format == "scen":
+        map_name = Path(args.map).name if args.map else terrain.get(
+            "map", Path(args.target).with_suffix(".map").name)
+        return format_scenario(instance_to_scenario(instance, map_name))
+    if target_format == "md":
+        return format_instance(m_to_md(instance))
+    if target_format == "m":
+        return format_instance(md_to_m(instance))
+    raise InputError("say --to m or --to md to convert an asprilo instance into another instance")
+
+
+def _plan_or_result(args: argparse.Namespace, source_format: str, target_format: str) -> str:
     instance = read_instance(args.instance) if args.instance else None
     if source_format == "result":
         return format_plan(result_to_plan(parse_result(Source.from_path(args.source)), instance))
