@@ -27,3 +27,7 @@ class InputError(Exception):
             return self.message
         place = self.file if self.line is None else f"{self.file}:{self.line}"
         return f"{place}: {self.message}"
+
+
+class InputWarning(UserWarning):
+    """Input read, with something ignored: ``str(warning)`` reads ``FILE[:LINE]: what``."""

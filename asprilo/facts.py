@@ -120,6 +120,7 @@ def fact_groups(instance: Instance) -> list[tuple[str, list[str]]]:
                           for i, d in sorted(instance.destinations.items())]),
         ("labelled goals: robot -> goal", [assign_fact(robot, kind, goal)
                                            for robot, (kind, goal) in sorted(instance.assignment.items())]),
+        ("facts asprilo does not use (kept as they were read)", list(instance.other_facts)),
     ]
     return [(title, facts) for title, facts in groups if facts]
 
@@ -131,13 +132,14 @@ def instance_facts(instance: Instance) -> list[str]:
 
 # --- recognising plain facts in text -----------------------------------------------------
 
-_INT = r"(-?\d+)"
+# numbers of up to nine digits (longer ones go through clingo, which has 32 bits), ASCII names
+_INT = r"(-?\d{1,9})"
 _INIT = re.compile(
     r"init\(\s*object\(\s*(\w+)\s*,\s*" + _INT + r"\s*\)\s*,\s*value\(\s*(\w+)\s*,\s*"
-    r"(?:\(\s*" + _INT + r"\s*,\s*" + _INT + r"\s*\)|" + _INT + r")\s*\)\s*\)\s*\.")
+    r"(?:\(\s*" + _INT + r"\s*,\s*" + _INT + r"\s*\)|" + _INT + r")\s*\)\s*\)\s*\.", re.ASCII)
 _OCCURS = re.compile(
     r"occurs\(\s*object\(\s*(\w+)\s*,\s*" + _INT + r"\s*\)\s*,\s*action\(\s*(\w+)\s*,\s*"
-    r"\(\s*((?:-?\d+\s*(?:,\s*-?\d+\s*)*)?)\)\s*\)\s*,\s*" + _INT + r"\s*\)\s*\.")
+    r"\(\s*((?:-?\d{1,9}\s*(?:,\s*-?\d{1,9}\s*)*)?)\)\s*\)\s*,\s*" + _INT + r"\s*\)\s*\.", re.ASCII)
 _SKIP = re.compile(r"(?:\s+|%(?!\*)[^\n]*|#program\s+base\s*\.)+")
 
 
@@ -152,11 +154,12 @@ def _occurs_args(match: re.Match) -> tuple:
     return (kind, int(ident), name, values, int(step))
 
 
-def scan_facts(text: str) -> list[tuple[str, tuple, int]] | None:
+def scan_facts(text: str, most: int | None = None) -> list[tuple[str, tuple, int]] | None:
     """Read text made only of plain ``init/2`` / ``occurs/3`` facts, comments and
     ``#program base.`` without clingo: ``(name, arguments, offset)`` for each fact, where
     ``init`` has ``(Type, Id, Attribute, Value)`` and ``occurs`` has ``(Type, Id, Name, Args,
-    T)``; ``None`` when the text holds anything else."""
+    T)``; ``None`` when the text holds anything else.  Scanning stops after ``most + 1``
+    facts (the caller refuses that many)."""
     facts, position, end = [], 0, len(text)
     skip, init, occurs = _SKIP.match, _INIT.match, _OCCURS.match
     while True:
@@ -174,6 +177,8 @@ def scan_facts(text: str) -> list[tuple[str, tuple, int]] | None:
                 return None
             facts.append(("occurs", _occurs_args(match), position))
         position = match.end()
+        if most is not None and len(facts) > most:
+            return facts
 
 
 # --- taking grounded atoms apart ---------------------------------------------------------

@@ -75,6 +75,9 @@ class Instance:
     #: labelled goals (M/Md): robot id -> ("shelf", S) or ("destination", D), from
     #: ``assign(robot(R),shelf(S))`` / ``assign(robot(R),destination(D))`` facts
     assignment: dict[int, tuple[str, int]] = field(default_factory=dict)
+    #: ``init/2`` facts of object types or attributes asprilo does not know (e.g. a robot's
+    #: ``energy``), as text: ignored by every tool, written back with the instance
+    other_facts: list[str] = field(default_factory=list)
 
     # --- the floor -----------------------------------------------------------------------
 

@@ -3,7 +3,8 @@
 A source is ASP text with a name for messages.  Text printed by clingo (``Answer: 1``
 followed by a line of atoms, ``SATISFIABLE``, statistics) is recognised and reduced to
 the facts of its last answer, keeping line numbers so that messages point into the
-original text.
+original text.  Everything read here follows the reading policy (:mod:`asprilo.policy`)
+within the limits in force (:mod:`asprilo.limits`).
 """
 
 from __future__ import annotations
@@ -17,8 +18,13 @@ from pathlib import Path
 import clingo
 import clingo.ast
 
+from . import clingo_logger, isolated
 from .errors import InputError
 from .facts import scan_facts
+from .limits import Limits, current
+from .policy import BOM, check_statements, decode, screen
+
+clingo_logger.install()
 
 STDIN = "-"
 
@@ -31,37 +37,47 @@ class Source:
     text: str
 
     @classmethod
-    def from_path(cls, path: str | Path) -> Source:
-        """Read a file; ``-`` reads standard input."""
+    def from_path(cls, path: str | Path, limits: Limits | None = None) -> Source:
+        """Read a file (UTF-8, at most ``file-mb`` megabytes); ``-`` reads standard input."""
         if str(path) == STDIN:
-            return cls.from_stdin()
+            return cls.from_stdin(limits)
         path = Path(path)
         if not path.exists():
             raise InputError("no such file", str(path))
         if path.is_dir():
             raise InputError("is a directory, not a file", str(path))
         try:
-            return cls(str(path), path.read_text(encoding="utf-8"))
-        except UnicodeDecodeError:
-            raise InputError("not a text file (it is not UTF-8)", str(path)) from None
+            with path.open("rb") as stream:
+                return cls(str(path), decode(_read_at_most(stream, limits or current(), str(path)), str(path)))
         except OSError as error:
             raise InputError(error.strerror or "cannot be read", str(path)) from None
 
     @classmethod
-    def from_stdin(cls) -> Source:
+    def from_stdin(cls, limits: Limits | None = None) -> Source:
         if sys.stdin is None or sys.stdin.isatty():
             raise InputError("nothing to read (standard input is a terminal)", "<stdin>")
-        return cls("<stdin>", sys.stdin.read())
+        stream = getattr(sys.stdin, "buffer", None)
+        if stream is None:  # a text stream put in place of stdin (tests)
+            return cls("<stdin>", sys.stdin.read())
+        return cls("<stdin>", decode(_read_at_most(stream, limits or current(), "<stdin>"), "<stdin>"))
+
+
+def _read_at_most(stream, limits: Limits, name: str) -> bytes:
+    most = limits.file_mb * 2**20
+    data = stream.read(most + 1)
+    if len(data) > most:
+        raise limits.exceeded("file_mb", f"more than {limits.file_mb:,} MB").at(name)
+    return data
 
 
 SourceLike = str | Path | Source
 
 
-def as_sources(inputs: SourceLike | Iterable[SourceLike]) -> list[Source]:
+def as_sources(inputs: SourceLike | Iterable[SourceLike], limits: Limits | None = None) -> list[Source]:
     """Normalise one or several paths / ``-`` / :class:`Source` objects to sources."""
     if isinstance(inputs, (str, Path, Source)):
         inputs = [inputs]
-    return [item if isinstance(item, Source) else Source.from_path(item) for item in inputs]
+    return [item if isinstance(item, Source) else Source.from_path(item, limits) for item in inputs]
 
 
 # --- clingo's printed output -------------------------------------------------------------
@@ -125,20 +141,24 @@ def answer_facts(text: str, name: str) -> str:
 
 # --- facts ------------------------------------------------------------------------------
 
-def load_facts(sources: Sequence[Source]) -> tuple[list[tuple[str, tuple, int]] | None, list[clingo.Symbol]]:
+def load_facts(sources: Sequence[Source], limits: Limits | None = None
+               ) -> tuple[list[tuple[str, tuple, int]] | None, list[clingo.Symbol]]:
     """The sources' facts, scanned directly when they are plain facts (fast), else grounded.
 
     Returns ``(facts, [])`` with ``facts`` as ``(name, arguments, (source, offset))`` when
     scanning worked, or ``(None, atoms)`` with the ground atoms of the program.
     """
+    limits = limits or current()
     scanned = []
     for source in sources:
-        facts = scan_facts(_program_text(source))
+        facts = scan_facts(_program_text(source), limits.facts - len(scanned))
         if facts is None:
-            return None, ground_atoms(sources)
+            return None, ground_atoms(sources, limits)
         scanned += [(name, args, (source, offset)) for name, args, offset in facts]
+        if len(scanned) > limits.facts:
+            raise limits.exceeded("facts", f"more than {limits.facts:,} facts").at(source.name)
     if not scanned:
-        return None, ground_atoms(sources)
+        return None, ground_atoms(sources, limits)
     return scanned, []
 
 
@@ -153,15 +173,36 @@ _LOCATION = re.compile(r"^<block>:(\d+):\d+(?:-\d+(?::\d+)?)?: (?:error|info|war
 
 
 def _program_text(source: Source) -> str:
-    return answer_facts(source.text, source.name) if is_clingo_output(source.text) else source.text
+    text = source.text.removeprefix(BOM)
+    return answer_facts(text, source.name) if is_clingo_output(text) else text
 
 
-def ground_atoms(sources: Sequence[Source]) -> list[clingo.Symbol]:
+def ground_atoms(sources: Sequence[Source], limits: Limits | None = None) -> list[clingo.Symbol]:
     """Ground the ``base`` part of all sources together and return the atoms of its answer.
 
-    Sources may contain comments, ``#const``, ``#program base.`` and rules; a program
-    whose rules leave choices open contributes its first answer set.
+    Sources hold facts, comments, ``#const`` and ``#program base.``; rules too where the
+    limits allow them: they are then grounded in a child process under the limits' time
+    and memory, and a program whose rules leave choices open contributes its first answer
+    set.  See :mod:`asprilo.policy`.
     """
+    limits = limits or current()
+    programs = [Source(source.name, _program_text(source)) for source in sources]
+    for program in programs:
+        screen(program.text, program.name, limits)
+        if not limits.allow_rules:
+            check_statements(program.text, program.name)
+    if limits.allow_rules:
+        derived = Source(", ".join(p.name for p in programs), isolated.ground(programs, limits))
+        screen(derived.text, derived.name, limits)
+        programs = [derived]
+    atoms = _ground(programs)
+    if len(atoms) > limits.facts:
+        raise limits.exceeded("facts", f"{len(atoms):,} atoms").at(programs[0].name if len(programs) == 1 else None)
+    return atoms
+
+
+def _ground(sources: Sequence[Source]) -> list[clingo.Symbol]:
+    """Ground and solve in this process (for screened facts and for the child process)."""
     messages: list[str] = []
     control = clingo.Control(["--warn=none"], logger=lambda _code, message: messages.append(message))
     for source in sources:
