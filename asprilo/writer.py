@@ -8,12 +8,13 @@ from collections.abc import Iterable
 from pathlib import Path
 
 from . import __version__
+from .errors import InputError
 from .facts import fact_groups, format_action, format_value
 from .model import Instance, Plan
 
 #: format_action and format_value are the tools' way to write single terms and actions
-__all__ = ["format_action", "format_instance", "format_plan", "format_value", "header_lines", "write_bytes",
-           "write_instance", "write_plan", "write_text"]
+__all__ = ["format_action", "format_instance", "format_plan", "format_value", "header_lines", "refuse_overwriting",
+           "write_bytes", "write_instance", "write_plan", "write_text"]
 
 _UMASK = os.umask(0)
 os.umask(_UMASK)
@@ -58,18 +59,48 @@ def format_plan(plan: Plan) -> str:
 
 
 def write_bytes(path: str | Path, data: bytes) -> None:
-    """Write ``data`` to ``path`` atomically: readers see the old file or the whole new one."""
+    """Write ``data`` to ``path`` atomically: readers see the old file or the whole new one.
+
+    A file replaced keeps its permissions; a new one gets the usual ones (0666 less the
+    umask).  A path that cannot be written is bad input (:class:`InputError`).
+    """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    if path.is_dir():
+        raise InputError("is a directory, not a file to write", str(path))
+    try:
+        mode = path.stat().st_mode & 0o777 if path.exists() else 0o666 & ~_UMASK
+        path.parent.mkdir(parents=True, exist_ok=True)
+        handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    except OSError as error:
+        raise InputError(f"cannot be written ({error.strerror or error})", str(path)) from None
     try:
         with os.fdopen(handle, "wb") as stream:
             stream.write(data)
-        os.chmod(temporary, 0o666 & ~_UMASK)
+        os.chmod(temporary, mode)
         os.replace(temporary, path)
+    except OSError as error:
+        Path(temporary).unlink(missing_ok=True)
+        raise InputError(f"cannot be written ({error.strerror or error})", str(path)) from None
     except BaseException:
         Path(temporary).unlink(missing_ok=True)
         raise
+
+
+def refuse_overwriting(output: str | Path | None, inputs: Iterable[str | Path | None]) -> None:
+    """Refuse an output file that is one of the inputs (or a folder): writing it would
+    destroy what is read.  ``-`` and ``None`` (standard streams, nothing) pass."""
+    if output is None or str(output) == "-":
+        return
+    target = Path(output)
+    if target.is_dir():
+        raise InputError("is a directory, not a file to write", str(target))
+    for given in inputs:
+        if given is None or str(given) == "-":
+            continue
+        source = Path(given)
+        same = target.exists() and source.exists() and os.path.samefile(target, source)
+        if same or target.resolve() == source.resolve():
+            raise InputError(f"is also an input ({given}); choose another output file", str(target))
 
 
 def write_text(path: str | Path, text: str) -> None:

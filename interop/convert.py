@@ -23,10 +23,12 @@ from collections import Counter
 from pathlib import Path
 
 from asprilo.errors import InputError
-from asprilo.model import Action, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
+from asprilo.facts import format_action
+from asprilo.limits import current
+from asprilo.model import DIRECTIONS, Action, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
 from asprilo.reader import instance_from_atoms, read_instance, read_plan
 from asprilo.sources import Source, as_sources, ground_atoms
-from asprilo.writer import format_instance, format_plan, header_lines, write_text
+from asprilo.writer import format_instance, format_plan, header_lines, refuse_overwriting, write_text
 
 from .movingai import (
     LacamResult,
@@ -83,6 +85,9 @@ def instance_to_map(instance: Instance, terrain: dict | None = None) -> Map:
     cells = instance.cells
     if any(not (1 <= x <= width and 1 <= y <= height) for x, y in cells):
         raise InputError(f"the floor does not fit the map size {width}x{height}")
+    limits = current()
+    if width * height > limits.facts:
+        raise limits.exceeded("facts", f"a map of {width}x{height} cells")
     rows = ["".join("." if (x, y) in cells else exceptions.get((x, y), usual)
                     for x in range(1, width + 1)) for y in range(1, height + 1)]
     return Map(rows, terrain.get("type", "octile"))
@@ -257,7 +262,7 @@ def _copy(instance: Instance) -> Instance:
         products={i: Product(p.id, dict(p.stock)) for i, p in instance.products.items()},
         orders={i: Order(o.id, dict(o.lines), o.station) for i, o in instance.orders.items()},
         destinations={i: Destination(d.id, d.at) for i, d in instance.destinations.items()},
-        assignment=dict(instance.assignment))
+        assignment=dict(instance.assignment), other_facts=list(instance.other_facts))
 
 
 # --- plans -------------------------------------------------------------------------------
@@ -291,9 +296,9 @@ def plan_to_result(instance: Instance, plan: Plan) -> LacamResult:
     last_move = dict.fromkeys(robots, 0)
     for step in range(1, plan.horizon + 1):
         for action in by_step.get(step, []):
-            if action.name != "move" or action.robot not in position:
-                raise InputError(f"only moves of the instance's robots convert, got {action.name} "
-                                 f"of {action.kind} {action.robot} at step {step}")
+            if action.name != "move" or action.robot not in position or action.kind != "robot" \
+                    or action.args not in DIRECTIONS:
+                raise InputError(f"only moves of the instance's robots convert, got {format_action(action)}")
             x, y = position[action.robot]
             position[action.robot] = (x + action.args[0], y + action.args[1])
             last_move[action.robot] = step
@@ -405,6 +410,7 @@ def _from_movingai(args: argparse.Namespace, source_format: str) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
+    refuse_overwriting(args.target, [args.source, args.instance, args.map])
     text = convert(args)
     if args.target == "-":
         print(text, end="")

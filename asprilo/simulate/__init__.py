@@ -38,6 +38,7 @@ states it records), :mod:`.violations` and :mod:`.messages` (broken rules in pla
 from __future__ import annotations
 
 from ..domain import Domain, detect_domain
+from ..limits import require_plan_fits
 from ..model import Instance, Plan
 from .actions import DOMAIN_ACTIONS, well_formed
 from .replay import replay
@@ -49,7 +50,9 @@ __all__ = ["DOMAIN_ACTIONS", "Line", "State", "Stock", "Timeline", "Violation", 
 
 
 def simulate(instance: Instance, plan: Plan, domain: Domain | None = None) -> Timeline:
-    """Replay ``plan`` on ``instance`` (domain detected when not given)."""
+    """Replay ``plan`` on ``instance`` (domain detected when not given); a plan beyond the
+    ``robot-steps`` limit is refused (:class:`~asprilo.errors.InputError`)."""
+    require_plan_fits(instance, plan)
     domain = domain or detect_domain(instance, plan)
     history, findings = replay(instance, plan, domain)
     return Timeline(instance, plan, domain, history, findings)

@@ -66,14 +66,11 @@ class _Codes:
         codes = (positions[..., 0].astype(np.int64) - low) * span + (positions[..., 1] - low)
         return cls(codes, low, span)
 
-    def floor(self, nodes: Iterable[Cell]) -> np.ndarray:
-        """A table code -> whether that cell is a floor node."""
+    def on_floor(self, codes: np.ndarray, nodes: Iterable[Cell]) -> np.ndarray:
+        """Whether each of ``codes`` is the cell of a floor node."""
         low, span = self.low, self.span
-        floor = np.zeros(span * span, dtype=bool)
-        for x, y in nodes:
-            if low <= x < low + span and low <= y < low + span:
-                floor[(x - low) * span + (y - low)] = True
-        return floor
+        floor = [(x - low) * span + (y - low) for x, y in nodes if low <= x < low + span and low <= y < low + span]
+        return np.isin(codes, np.array(floor, dtype=np.int64))
 
 
 def check_moves(positions: Positions, nodes: set[Cell], report: Report) -> None:
@@ -83,8 +80,7 @@ def check_moves(positions: Positions, nodes: set[Cell], report: Report) -> None:
     ids = positions.robot_ids
     codes = _Codes.of(positions.table)
     moved = codes.codes[1:] != codes.codes[:-1]
-    floor = codes.floor(nodes)
-    for step, i in zip(*np.nonzero(moved & ~floor[codes.codes[1:]]), strict=True):
+    for step, i in zip(*np.nonzero(moved & ~codes.on_floor(codes.codes[1:], nodes)), strict=True):
         report("move", "offFloor", ids[i], int(step) + 1)
     _same_node(codes.codes, ids, report)
     _swaps(codes, moved, ids, report)
