@@ -32,3 +32,12 @@ def install() -> None:
             logger(clingo.core.MessageCode(code), text)
 
     _installed = True
+
+
+def first_error(messages: list[str]) -> str | None:
+    """The message to show of those clingo logged: the first error, preferring one whose
+    characters all decoded (clingo repeats a lexer error with more and more bytes of a
+    multi-byte character)."""
+    errors = [message for message in messages if ": error:" in message] or messages
+    whole = [message for message in errors if "\ufffd" not in message]
+    return (whole or errors)[0].strip() if errors else None

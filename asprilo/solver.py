@@ -17,7 +17,10 @@ from pathlib import Path
 import clingo
 import clingo.ast
 
+from . import clingo_logger
 from .errors import InputError
+
+clingo_logger.install()
 
 Part = tuple[str, Sequence[clingo.Symbol | int | str]]
 
@@ -109,8 +112,7 @@ class Solver:
         self.messages.append(message)
 
     def _error(self, default_name: str) -> InputError:
-        errors = [m for m in self.messages if ": error:" in m] or self.messages
-        text = errors[0].strip() if errors else "clingo rejected the program"
+        text = clingo_logger.first_error(self.messages) or "clingo rejected the program"
         self.messages.clear()
         match = _LOCATION.match(text)
         if not match:

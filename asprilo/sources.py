@@ -224,7 +224,7 @@ def _ground(sources: Sequence[Source]) -> list[clingo.Symbol]:
 
 
 def _clingo_error(messages: list[str], name: str | None) -> InputError:
-    text = messages[0].strip() if messages else "clingo rejected the input"
+    text = clingo_logger.first_error(messages) or "clingo rejected the input"
     match = _LOCATION.match(text)
     if match:
         detail = match.group(2).splitlines()[0]

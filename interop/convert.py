@@ -338,7 +338,8 @@ def _format(path: str, given: str | None, what: str) -> str:
         return given
     found = FORMATS.get(Path(path).suffix)
     if found is None:
-        raise InputError(f"cannot tell the format of {what} {path!r} from its ending; use --from/--to")
+        flag = "--from" if what == "IN" else "--to"
+        raise InputError(f"cannot tell the format from the ending {Path(path).suffix!r}; say it with {flag}", path)
     return found
 
 
@@ -360,9 +361,12 @@ def convert(args: argparse.Namespace) -> str:
         if target_format not in ("asprilo", "m", "md"):
             raise InputError(f"a {source_format} converts to an asprilo instance (.lp), not {target_format}")
         return _from_movingai(args, source_format)
-    if source_format == "asprilo":
-        return _from_instance(args, target_format)
-    return _plan_or_result(args, source_format, target_format)
+    try:
+        if source_format == "asprilo":
+            return _from_instance(args, target_format)
+        return _plan_or_result(args, source_format, target_format)
+    except InputError as error:
+        raise error.at(args.source) from None
 
 
 def _from_instance(args: argparse.Namespace, target_format: str) -> str:
@@ -400,13 +404,21 @@ def _from_movingai(args: argparse.Namespace, source_format: str) -> str:
         instance = map_to_instance(grid)
     else:
         tasks = parse_scenario(Source.from_path(args.source))
-        map_path = Path(args.map) if args.map else Path(args.source).parent / tasks[0].map_name
+        map_path = Path(args.map) if args.map else _map_beside(args.source, tasks[0].map_name)
         grid = parse_map(Source.from_path(map_path))
         instance = scenario_to_instance(grid, tasks, len(tasks) if args.agents is None else args.agents,
                                         args.goals, args.labelled)
     header = header_lines(instance, command=f"asprilo convert {args.source} {args.target}")
     return format_instance(instance, header) + "\n% MovingAI map data (kept for exact .map round trips)\n" + \
         "\n".join(terrain_facts(grid, map_path.name)) + "\n"
+
+
+def _map_beside(scenario: str, name: str) -> Path:
+    """The map a scenario names: a file in the scenario's folder."""
+    if Path(name).name != name or name in ("", ".", ".."):
+        raise InputError(f"the scenario names the map {name!r}, not a file beside it; give the map with --map",
+                         scenario)
+    return Path(scenario).parent / name
 
 
 def run(args: argparse.Namespace) -> int:
