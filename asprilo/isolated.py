@@ -9,7 +9,6 @@ its address space limited.  The atoms of the first answer come back as fact text
 from __future__ import annotations
 
 import multiprocessing
-import resource
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
@@ -50,6 +49,8 @@ def ground(programs: Sequence[Source], limits: Limits) -> str:
 
 def _child(programs: list[tuple[str, str]], megabytes: int, send) -> None:
     """Ground in the child: ("facts", text), ("error", (message, file, line)) or ("memory", None)."""
+    import resource  # POSIX only, like the limit itself
+
     from .sources import Source, _ground  # the child imports what it needs itself
 
     size = megabytes * 2**20

@@ -184,3 +184,25 @@ def test_bad_assignments(write, text, message):
                            "init(object(destination,2),value(at,(1,1))).\n" + text)
     with pytest.raises(Exception, match=re.escape(f"{path}:2: {message}")):
         read_instance(path)
+
+
+def test_unknown_facts_are_carried_through_m_and_md(tmp_path, write, capsys):
+    """A robot's energy (later asprilo work) is ignored with a warning and written back."""
+    path = write("energy.lp", "init(object(node,1),value(at,(1,1))). init(object(node,2),value(at,(2,1))).\n"
+                              "init(object(robot,1),value(at,(1,1))). init(object(destination,1),value(at,(2,1))).\n"
+                              "init(object(robot,1),value(energy,80)). init(object(robot,1),value(max_energy,100)).\n")
+    kept = ["init(object(robot,1),value(energy,80)).", "init(object(robot,1),value(max_energy,100))."]
+    assert main(["convert", str(path), str(tmp_path / "m.lp"), "--to", "m"]) == 0
+    assert main(["convert", str(tmp_path / "m.lp"), str(tmp_path / "md.lp"), "--to", "md"]) == 0
+    heading = "% facts asprilo does not use (kept as they were read)"
+    for name in ("m.lp", "md.lp"):
+        assert (tmp_path / name).read_text().splitlines()[-3:] == [heading, *kept]
+    warnings = capsys.readouterr().err.splitlines()
+    assert warnings == [f"warning: {path}:3: ignored (and kept when written): attribute 'energy' of robot, "
+                        "attribute 'max_energy' of robot",
+                        f"warning: {tmp_path / 'm.lp'}:{_line_of(tmp_path / 'm.lp', kept[0])}: ignored (and kept "
+                        "when written): attribute 'energy' of robot, attribute 'max_energy' of robot"]
+
+
+def _line_of(path, text: str) -> int:
+    return path.read_text().splitlines().index(text) + 1

@@ -207,3 +207,18 @@ def test_bad_ports_are_refused(capsys):
             main(["serve", "solver", "--port", port])
         assert exit_.value.code == 2
         assert "argument --port" in capsys.readouterr().err
+
+
+def test_a_clingo_message_cut_inside_a_character_is_read(tmp_path):
+    """clingo logs a lexer error next to a multi-byte character with the character cut;
+    a program (not data: no screening) with one gives a clean error, not clingo's PANIC."""
+    program = tmp_path / "program.lp"
+    program.write_text("p :- q — r.\n", encoding="utf-8")
+    code = ("from asprilo.solver import Solver\n"
+            "from asprilo.errors import InputError\n"
+            "try:\n"
+            f"    Solver().load({str(program)!r})\n"
+            "except InputError as error:\n"
+            "    print(error)\n")
+    result = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=BUDGET)
+    assert (result.returncode, result.stdout, result.stderr) == (0, f"{program}:1: lexer error, unexpected —\n", "")
