@@ -21,7 +21,7 @@ from collections.abc import Callable, Sequence
 from asprilo import __version__
 from asprilo.arguments import add_reading_options, reading_limits
 from asprilo.errors import InputError, InputWarning
-from asprilo.limits import set_current
+from asprilo.limits import using
 
 #: name -> (module, one-line summary); a command is listed here once it works.
 COMMANDS: dict[str, tuple[str, str]] = {
@@ -53,10 +53,15 @@ def _parser(name: str, prog: str, summary: str, parent=None) -> argparse.Argumen
 
 
 def run_command(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespace) -> int:
-    """Run a command, turning bad input and interruptions into messages and exit codes."""
-    set_current(reading_limits(args))
-    warnings.simplefilter("always", InputWarning)
-    warnings.showwarning = _show_warning
+    """Run a command within the limits its options ask for, turning bad input and
+    interruptions into messages and exit codes."""
+    with using(reading_limits(args)), warnings.catch_warnings():
+        warnings.simplefilter("always", InputWarning)
+        warnings.showwarning = _show_warning
+        return _run(run, args)
+
+
+def _run(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespace) -> int:
     try:
         return run(args) or 0
     except InputError as error:
