@@ -9,7 +9,9 @@ within the limits in force (:mod:`asprilo.limits`).
 
 from __future__ import annotations
 
+import os
 import re
+import stat
 import sys
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
@@ -63,8 +65,18 @@ class Source:
 
 
 def _read_at_most(stream, limits: Limits, name: str) -> bytes:
+    """All bytes of a file or pipe, refused beyond the ``file-mb`` limit (pipes and devices
+    are read piece by piece, so an endless one stops at the limit)."""
     most = limits.file_mb * 2**20
-    data = stream.read(most + 1)
+    status = os.fstat(stream.fileno())
+    if stat.S_ISREG(status.st_mode) and status.st_size <= most:
+        data = stream.read()
+    else:
+        pieces, size = [], 0
+        while size <= most and (piece := stream.read(min(1 << 20, most + 1 - size))):
+            pieces.append(piece)
+            size += len(piece)
+        data = b"".join(pieces)
     if len(data) > most:
         raise limits.exceeded("file_mb", f"more than {limits.file_mb:,} MB").at(name)
     return data
@@ -151,7 +163,8 @@ def load_facts(sources: Sequence[Source], limits: Limits | None = None
     limits = limits or current()
     scanned = []
     for source in sources:
-        facts = scan_facts(_program_text(source), limits.facts - len(scanned))
+        text, room = _program_text(source), limits.facts - len(scanned)
+        facts = scan_facts(text, None if text.count(".") <= room else room)
         if facts is None:
             return None, ground_atoms(sources, limits)
         scanned += [(name, args, (source, offset)) for name, args, offset in facts]
