@@ -1,0 +1,162 @@
+"""Run a function in a child process under hard limits: wall-clock time and memory.
+
+clingo cannot be stopped while it grounds, and a program may ground for ever; a child
+process can always be killed.  The child runs ``function(*args, report=report)`` where
+``report(message)`` sends any picklable message to the parent at once (progress); the
+parent hands each message to ``on_message`` as it arrives and returns what the function
+returned, or says why there is nothing:
+
+    outcome = run_isolated(ground_and_solve, (program,), time_limit=5, memory_mb=2048,
+                           on_message=print)
+    outcome.status      # "done", "timeout", "memout" or "crashed"
+    outcome.value       # the function's return value when done
+
+An exception the function raises is raised again in the parent (it must be picklable,
+like :class:`~asprilo.errors.InputError`).  The child is started by ``fork`` where that is
+safe (no other thread running in the parent) and ``spawn`` otherwise.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import resource
+import signal
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+#: how long a killed child may take to go, and how often the parent looks at the clock
+_GRACE = 1.0
+_TICK = 0.1
+
+
+@dataclass
+class Isolated:
+    """What a child process did: ``status`` is ``done``, ``timeout``, ``memout`` or ``crashed``."""
+
+    status: str
+    value: Any = None
+    seconds: float = 0.0
+    messages: list[Any] = field(default_factory=list)
+    detail: str = ""
+
+    @property
+    def done(self) -> bool:
+        return self.status == "done"
+
+
+class _Failure:
+    """An exception raised in the child, carried back to be raised again."""
+
+    def __init__(self, error: BaseException):
+        self.error = error
+
+
+class _OutOfMemory:
+    pass
+
+
+def _child(connection, function: Callable, args: tuple, memory_mb: int | None) -> None:
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when to stop
+    if memory_mb:
+        size = memory_mb * 2**20
+        resource.setrlimit(resource.RLIMIT_AS, (size, size))
+
+    def report(message: Any) -> None:
+        connection.send(("message", message))
+
+    try:
+        result: Any = function(*args, report=report)
+    except MemoryError:
+        result = _OutOfMemory()
+    except BaseException as error:  # noqa: BLE001 - everything goes back to the parent
+        try:
+            connection.send(("result", _Failure(error)))
+        except Exception:  # noqa: BLE001 - an error that cannot be pickled
+            connection.send(("result", _Failure(RuntimeError(f"{type(error).__name__}: {error}"))))
+        return
+    connection.send(("result", result))
+
+
+def _context() -> multiprocessing.context.BaseContext:
+    """``fork`` when this process runs no other thread (fast, nothing to import again)."""
+    if threading.active_count() == 1 and "fork" in multiprocessing.get_all_start_methods():
+        return multiprocessing.get_context("fork")
+    return multiprocessing.get_context("spawn")
+
+
+def run_isolated(function: Callable[..., Any], args: tuple = (), time_limit: float | None = None,
+                 memory_mb: int | None = None, on_message: Callable[[Any], None] | None = None,
+                 cancel: threading.Event | None = None, on_tick: Callable[[float], None] | None = None
+                 ) -> Isolated:
+    """Run ``function(*args, report=...)`` in a child process; see the module docstring.
+
+    ``time_limit`` (seconds) and ``memory_mb`` are hard: the child is killed at the
+    deadline and cannot allocate beyond the limit.  Setting ``cancel`` kills it too (status
+    ``timeout``).  ``on_tick(elapsed)`` is called about ten times a second while waiting.
+    """
+    context = _context()
+    receiver, sender = context.Pipe(duplex=False)
+    process = context.Process(target=_child, args=(sender, function, args, memory_mb), daemon=True)
+    started = time.perf_counter()
+    process.start()
+    sender.close()
+    outcome = Isolated("crashed")
+    try:
+        outcome = _wait(process, receiver, started, time_limit, on_message, cancel, on_tick)
+        outcome = _blame_memory(outcome, memory_mb)
+    finally:
+        if process.is_alive():
+            process.kill()
+        process.join(_GRACE)
+        receiver.close()
+    outcome.seconds = time.perf_counter() - started
+    if isinstance(outcome.value, _Failure):
+        raise outcome.value.error
+    return outcome
+
+
+def _wait(process, receiver, started: float, time_limit: float | None, on_message, cancel,
+          on_tick) -> Isolated:
+    messages: list[Any] = []
+    deadline = None if time_limit is None else started + time_limit
+    while True:
+        now = time.perf_counter()
+        if (deadline is not None and now >= deadline) or (cancel is not None and cancel.is_set()):
+            return Isolated("timeout", messages=messages)
+        wait = _TICK if deadline is None else max(0.0, min(_TICK, deadline - now))
+        if receiver.poll(wait):
+            try:
+                kind, payload = receiver.recv()
+            except EOFError:  # the child died without a word
+                process.join(_GRACE)
+                return _died(process, messages)
+            if kind == "message":
+                messages.append(payload)
+                if on_message is not None:
+                    on_message(payload)
+                continue
+            if isinstance(payload, _OutOfMemory):
+                return Isolated("memout", messages=messages, detail="out of memory")
+            return Isolated("done", payload, messages=messages)
+        if on_tick is not None:
+            on_tick(time.perf_counter() - started)
+        if not process.is_alive() and not receiver.poll():
+            return _died(process, messages)
+
+
+def _died(process, messages: list[Any]) -> Isolated:
+    code = process.exitcode
+    detail = f"killed by signal {-code}" if code is not None and code < 0 else f"exit status {code}"
+    return Isolated("crashed", messages=messages, detail=detail)
+
+
+def _blame_memory(outcome: Isolated, memory_mb: int | None) -> Isolated:
+    """A child under a memory limit that died of a signal ran out of memory: C++ code that
+    cannot allocate aborts (std::bad_alloc) instead of raising MemoryError."""
+    if memory_mb and outcome.status == "crashed" and outcome.detail.startswith("killed by signal"):
+        outcome.status = "memout"
+    return outcome
+
