@@ -20,9 +20,10 @@ from pathlib import Path
 import clingo
 import clingo.ast
 
-from . import clingo_logger, isolated
+from . import clingo_logger
 from .errors import InputError
 from .facts import scan_facts
+from .isolation import run_isolated
 from .limits import Limits, current
 from .policy import BOM, check_statements, decode, screen
 
@@ -205,7 +206,7 @@ def ground_atoms(sources: Sequence[Source], limits: Limits | None = None) -> lis
         if not limits.allow_rules:
             check_statements(program.text, program.name)
     if limits.allow_rules:
-        derived = Source(", ".join(p.name for p in programs), isolated.ground(programs, limits))
+        derived = Source(", ".join(p.name for p in programs), _ground_rules(programs, limits))
         screen(derived.text, derived.name, limits)
         programs = [derived]
     atoms = _ground(programs)
@@ -214,8 +215,29 @@ def ground_atoms(sources: Sequence[Source], limits: Limits | None = None) -> lis
     return atoms
 
 
+def _ground_rules(programs: list[Source], limits: Limits) -> str:
+    """Ground programs with rules in a child process, stopped after ``rule-seconds`` and
+    limited to ``rule-mb``: clingo cannot be stopped while it grounds (``p(X+1) :- p(X).``
+    grounds for ever).  The atoms of the first answer come back as fact text."""
+    names = ", ".join(program.name for program in programs) or None
+    outcome = run_isolated(_atoms_text, ([(p.name, p.text) for p in programs],), time_limit=limits.rule_seconds,
+                           memory_mb=limits.rule_mb)
+    if outcome.status == "timeout":
+        raise limits.exceeded("rule_seconds", "grounding the rules takes longer").at(names)
+    if outcome.status == "memout":
+        raise limits.exceeded("rule_mb", "grounding the rules needs more memory").at(names)
+    if not outcome.done:
+        raise InputError(f"grounding the rules failed ({outcome.detail})", names)
+    return outcome.value
+
+
+def _atoms_text(programs: list[tuple[str, str]], report=None) -> str:
+    """In the child: the atoms of the first answer of ``programs``, one fact a line."""
+    return "".join(f"{atom}.\n" for atom in _ground([Source(name, text) for name, text in programs]))
+
+
 def _ground(sources: Sequence[Source]) -> list[clingo.Symbol]:
-    """Ground and solve in this process (for screened facts and for the child process)."""
+    """Ground and solve in this process (for screened facts, and in a child for rules)."""
     messages: list[str] = []
     control = clingo.Control(["--warn=none"], logger=lambda _code, message: messages.append(message))
     for source in sources:
