@@ -104,9 +104,11 @@ class _InstanceBuilder:
                   "shelf": instance.shelves, "picking station": instance.stations,
                   "destination": instance.destinations}
         for kind, table in placed.items():
-            cells = list(table.values()) if kind in ("node", "highway") else [item.at for item in table.values()]
+            plain = kind in ("node", "highway")
+            cells = table.values() if plain else (item.at for item in table.values())
             if max(map(abs, chain.from_iterable(cells)), default=0) > limit:
-                ident, cell = next((i, c) for i, c in zip(table, cells, strict=True) if max(map(abs, c)) > limit)
+                ident, cell = next((i, c if plain else c.at) for i, c in table.items()
+                                   if max(map(abs, c if plain else c.at)) > limit)
                 what = self.limits.exceeded("coordinate", f"{kind} {ident} at {format_value(cell)}").message
                 raise self.fail(what, self.seen[(kind, ident, "at")][1])
 

@@ -30,6 +30,7 @@ from .policy import BOM, check_statements, decode, screen
 clingo_logger.install()
 
 STDIN = "-"
+_SHORTEST_FACT = len("init(object(a,1),value(b,1)).")  # the fast scan reads no shorter fact
 
 
 @dataclass(frozen=True)
@@ -165,7 +166,7 @@ def load_facts(sources: Sequence[Source], limits: Limits | None = None
     scanned = []
     for source in sources:
         text, room = _program_text(source), limits.facts - len(scanned)
-        facts = scan_facts(text, None if text.count(".") <= room else room)
+        facts = scan_facts(text, None if len(text) <= _SHORTEST_FACT * room else room)
         if facts is None:
             return None, ground_atoms(sources, limits)
         scanned += [(name, args, (source, offset)) for name, args, offset in facts]
