@@ -1,4 +1,5 @@
-"""Argument types shared by the command-line tools (argparse ``type=`` callables)."""
+"""Arguments shared by the command-line tools: argparse ``type=`` callables and the
+options of every command that reads data (``--allow-rules``, ``--limit NAME=N``)."""
 
 from __future__ import annotations
 
@@ -6,6 +7,7 @@ import argparse
 
 from .domain import Domain
 from .errors import InputError
+from .limits import NAMES, Limits, parse_option
 
 
 def domain_argument(text: str) -> Domain:
@@ -14,3 +16,38 @@ def domain_argument(text: str) -> Domain:
         return Domain.parse(text)
     except InputError as error:
         raise argparse.ArgumentTypeError(error.message) from None
+
+
+def port_argument(text: str) -> int:
+    """``--port`` values: 0 (any free port) to 65535."""
+    try:
+        port = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a port number: {text!r}") from None
+    if not 0 <= port <= 65535:
+        raise argparse.ArgumentTypeError(f"a port is 0..65535, got {port}")
+    return port
+
+
+def _limit_argument(text: str) -> str:
+    try:
+        parse_option(text)
+    except InputError as error:
+        raise argparse.ArgumentTypeError(error.message) from None
+    return text
+
+
+def add_reading_options(parser: argparse.ArgumentParser) -> None:
+    """``--allow-rules`` and ``--limit NAME=N`` (see README: "Reading data")."""
+    defaults = Limits()
+    group = parser.add_argument_group("reading data", "instances and plans hold facts; see README, Reading data")
+    group.add_argument("--allow-rules", action="store_true",
+                       help="read rules in data files too, grounded under the rule-seconds and rule-mb limits")
+    shown = ", ".join(f"{name.replace('_', '-')}={getattr(defaults, name)}" for name in NAMES)
+    group.add_argument("--limit", action="append", default=[], type=_limit_argument, metavar="NAME=N",
+                       help=f"raise (or lower) a limit on data (repeatable); defaults: {shown}")
+
+
+def reading_limits(args: argparse.Namespace) -> Limits:
+    """The limits the reading options of ``args`` ask for."""
+    return Limits().with_options(getattr(args, "limit", []) or [], getattr(args, "allow_rules", False))

@@ -71,9 +71,8 @@ def detect_domain(instance: Instance, plan: Plan | None = None) -> Domain:
         return Domain.MD
     if not instance.orders:
         return Domain.M
-    if is_m_aligned(instance):
-        if plan is None or all(action.name == "move" for action in plan.actions):
-            return Domain.M
+    if is_m_aligned(instance) and (plan is None or all(action.name == "move" for action in plan.actions)):
+        return Domain.M
     if plan is not None and any(action.name == "deliver" and isinstance(action.args, tuple)
                                 and len(action.args) == 2 for action in plan.actions):
         return Domain.B

@@ -16,6 +16,9 @@ class InputError(Exception):
         self.file = file
         self.line = line
 
+    def __reduce__(self):  # pickled whole (file and line too): errors come back from child processes
+        return InputError, (self.message, self.file, self.line)
+
     def at(self, file: str | None, line: int | None = None) -> InputError:
         """Return this error located in ``file`` (and ``line``) unless it has a place already."""
         if self.file is None:
@@ -27,3 +30,7 @@ class InputError(Exception):
             return self.message
         place = self.file if self.line is None else f"{self.file}:{self.line}"
         return f"{place}: {self.message}"
+
+
+class InputWarning(UserWarning):
+    """Input read, with something ignored: ``str(warning)`` reads ``FILE[:LINE]: what``."""

@@ -7,7 +7,6 @@ an instance uses the quantity-free forms ``value(on,S)`` / ``value(line,P)``.
 from __future__ import annotations
 
 from collections import defaultdict
-from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
@@ -76,6 +75,9 @@ class Instance:
     #: labelled goals (M/Md): robot id -> ("shelf", S) or ("destination", D), from
     #: ``assign(robot(R),shelf(S))`` / ``assign(robot(R),destination(D))`` facts
     assignment: dict[int, tuple[str, int]] = field(default_factory=dict)
+    #: ``init/2`` facts of object types or attributes asprilo does not know (e.g. a robot's
+    #: ``energy``), as text: ignored by every tool, written back with the instance
+    other_facts: list[str] = field(default_factory=list)
 
     # --- the floor -----------------------------------------------------------------------
 
@@ -96,14 +98,6 @@ class Instance:
         """Nodes where a shelf may rest: neither highway nor picking station."""
         blocked = set(self.highways.values()) | {station.at for station in self.stations.values()}
         return self.cells - blocked
-
-    def neighbours(self, cell: Cell) -> Iterator[Cell]:
-        """The floor cells adjacent to ``cell``."""
-        cells = self.cells
-        x, y = cell
-        for dx, dy in DIRECTIONS:
-            if (x + dx, y + dy) in cells:
-                yield (x + dx, y + dy)
 
     def assigned_cells(self) -> dict[int, Cell]:
         """Robot id -> the cell its labelled goal (shelf or destination) starts on."""

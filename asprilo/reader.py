@@ -1,88 +1,60 @@
-"""Read instances and plans (SPEC.md §2-3) from files, strings or stdin, through clingo.
-
-This module and :mod:`asprilo.writer` are the only places that know the shapes of the
-``init/2`` and ``occurs/3`` facts.
-"""
+"""Read instances and plans (SPEC.md §2-3) from files, strings or stdin, through clingo
+(the shapes of the facts are :mod:`asprilo.facts`')."""
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable, Iterable, Sequence
+from itertools import chain
 from typing import Any
 
 import clingo
-from clingo import SymbolType
 
-from .errors import InputError
+from .errors import InputError, InputWarning
+from .facts import ATTRIBUTES, action_of, assign_terms, format_action, format_value, init_fact, init_terms, value_of
+from .limits import Limits, current, require_plan_fits
 from .model import Action, Cell, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
-from .sources import Source, SourceLike, as_sources, line_of, load_facts, locate, symbol_fact
-from .writer import format_action, format_value
+from .sources import Source, SourceLike, as_sources, line_of, load_facts, locate
+
+#: value_of is the tools' way to read single terms
+__all__ = ["instance_from_atoms", "plan_from_atoms", "read_instance", "read_instance_and_plan", "read_plan",
+           "require_known_robots", "value_of"]
 
 
-def read_instance(inputs: SourceLike | Iterable[SourceLike]) -> Instance:
-    """Read an instance from one or several files (``-`` = stdin) or :class:`Source` objects."""
-    sources = as_sources(inputs)
-    return _build_instance(sources, *load_facts(sources))
+def read_instance(inputs: SourceLike | Iterable[SourceLike], limits: Limits | None = None) -> Instance:
+    """Read an instance from one or several files (``-`` = stdin) or :class:`Source` objects.
+
+    Facts of object types or attributes asprilo does not know are kept aside
+    (``other_facts``) with one :class:`InputWarning` naming them.
+    """
+    limits = limits or current()
+    sources = as_sources(inputs, limits)
+    return _build_instance(sources, *load_facts(sources, limits), limits=limits)
 
 
-def read_plan(inputs: SourceLike | Iterable[SourceLike]) -> Plan:
+def read_plan(inputs: SourceLike | Iterable[SourceLike], limits: Limits | None = None) -> Plan:
     """Read a plan from plan files or clingo's printed output; other atoms are ignored."""
-    sources = as_sources(inputs)
-    return _build_plan(sources, *load_facts(sources))
+    limits = limits or current()
+    sources = as_sources(inputs, limits)
+    return _build_plan(sources, *load_facts(sources, limits), limits=limits)
 
 
-def read_instance_and_plan(instance: SourceLike | Iterable[SourceLike],
-                           plan: SourceLike | Iterable[SourceLike]) -> tuple[Instance, Plan]:
-    """Read both and make sure the plan only moves robots the instance has."""
-    plan_sources = as_sources(plan)
-    the_instance = read_instance(instance)
-    the_plan = read_plan(plan_sources)
+def read_instance_and_plan(instance: SourceLike | Iterable[SourceLike], plan: SourceLike | Iterable[SourceLike],
+                           limits: Limits | None = None) -> tuple[Instance, Plan]:
+    """Read both and make sure the plan only moves robots the instance has, within the limits."""
+    limits = limits or current()
+    plan_sources = as_sources(plan, limits)
+    the_instance = read_instance(instance, limits)
+    the_plan = read_plan(plan_sources, limits)
     require_known_robots(the_plan, the_instance, plan_sources)
+    try:
+        require_plan_fits(the_instance, the_plan, limits)
+    except InputError as error:
+        raise error.at(plan_sources[0].name if len(plan_sources) == 1 else None) from None
     return the_instance, the_plan
 
 
-def text_source(text: str, name: str = "<string>") -> Source:
-    """A source for ASP text held in a string."""
-    return Source(name, text)
-
-
-# --- terms -------------------------------------------------------------------------------
-
-def value_of(symbol: clingo.Symbol) -> Any:
-    """A term as a Python value: numbers -> int, tuples -> tuple, anything else -> its text."""
-    kind = symbol.type
-    if kind == SymbolType.Number:
-        return symbol.number
-    if kind == SymbolType.Function and symbol.name == "":
-        return tuple(value_of(argument) for argument in symbol.arguments)
-    if kind == SymbolType.Function and not symbol.arguments and not symbol.negative:
-        return symbol.name
-    return str(symbol)
-
-
-def _is_cell(value: Any) -> bool:
-    return type(value) is tuple and len(value) == 2 and type(value[0]) is int and type(value[1]) is int
-
-
-def _is_int(value: Any) -> bool:
-    return isinstance(value, int)
-
-
 # --- instances ---------------------------------------------------------------------------
-
-#: object type -> attribute -> (test of the value's shape, description used in messages)
-_ATTRIBUTES: dict[str, dict[str, tuple[Callable[[Any], bool], str]]] = {
-    "node": {"at": (_is_cell, "a cell (X,Y)")},
-    "highway": {"at": (_is_cell, "a cell (X,Y)")},
-    "robot": {"at": (_is_cell, "a cell (X,Y)"), "carries": (_is_int, "a shelf id")},
-    "shelf": {"at": (_is_cell, "a cell (X,Y)")},
-    "pickingStation": {"at": (_is_cell, "a cell (X,Y)")},
-    "destination": {"at": (_is_cell, "a cell (X,Y)")},
-    "product": {"on": (lambda v: _is_int(v) or _is_cell(v), "(Shelf,Units) or Shelf")},
-    "order": {"line": (lambda v: _is_int(v) or _is_cell(v), "(Product,Units) or Product"),
-              "pickingStation": (_is_int, "a picking station id")},
-    "grid": {"xsize": (_is_int, "an integer"), "ysize": (_is_int, "an integer")},
-}
-
 
 class _InstanceBuilder:
     """Collects ``init/2`` facts, rejecting unknown shapes and conflicting duplicates.
@@ -90,8 +62,10 @@ class _InstanceBuilder:
     Each fact comes with its origin, used only to say where a bad fact stands.
     """
 
-    def __init__(self, sources: Sequence[Source]):
+    def __init__(self, sources: Sequence[Source], limits: Limits):
         self.sources = sources
+        self.limits = limits
+        self.unknown: dict[str, Any] = {}  # what is not known -> the origin of its first fact
         self.instance = Instance()
         self.seen: dict[tuple, tuple[Any, Any]] = {}
         self.grid: dict[str, int] = {}
@@ -108,12 +82,13 @@ class _InstanceBuilder:
         self.seen[key] = (value, origin)
 
     def add(self, kind: Any, ident: Any, attribute: Any, value: Any, origin: Any) -> None:
-        attributes = _ATTRIBUTES.get(kind)
-        if attributes is None:
-            raise self.fail(f"unknown object type '{kind}' (known: {', '.join(_ATTRIBUTES)})", origin)
-        if attribute not in attributes:
-            raise self.fail(f"unknown attribute '{attribute}' of {kind} "
-                            f"(known: {', '.join(attributes)})", origin)
+        attributes = ATTRIBUTES.get(kind)
+        if attributes is None or attribute not in attributes:
+            what = f"object type '{format_value(kind)}'" if attributes is None else \
+                f"attribute '{format_value(attribute)}' of {kind}"
+            self.unknown.setdefault(what, origin)
+            self.instance.other_facts.append(init_fact(*map(format_value, (kind, ident, attribute)), value))
+            return
         shape, description = attributes[attribute]
         if not isinstance(ident, int):
             raise self.fail(f"{kind} id must be an integer, got {format_value(ident)}", origin)
@@ -122,26 +97,45 @@ class _InstanceBuilder:
                             f"got {format_value(value)}", origin)
         getattr(self, f"_{kind}")(ident, attribute, value, origin)
 
+    def check_cells(self) -> None:
+        """Every cell within the ``coordinate`` limit (checked once all are read: fast)."""
+        limit, instance = self.limits.coordinate, self.instance
+        placed = {"node": instance.nodes, "highway": instance.highways, "robot": instance.robots,
+                  "shelf": instance.shelves, "picking station": instance.stations,
+                  "destination": instance.destinations}
+        for kind, table in placed.items():
+            plain = kind in ("node", "highway")
+            cells = table.values() if plain else (item.at for item in table.values())
+            if max(map(abs, chain.from_iterable(cells)), default=0) > limit:
+                ident, cell = next((i, c if plain else c.at) for i, c in table.items()
+                                   if max(map(abs, c if plain else c.at)) > limit)
+                what = self.limits.exceeded("coordinate", f"{kind} {ident} at {format_value(cell)}").message
+                raise self.fail(what, self.seen[(kind, ident, "at")][1])
+
+    def warn_unknown(self) -> None:
+        """One warning naming everything unknown (at the place of the first such fact)."""
+        if self.unknown:
+            names = ", ".join(self.unknown)
+            file, line = _where(next(iter(self.unknown.values())), self.sources)
+            message = str(InputError(f"ignored (and kept when written): {names}", file, line))
+            warnings.warn(InputWarning(message), stacklevel=4)
+
     def add_symbol(self, atom: clingo.Symbol) -> None:
         """Add an ``init/2`` atom of any shape (the slow path for unusual terms)."""
-        plain = symbol_fact(atom)
-        if plain is not None:
-            return self.add(*plain[1], atom)
-        obj, val = atom.arguments
-        if not (obj.match("object", 2) and val.match("value", 2)):
-            raise self.fail(f"expected init(object(Type,Id),value(Attribute,Value)), got {atom}", atom)
-        self.add(*(value_of(term) for term in (*obj.arguments, *val.arguments)), atom)
+        try:
+            terms = init_terms(atom)
+        except InputError as error:
+            raise error.at(*_where(atom, self.sources)) from None
+        self.add(*terms, atom)
 
     def assign(self, atom: clingo.Symbol) -> None:
         """Add a labelled goal ``assign(robot(R),shelf(S))`` or ``assign(robot(R),destination(D))``."""
-        robot, goal = atom.arguments
-        if not (robot.match("robot", 1) and (goal.match("shelf", 1) or goal.match("destination", 1))
-                and all(term.arguments[0].type == SymbolType.Number for term in (robot, goal))):
-            raise self.fail(f"expected assign(robot(R),shelf(S)) or assign(robot(R),destination(D)), "
-                            f"got {atom}", atom)
-        ident = robot.arguments[0].number
-        self.single(("assign", ident), str(goal), atom, f"robot {ident} is assigned two goals")
-        self.goals[ident] = (goal.name, goal.arguments[0].number)
+        try:
+            ident, kind, goal = assign_terms(atom)
+        except InputError as error:
+            raise error.at(*_where(atom, self.sources)) from None
+        self.single(("assign", ident), f"{kind}({goal})", atom, f"robot {ident} is assigned two goals")
+        self.goals[ident] = (kind, goal)
 
     # one method per object type --------------------------------------------------------
 
@@ -202,6 +196,8 @@ class _InstanceBuilder:
     def _grid(self, _ident, attribute, value, origin):
         if value < 1:
             raise self.fail(f"grid {attribute} must be at least 1, got {value}", origin)
+        if value > self.limits.coordinate:
+            raise self.fail(self.limits.exceeded("coordinate", f"grid {attribute} {value}").message, origin)
         self.single(("grid", attribute), value, origin, f"grid has two values of {attribute}")
         self.grid[attribute] = value
 
@@ -211,6 +207,7 @@ class _InstanceBuilder:
             if robot.at is None:
                 raise self.fail(f"robot {robot.id} has no position (no value(at,(X,Y)))",
                                 self.seen[("robot", robot.id, "carries")][1])
+        self.check_cells()
         if self.grid:
             self._expand_grid()
         tables = {"shelf": instance.shelves, "destination": instance.destinations}
@@ -230,6 +227,9 @@ class _InstanceBuilder:
             raise self.fail(f"grid gives no {missing}", origin)
         width, height = self.grid["xsize"], self.grid["ysize"]
         nodes = self.instance.nodes
+        if width * height + len(nodes) > self.limits.facts:
+            origin = self.seen[("grid", "xsize")][1]
+            raise self.fail(self.limits.exceeded("facts", f"a grid of {width}x{height} nodes").message, origin)
         taken = set(nodes.values())
         next_id = max(nodes) + 1 if nodes else None
         for y in range(1, height + 1):
@@ -254,8 +254,9 @@ def _no_facts(what: str, sources: Sequence[Source]) -> InputError:
     return InputError(f"no {what} found", names)
 
 
-def _build_instance(sources: Sequence[Source], facts: list | None, atoms: list[clingo.Symbol]) -> Instance:
-    builder = _InstanceBuilder(sources)
+def _build_instance(sources: Sequence[Source], facts: list | None, atoms: list[clingo.Symbol],
+                    limits: Limits | None = None) -> Instance:
+    builder = _InstanceBuilder(sources, limits or current())
     if facts is not None:
         for name, args, origin in facts:
             if name == "init":
@@ -268,42 +269,45 @@ def _build_instance(sources: Sequence[Source], facts: list | None, atoms: list[c
                 builder.assign(atom)
     if not builder.seen:
         raise _no_facts("instance facts (expected init(object(..),value(..)) facts)", sources)
-    return builder.finish()
+    instance = builder.finish()
+    builder.warn_unknown()
+    return instance
 
 
-def instance_from_atoms(atoms: Iterable[clingo.Symbol], sources: Sequence[Source] = ()) -> Instance:
+def instance_from_atoms(atoms: Iterable[clingo.Symbol], sources: Sequence[Source] = (),
+                        limits: Limits | None = None) -> Instance:
     """Build an :class:`Instance` from ground ``init/2`` and ``assign/2`` atoms; others are ignored."""
-    return _build_instance(sources, None, list(atoms))
+    return _build_instance(sources, None, list(atoms), limits)
 
 
 # --- plans -------------------------------------------------------------------------------
 
 def _action_of(atom: clingo.Symbol, sources: Sequence[Source]) -> Action:
-    plain = symbol_fact(atom)
-    if plain is not None:
-        kind, robot, name, args, step = plain[1]
-        return Action(step, robot, name, args, kind)
-    obj, action, step = atom.arguments
-    if not (obj.match("object", 2) and action.match("action", 2)):
-        raise InputError(f"expected occurs(object(robot,R),action(Name,Args),T), got {atom}",
-                         *locate(sources, atom))
-    if step.type != SymbolType.Number:
-        raise InputError(f"the time step of {atom} must be an integer", *locate(sources, atom))
-    return Action(step=step.number, robot=value_of(obj.arguments[1]),
-                  name=str(value_of(action.arguments[0])), args=value_of(action.arguments[1]),
-                  kind=str(value_of(obj.arguments[0])))
+    try:
+        return action_of(atom)
+    except InputError as error:
+        raise error.at(*locate(sources, atom)) from None
 
 
-def _build_plan(sources: Sequence[Source], facts: list | None, atoms: list[clingo.Symbol]) -> Plan:
+def _build_plan(sources: Sequence[Source], facts: list | None, atoms: list[clingo.Symbol],
+                limits: Limits | None = None) -> Plan:
     if facts is not None:
-        return Plan([Action(args[4], args[1], args[2], args[3], args[0])
-                     for fact, args, _origin in facts if fact == "occurs"])
-    return Plan([_action_of(atom, sources) for atom in atoms if atom.match("occurs", 3)])
+        actions = [Action(args[4], args[1], args[2], args[3], args[0]) for fact, args, _origin in facts
+                   if fact == "occurs"]
+    else:
+        actions = [_action_of(atom, sources) for atom in atoms if atom.match("occurs", 3)]
+    limits = limits or current()
+    far = next((action for action in actions if abs(action.step) > limits.robot_steps), None)
+    if far is not None:
+        where = locate(sources, format_action(far)) if sources else (None, None)
+        raise InputError(limits.exceeded("robot_steps", f"an action at step {far.step:,}").message, *where)
+    return Plan(actions)
 
 
-def plan_from_atoms(atoms: Iterable[clingo.Symbol], sources: Sequence[Source] = ()) -> Plan:
+def plan_from_atoms(atoms: Iterable[clingo.Symbol], sources: Sequence[Source] = (),
+                    limits: Limits | None = None) -> Plan:
     """Build a :class:`Plan` from the ``occurs/3`` atoms among ``atoms``."""
-    return _build_plan(sources, None, list(atoms))
+    return _build_plan(sources, None, list(atoms), limits)
 
 
 def require_known_robots(plan: Plan, instance: Instance, sources: Sequence[Source] = ()) -> None:

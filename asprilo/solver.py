@@ -17,7 +17,10 @@ from pathlib import Path
 import clingo
 import clingo.ast
 
+from . import clingo_logger
 from .errors import InputError
+
+clingo_logger.install()
 
 Part = tuple[str, Sequence[clingo.Symbol | int | str]]
 
@@ -97,7 +100,6 @@ class Solver:
         self.messages: list[str] = []
         arguments = [*options, *(f"-c{name}={value}" for name, value in (constants or {}).items())]
         self.control = clingo.Control(arguments, logger=self._log)
-        self.theory_name = theory
         self.theory = _theory(theory)
         if self.theory is not None:
             self.theory.register(self.control)
@@ -110,8 +112,7 @@ class Solver:
         self.messages.append(message)
 
     def _error(self, default_name: str) -> InputError:
-        errors = [m for m in self.messages if ": error:" in m] or self.messages
-        text = errors[0].strip() if errors else "clingo rejected the program"
+        text = clingo_logger.first_error(self.messages) or "clingo rejected the program"
         self.messages.clear()
         match = _LOCATION.match(text)
         if not match:

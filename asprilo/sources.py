@@ -3,24 +3,34 @@
 A source is ASP text with a name for messages.  Text printed by clingo (``Answer: 1``
 followed by a line of atoms, ``SATISFIABLE``, statistics) is recognised and reduced to
 the facts of its last answer, keeping line numbers so that messages point into the
-original text.
+original text.  Everything read here follows the reading policy (:mod:`asprilo.policy`)
+within the limits in force (:mod:`asprilo.limits`).
 """
 
 from __future__ import annotations
 
+import os
 import re
+import stat
 import sys
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Union
 
 import clingo
 import clingo.ast
 
+from . import clingo_logger
 from .errors import InputError
+from .facts import scan_facts
+from .isolation import run_isolated
+from .limits import Limits, current
+from .policy import BOM, check_statements, decode, screen
+
+clingo_logger.install()
 
 STDIN = "-"
+_SHORTEST_FACT = len("init(object(a,1),value(b,1)).")  # the fast scan reads no shorter fact
 
 
 @dataclass(frozen=True)
@@ -31,37 +41,57 @@ class Source:
     text: str
 
     @classmethod
-    def from_path(cls, path: str | Path) -> Source:
-        """Read a file; ``-`` reads standard input."""
+    def from_path(cls, path: str | Path, limits: Limits | None = None) -> Source:
+        """Read a file (UTF-8, at most ``file-mb`` megabytes); ``-`` reads standard input."""
         if str(path) == STDIN:
-            return cls.from_stdin()
+            return cls.from_stdin(limits)
         path = Path(path)
         if not path.exists():
             raise InputError("no such file", str(path))
         if path.is_dir():
             raise InputError("is a directory, not a file", str(path))
         try:
-            return cls(str(path), path.read_text(encoding="utf-8"))
-        except UnicodeDecodeError:
-            raise InputError("not a text file (it is not UTF-8)", str(path)) from None
+            with path.open("rb") as stream:
+                return cls(str(path), decode(_read_at_most(stream, limits or current(), str(path)), str(path)))
         except OSError as error:
             raise InputError(error.strerror or "cannot be read", str(path)) from None
 
     @classmethod
-    def from_stdin(cls) -> Source:
+    def from_stdin(cls, limits: Limits | None = None) -> Source:
         if sys.stdin is None or sys.stdin.isatty():
             raise InputError("nothing to read (standard input is a terminal)", "<stdin>")
-        return cls("<stdin>", sys.stdin.read())
+        stream = getattr(sys.stdin, "buffer", None)
+        if stream is None:  # a text stream put in place of stdin (tests)
+            return cls("<stdin>", sys.stdin.read())
+        return cls("<stdin>", decode(_read_at_most(stream, limits or current(), "<stdin>"), "<stdin>"))
 
 
-SourceLike = Union[str, Path, Source]
+def _read_at_most(stream, limits: Limits, name: str) -> bytes:
+    """All bytes of a file or pipe, refused beyond the ``file-mb`` limit (pipes and devices
+    are read piece by piece, so an endless one stops at the limit)."""
+    most = limits.file_mb * 2**20
+    status = os.fstat(stream.fileno())
+    if stat.S_ISREG(status.st_mode) and status.st_size <= most:
+        data = stream.read()
+    else:
+        pieces, size = [], 0
+        while size <= most and (piece := stream.read(min(1 << 20, most + 1 - size))):
+            pieces.append(piece)
+            size += len(piece)
+        data = b"".join(pieces)
+    if len(data) > most:
+        raise limits.exceeded("file_mb", f"more than {limits.file_mb:,} MB").at(name)
+    return data
 
 
-def as_sources(inputs: SourceLike | Iterable[SourceLike]) -> list[Source]:
+SourceLike = str | Path | Source
+
+
+def as_sources(inputs: SourceLike | Iterable[SourceLike], limits: Limits | None = None) -> list[Source]:
     """Normalise one or several paths / ``-`` / :class:`Source` objects to sources."""
     if isinstance(inputs, (str, Path, Source)):
         inputs = [inputs]
-    return [item if isinstance(item, Source) else Source.from_path(item) for item in inputs]
+    return [item if isinstance(item, Source) else Source.from_path(item, limits) for item in inputs]
 
 
 # --- clingo's printed output -------------------------------------------------------------
@@ -125,79 +155,25 @@ def answer_facts(text: str, name: str) -> str:
 
 # --- facts ------------------------------------------------------------------------------
 
-#: A fact of interest: predicate name, arguments as Python values, and where it came from
-#: (``(source, offset)`` for scanned text, ``(sources, symbol)`` for grounded atoms).
-Fact = tuple[str, tuple, tuple]
-
-_INT = r"(-?\d+)"
-_INIT = re.compile(
-    r"init\(\s*object\(\s*(\w+)\s*,\s*" + _INT + r"\s*\)\s*,\s*value\(\s*(\w+)\s*,\s*"
-    r"(?:\(\s*" + _INT + r"\s*,\s*" + _INT + r"\s*\)|" + _INT + r")\s*\)\s*\)\s*\.")
-_OCCURS = re.compile(
-    r"occurs\(\s*object\(\s*(\w+)\s*,\s*" + _INT + r"\s*\)\s*,\s*action\(\s*(\w+)\s*,\s*"
-    r"\(\s*((?:-?\d+\s*(?:,\s*-?\d+\s*)*)?)\)\s*\)\s*,\s*" + _INT + r"\s*\)\s*\.")
-_SKIP = re.compile(r"(?:\s+|%(?!\*)[^\n]*|#program\s+base\s*\.)+")
-
-
-def _init_fact(match: re.Match) -> tuple:
-    kind, ident, attribute, x, y, single = match.groups()
-    return (kind, int(ident), attribute, (int(x), int(y)) if single is None else int(single))
-
-
-def _occurs_fact(match: re.Match) -> tuple:
-    kind, ident, name, args, step = match.groups()
-    values = tuple(map(int, args.split(","))) if args.strip() else ()
-    return (kind, int(ident), name, values, int(step))
-
-
-def scan_facts(text: str) -> list[tuple[str, tuple, int]] | None:
-    """Read text made only of plain ``init/2`` / ``occurs/3`` facts, comments and
-    ``#program base.`` without clingo; ``None`` when it holds anything else."""
-    facts, position, end = [], 0, len(text)
-    skip, init, occurs = _SKIP.match, _INIT.match, _OCCURS.match
-    while True:
-        gap = skip(text, position)
-        if gap:
-            position = gap.end()
-        if position >= end:
-            return facts
-        match = init(text, position)
-        if match:
-            facts.append(("init", _init_fact(match), position))
-        else:
-            match = occurs(text, position)
-            if not match:
-                return None
-            facts.append(("occurs", _occurs_fact(match), position))
-        position = match.end()
-
-
-def symbol_fact(symbol: clingo.Symbol) -> tuple[str, tuple] | None:
-    """An ``init/2`` or ``occurs/3`` atom as ``(name, arguments)`` when it has the plain shape."""
-    text = str(symbol) + "."
-    match = _INIT.fullmatch(text)
-    if match:
-        return "init", _init_fact(match)
-    match = _OCCURS.fullmatch(text)
-    if match:
-        return "occurs", _occurs_fact(match)
-    return None
-
-
-def load_facts(sources: Sequence[Source]) -> tuple[list[tuple[str, tuple, int]] | None, list[clingo.Symbol]]:
+def load_facts(sources: Sequence[Source], limits: Limits | None = None
+               ) -> tuple[list[tuple[str, tuple, int]] | None, list[clingo.Symbol]]:
     """The sources' facts, scanned directly when they are plain facts (fast), else grounded.
 
     Returns ``(facts, [])`` with ``facts`` as ``(name, arguments, (source, offset))`` when
     scanning worked, or ``(None, atoms)`` with the ground atoms of the program.
     """
+    limits = limits or current()
     scanned = []
     for source in sources:
-        facts = scan_facts(_program_text(source))
+        text, room = _program_text(source), limits.facts - len(scanned)
+        facts = scan_facts(text, None if len(text) <= _SHORTEST_FACT * room else room)
         if facts is None:
-            return None, ground_atoms(sources)
+            return None, ground_atoms(sources, limits)
         scanned += [(name, args, (source, offset)) for name, args, offset in facts]
+        if len(scanned) > limits.facts:
+            raise limits.exceeded("facts", f"more than {limits.facts:,} facts").at(source.name)
     if not scanned:
-        return None, ground_atoms(sources)
+        return None, ground_atoms(sources, limits)
     return scanned, []
 
 
@@ -212,15 +188,57 @@ _LOCATION = re.compile(r"^<block>:(\d+):\d+(?:-\d+(?::\d+)?)?: (?:error|info|war
 
 
 def _program_text(source: Source) -> str:
-    return answer_facts(source.text, source.name) if is_clingo_output(source.text) else source.text
+    text = source.text.removeprefix(BOM)
+    return answer_facts(text, source.name) if is_clingo_output(text) else text
 
 
-def ground_atoms(sources: Sequence[Source]) -> list[clingo.Symbol]:
+def ground_atoms(sources: Sequence[Source], limits: Limits | None = None) -> list[clingo.Symbol]:
     """Ground the ``base`` part of all sources together and return the atoms of its answer.
 
-    Sources may contain comments, ``#const``, ``#program base.`` and rules; a program
-    whose rules leave choices open contributes its first answer set.
+    Sources hold facts, comments, ``#const`` and ``#program base.``; rules too where the
+    limits allow them: they are then grounded in a child process under the limits' time
+    and memory, and a program whose rules leave choices open contributes its first answer
+    set.  See :mod:`asprilo.policy`.
     """
+    limits = limits or current()
+    programs = [Source(source.name, _program_text(source)) for source in sources]
+    for program in programs:
+        screen(program.text, program.name, limits)
+        if not limits.allow_rules:
+            check_statements(program.text, program.name)
+    if limits.allow_rules:
+        derived = Source(", ".join(p.name for p in programs), _ground_rules(programs, limits))
+        screen(derived.text, derived.name, limits)
+        programs = [derived]
+    atoms = _ground(programs)
+    if len(atoms) > limits.facts:
+        raise limits.exceeded("facts", f"{len(atoms):,} atoms").at(programs[0].name if len(programs) == 1 else None)
+    return atoms
+
+
+def _ground_rules(programs: list[Source], limits: Limits) -> str:
+    """Ground programs with rules in a child process, stopped after ``rule-seconds`` and
+    limited to ``rule-mb``: clingo cannot be stopped while it grounds (``p(X+1) :- p(X).``
+    grounds for ever).  The atoms of the first answer come back as fact text."""
+    names = ", ".join(program.name for program in programs) or None
+    outcome = run_isolated(_atoms_text, ([(p.name, p.text) for p in programs],), time_limit=limits.rule_seconds,
+                           memory_mb=limits.rule_mb)
+    if outcome.status == "timeout":
+        raise limits.exceeded("rule_seconds", "grounding the rules takes longer").at(names)
+    if outcome.status == "memout":
+        raise limits.exceeded("rule_mb", "grounding the rules needs more memory").at(names)
+    if not outcome.done:
+        raise InputError(f"grounding the rules failed ({outcome.detail})", names)
+    return outcome.value
+
+
+def _atoms_text(programs: list[tuple[str, str]], report=None) -> str:
+    """In the child: the atoms of the first answer of ``programs``, one fact a line."""
+    return "".join(f"{atom}.\n" for atom in _ground([Source(name, text) for name, text in programs]))
+
+
+def _ground(sources: Sequence[Source]) -> list[clingo.Symbol]:
+    """Ground and solve in this process (for screened facts, and in a child for rules)."""
     messages: list[str] = []
     control = clingo.Control(["--warn=none"], logger=lambda _code, message: messages.append(message))
     for source in sources:
@@ -242,7 +260,7 @@ def ground_atoms(sources: Sequence[Source]) -> list[clingo.Symbol]:
 
 
 def _clingo_error(messages: list[str], name: str | None) -> InputError:
-    text = messages[0].strip() if messages else "clingo rejected the input"
+    text = clingo_logger.first_error(messages) or "clingo rejected the input"
     match = _LOCATION.match(text)
     if match:
         detail = match.group(2).splitlines()[0]
@@ -256,19 +274,25 @@ def locate(sources: Sequence[Source], atom: clingo.Symbol | str) -> tuple[str | 
     """Return ``(file, line)`` of the first fact ``atom`` in the sources (for messages)."""
     wanted = str(atom).replace(" ", "")
     for source in sources:
-        found: list[int] = []
-
-        def visit(statement: clingo.ast.AST) -> None:
-            if found or statement.ast_type != clingo.ast.ASTType.Rule or statement.body:
-                return
-            head = statement.head
-            if head.ast_type == clingo.ast.ASTType.Literal and str(head).replace(" ", "") == wanted:
-                found.append(statement.location.begin.line)
-
-        try:
-            clingo.ast.parse_string(_program_text(source), visit, logger=lambda _c, _m: None)
-        except (RuntimeError, InputError):
-            continue
-        if found:
-            return source.name, found[0]
+        line = _fact_line(source, wanted)
+        if line is not None:
+            return source.name, line
     return (sources[0].name if len(sources) == 1 else None), None
+
+
+def _fact_line(source: Source, wanted: str) -> int | None:
+    """The line of the first fact of ``source`` whose text (without spaces) is ``wanted``."""
+    found: list[int] = []
+
+    def visit(statement: clingo.ast.AST) -> None:
+        if found or statement.ast_type != clingo.ast.ASTType.Rule or statement.body:
+            return
+        head = statement.head
+        if head.ast_type == clingo.ast.ASTType.Literal and str(head).replace(" ", "") == wanted:
+            found.append(statement.location.begin.line)
+
+    try:
+        clingo.ast.parse_string(_program_text(source), visit, logger=lambda _c, _m: None)
+    except (RuntimeError, InputError):
+        return None
+    return found[0] if found else None

@@ -6,25 +6,18 @@ import os
 import tempfile
 from collections.abc import Iterable
 from pathlib import Path
-from typing import Any
 
 from . import __version__
-from .model import Action, Instance, Plan
+from .errors import InputError
+from .facts import fact_groups, format_action, format_value
+from .model import Instance, Plan
+
+#: format_action and format_value are the tools' way to write single terms and actions
+__all__ = ["format_action", "format_instance", "format_plan", "format_value", "header_lines", "refuse_overwriting",
+           "write_bytes", "write_instance", "write_plan", "write_text"]
 
 _UMASK = os.umask(0)
 os.umask(_UMASK)
-
-
-def format_value(value: Any) -> str:
-    """A Python value (as produced by :func:`asprilo.reader.value_of`) as an ASP term."""
-    if isinstance(value, tuple):
-        inner = ",".join(format_value(item) for item in value)
-        return f"({inner},)" if len(value) == 1 else f"({inner})"
-    return str(value)
-
-
-def _init(kind: str, ident: int, attribute: str, value: Any) -> str:
-    return f"init(object({kind},{ident}),value({attribute},{format_value(value)}))."
 
 
 def header_lines(instance: Instance, command: str | None = None, seed: int | None = None,
@@ -55,44 +48,9 @@ def format_instance(instance: Instance, header: Iterable[str] | None = None) -> 
         header = header_lines(instance)
     out = ["%" * 60, *(f"% {line}" if line else "%" for line in header), "%" * 60, "",
            "#program base.", ""]
-
-    def group(title: str, facts: list[str]) -> None:
-        if facts:
-            out.extend([f"% {title}", *facts, ""])
-
-    group("nodes", [_init("node", i, "at", cell) for i, cell in sorted(instance.nodes.items())])
-    group("highways", [_init("highway", i, "at", cell) for i, cell in sorted(instance.highways.items())])
-    group("picking stations", [_init("pickingStation", i, "at", s.at)
-                               for i, s in sorted(instance.stations.items())])
-    robots = []
-    for i, robot in sorted(instance.robots.items()):
-        robots.append(_init("robot", i, "at", robot.at))
-        if robot.carries is not None:
-            robots.append(_init("robot", i, "carries", robot.carries))
-    group("robots", robots)
-    group("shelves", [_init("shelf", i, "at", s.at) for i, s in sorted(instance.shelves.items())])
-    group("products on shelves", [
-        _init("product", i, "on", shelf if units is None else (shelf, units))
-        for i, product in sorted(instance.products.items())
-        for shelf, units in sorted(product.stock.items())])
-    orders = []
-    for i, order in sorted(instance.orders.items()):
-        orders += [_init("order", i, "line", product if units is None else (product, units))
-                   for product, units in sorted(order.lines.items())]
-        if order.station is not None:
-            orders.append(_init("order", i, "pickingStation", order.station))
-    group("orders", orders)
-    group("destinations", [_init("destination", i, "at", d.at)
-                           for i, d in sorted(instance.destinations.items())])
-    group("labelled goals: robot -> goal", [f"assign(robot({robot}),{kind}({goal}))."
-                                            for robot, (kind, goal) in sorted(instance.assignment.items())])
+    for title, facts in fact_groups(instance):
+        out.extend([f"% {title}", *facts, ""])
     return "\n".join(out)
-
-
-def format_action(action: Action) -> str:
-    """The ``occurs/3`` atom of an action (without the final period)."""
-    return (f"occurs(object({action.kind},{action.robot}),"
-            f"action({action.name},{format_value(action.args)}),{action.step})")
 
 
 def format_plan(plan: Plan) -> str:
@@ -101,18 +59,48 @@ def format_plan(plan: Plan) -> str:
 
 
 def write_bytes(path: str | Path, data: bytes) -> None:
-    """Write ``data`` to ``path`` atomically: readers see the old file or the whole new one."""
+    """Write ``data`` to ``path`` atomically: readers see the old file or the whole new one.
+
+    A file replaced keeps its permissions; a new one gets the usual ones (0666 less the
+    umask).  A path that cannot be written is bad input (:class:`InputError`).
+    """
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    if path.is_dir():
+        raise InputError("is a directory, not a file to write", str(path))
+    try:
+        mode = path.stat().st_mode & 0o777 if path.exists() else 0o666 & ~_UMASK
+        path.parent.mkdir(parents=True, exist_ok=True)
+        handle, temporary = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    except OSError as error:
+        raise InputError(f"cannot be written ({error.strerror or error})", str(path)) from None
     try:
         with os.fdopen(handle, "wb") as stream:
             stream.write(data)
-        os.chmod(temporary, 0o666 & ~_UMASK)
+        os.chmod(temporary, mode)
         os.replace(temporary, path)
+    except OSError as error:
+        Path(temporary).unlink(missing_ok=True)
+        raise InputError(f"cannot be written ({error.strerror or error})", str(path)) from None
     except BaseException:
         Path(temporary).unlink(missing_ok=True)
         raise
+
+
+def refuse_overwriting(output: str | Path | None, inputs: Iterable[str | Path | None]) -> None:
+    """Refuse an output file that is one of the inputs (or a folder): writing it would
+    destroy what is read.  ``-`` and ``None`` (standard streams, nothing) pass."""
+    if output is None or str(output) == "-":
+        return
+    target = Path(output)
+    if target.is_dir():
+        raise InputError("is a directory, not a file to write", str(target))
+    for given in inputs:
+        if given is None or str(given) == "-":
+            continue
+        source = Path(given)
+        same = target.exists() and source.exists() and os.path.samefile(target, source)
+        if same or target.resolve() == source.resolve():
+            raise InputError(f"is also an input ({given}); choose another output file", str(target))
 
 
 def write_text(path: str | Path, text: str) -> None:

@@ -12,6 +12,7 @@ one concern (``checker/<Module>.lp``); see ``checker/README.md`` for every check
 from __future__ import annotations
 
 from asprilo.domain import Domain, detect_domain
+from asprilo.limits import require_plan_fits
 from asprilo.model import Instance, Plan
 
 from .programs import err_atoms
@@ -21,7 +22,9 @@ __all__ = ["check", "Report"]
 
 
 def check(instance: Instance, plan: Plan, domain: Domain | None = None) -> Report:
-    """Check ``plan`` on ``instance`` with the ASP checker of ``domain``."""
+    """Check ``plan`` on ``instance`` with the ASP checker of ``domain`` (a plan beyond the
+    ``robot-steps`` limit is refused: :class:`~asprilo.errors.InputError`)."""
+    require_plan_fits(instance, plan)
     domain = domain or detect_domain(instance, plan)
     atoms, statistics = err_atoms(instance, plan, domain)
     return build_report(instance, plan, domain, atoms, statistics.as_dict())

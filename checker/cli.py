@@ -16,6 +16,8 @@ import argparse
 import json
 
 from asprilo.arguments import domain_argument
+from asprilo.errors import InputError
+from asprilo.limits import require_plan_fits
 from asprilo.reader import read_instance, read_plan
 
 from . import Report, check
@@ -31,6 +33,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     instance, plan = read_instance(args.instance), read_plan(args.plan)
+    try:
+        require_plan_fits(instance, plan)
+    except InputError as error:
+        raise error.at(args.plan) from None
     report = check(instance, plan, args.domain)
     if args.json:
         print(json.dumps(report.as_json(), indent=2))

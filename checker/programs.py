@@ -18,9 +18,10 @@ import clingo.ast
 import numpy as np
 
 from asprilo.domain import Domain
+from asprilo.facts import format_action
+from asprilo.facts import instance_facts as all_facts
 from asprilo.model import Instance, Plan
 from asprilo.solver import Solver, Statistics
-from asprilo.writer import format_action, format_instance
 
 HERE = Path(__file__).resolve().parent
 
@@ -35,8 +36,8 @@ def program(domain: Domain) -> Path:
 
 
 def instance_facts(instance: Instance) -> str:
-    """The instance as ``init/2`` facts."""
-    return format_instance(instance, header=[])
+    """The instance as ``init/2`` and ``assign/2`` facts."""
+    return "\n".join(all_facts(instance))
 
 
 def plan_facts(instance: Instance, plan: Plan, packed: bool = True) -> str:
@@ -63,7 +64,7 @@ def plan_facts(instance: Instance, plan: Plan, packed: bool = True) -> str:
     weights = 5 ** np.arange(_DIGITS, dtype=np.int64)
     packed_codes = digits.reshape(len(robots), blocks, _DIGITS) @ weights
     lines = [f"packedMoves({robots[r]},{1 + b * _DIGITS},{packed_codes[r, b]})."
-             for r, b in zip(*np.nonzero(packed_codes))]
+             for r, b in zip(*np.nonzero(packed_codes), strict=True)]
     lines += [format_action(actions[i]) + "." for i in np.nonzero(~packable)[0]]
     return "\n".join(lines)
 

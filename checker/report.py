@@ -12,8 +12,8 @@ import numpy as np
 
 from asprilo.bounds import Floor, makespan_bound, mapf_bounds
 from asprilo.domain import Domain
+from asprilo.facts import value_of
 from asprilo.model import Instance, Plan
-from asprilo.reader import value_of
 from asprilo.simulate import Timeline, Violation, simulate, sort_violations
 
 

@@ -3,7 +3,10 @@
 Each subcommand lives in a module with ``configure(parser)`` and ``run(args) -> int``;
 the module is imported only when its subcommand runs, so ``asprilo --help`` stays quick
 and only ``viz`` loads Qt.  Bad input (:class:`InputError`) becomes one line
-``error: FILE[:LINE]: what is wrong`` on stderr and exit status 2.
+``error: FILE[:LINE]: what is wrong`` on stderr and exit status 2; input read with
+something ignored (:class:`InputWarning`) one line ``warning: FILE[:LINE]: ...``.  Every
+command that reads data takes ``--allow-rules`` and ``--limit NAME=N`` (README: "Reading
+data").
 """
 
 from __future__ import annotations
@@ -12,10 +15,13 @@ import argparse
 import importlib
 import os
 import sys
+import warnings
 from collections.abc import Callable, Sequence
 
 from asprilo import __version__
-from asprilo.errors import InputError
+from asprilo.arguments import add_reading_options, reading_limits
+from asprilo.errors import InputError, InputWarning
+from asprilo.limits import using
 
 #: name -> (module, one-line summary); a command is listed here once it works.
 COMMANDS: dict[str, tuple[str, str]] = {
@@ -29,6 +35,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "serve": ("asprilo.online.serve", "serve the online link: a solver that re-plans, or a simulator releasing orders"),
     "solve": ("asprilo.encodings.cli", "find a plan of minimal makespan with a reference encoding or max-flow"),
 }
+#: the commands that read no data files
+WITHOUT_DATA = {"demo"}
 
 
 def _parser(name: str, prog: str, summary: str, parent=None) -> argparse.ArgumentParser:
@@ -38,16 +46,29 @@ def _parser(name: str, prog: str, summary: str, parent=None) -> argparse.Argumen
     parser = parent.add_parser(name, help=summary, **kwargs) if parent else \
         argparse.ArgumentParser(prog=prog, **kwargs)
     module.configure(parser)
+    if name not in WITHOUT_DATA:
+        add_reading_options(parser)
     parser.set_defaults(run=module.run)
     return parser
 
 
 def run_command(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespace) -> int:
-    """Run a command, turning bad input and interruptions into messages and exit codes."""
+    """Run a command within the limits its options ask for, turning bad input and
+    interruptions into messages and exit codes."""
+    with using(reading_limits(args)), warnings.catch_warnings():
+        warnings.simplefilter("always", InputWarning)
+        warnings.showwarning = _show_warning
+        return _run(run, args)
+
+
+def _run(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespace) -> int:
     try:
         return run(args) or 0
     except InputError as error:
         print(f"error: {error}", file=sys.stderr)
+        return 2
+    except MemoryError:
+        print("error: out of memory (the limits on data are in README, Reading data)", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         print("interrupted", file=sys.stderr)
@@ -56,6 +77,13 @@ def run_command(run: Callable[[argparse.Namespace], int | None], args: argparse.
         # the reader went away (e.g. `| head`): stop quietly
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 0
+
+
+def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
+    if issubclass(category, InputWarning):
+        print(f"warning: {message}", file=sys.stderr, flush=True)
+    else:
+        sys.stderr.write(warnings.formatwarning(message, category, filename, lineno, line))
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -3,7 +3,8 @@
 Generates a structured 11x6 warehouse with three robots (domain A: shelves hold product
 units, orders ask for them at picking stations), finds a plan of minimal makespan with
 the reference encoding, checks it with the ASP checker and draws the final state and an
-animation.  Everything lands in one folder (default: asprilo-demo/).
+animation.  Everything lands in one folder (default: asprilo-demo/), which must be new or
+empty unless --force is given.
 
 Examples:
   asprilo demo
@@ -43,6 +44,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--time-limit", type=float, default=120, metavar="S",
                         help="seconds the solver may take (default: 120)")
     parser.add_argument("--no-pictures", action="store_true", help="skip the PNG and GIF")
+    parser.add_argument("--force", action="store_true", help="write into the folder even if it holds files")
 
 
 def _say(text: str) -> None:
@@ -58,6 +60,7 @@ def run(args: argparse.Namespace) -> int:
     if domain not in SCENARIOS:
         raise InputError(f"the demo covers domains a, b, c and m, not {domain.value}")
     folder = Path(args.output)
+    _check_folder(folder, args.force)
     started = time.perf_counter()
 
     config = GeneratorConfig(**SCENARIOS[domain])
@@ -93,6 +96,18 @@ def run(args: argparse.Namespace) -> int:
         _render(instance, outcome.plan, folder, domain)
     _say(f"done in {time.perf_counter() - started:.1f} s; look at it with:  viz {instance_path} {plan_path}")
     return 0 if report.valid else 1
+
+
+def _check_folder(folder: Path, force: bool) -> None:
+    """The demo writes into a new or empty folder, or anywhere with ``--force``."""
+    if folder.exists() and not folder.is_dir():
+        raise InputError("is not a folder", str(folder))
+    try:
+        holds_files = folder.is_dir() and any(folder.iterdir())
+    except OSError as error:
+        raise InputError(f"cannot be read ({error.strerror or error})", str(folder)) from None
+    if holds_files and not force:
+        raise InputError("the folder holds files already; choose another (-o DIR) or add --force", str(folder))
 
 
 def _render(instance, plan, folder: Path, domain: Domain) -> None:

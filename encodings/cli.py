@@ -22,7 +22,7 @@ import sys
 
 from asprilo.arguments import domain_argument
 from asprilo.errors import InputError
-from asprilo.writer import format_action, format_plan, write_text
+from asprilo.writer import format_action, format_plan, refuse_overwriting, write_text
 
 from .registry import ENCODINGS
 from .search import Attempt, Outcome, solve
@@ -52,6 +52,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     if args.instance is None:
         raise InputError("no instance given (asprilo solve INSTANCE)")
+    refuse_overwriting(args.output, [args.instance])
     if args.time_limit is not None and args.time_limit <= 0:
         raise InputError(f"--time-limit must be positive, got {args.time_limit:g}")
     outcome = solve(args.instance, args.domain, args.encoding, args.horizon, args.assign,

@@ -23,14 +23,16 @@ from collections import Counter
 from pathlib import Path
 
 from asprilo.errors import InputError
-from asprilo.model import Action, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
+from asprilo.facts import format_action
+from asprilo.limits import current
+from asprilo.model import DIRECTIONS, Action, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
 from asprilo.reader import instance_from_atoms, read_instance, read_plan
 from asprilo.sources import Source, as_sources, ground_atoms
-from asprilo.writer import format_instance, format_plan, header_lines, write_text
+from asprilo.writer import format_instance, format_plan, header_lines, refuse_overwriting, write_text
 
 from .movingai import (
+    LacamResult,
     Map,
-    Result,
     Task,
     format_map,
     format_result,
@@ -83,6 +85,9 @@ def instance_to_map(instance: Instance, terrain: dict | None = None) -> Map:
     cells = instance.cells
     if any(not (1 <= x <= width and 1 <= y <= height) for x, y in cells):
         raise InputError(f"the floor does not fit the map size {width}x{height}")
+    limits = current()
+    if width * height > limits.facts:
+        raise limits.exceeded("facts", f"a map of {width}x{height} cells")
     rows = ["".join("." if (x, y) in cells else exceptions.get((x, y), usual)
                     for x in range(1, width + 1)) for y in range(1, height + 1)]
     return Map(rows, terrain.get("type", "octile"))
@@ -172,10 +177,10 @@ def instance_to_scenario(instance: Instance, map_name: str) -> list[Task]:
     """One scenario row per robot, with its goal, octile optimum and bucket."""
     grid = instance_to_map(instance)
     pairs = [(from_cell(robot.at), from_cell(goal))
-             for (_id, robot), goal in zip(sorted(instance.robots.items()), goals_of(instance))]
+             for (_id, robot), goal in zip(sorted(instance.robots.items()), goals_of(instance), strict=True)]
     lengths = octile_lengths(grid, pairs)
     tasks = []
-    for (start, goal), length in zip(pairs, lengths):
+    for (start, goal), length in zip(pairs, lengths, strict=True):
         if math.isinf(length):
             raise InputError(f"no path from {to_cell(*start)} to {to_cell(*goal)}")
         tasks.append(Task(start, goal, int(length // 4), length, map_name, grid.width, grid.height))
@@ -257,13 +262,13 @@ def _copy(instance: Instance) -> Instance:
         products={i: Product(p.id, dict(p.stock)) for i, p in instance.products.items()},
         orders={i: Order(o.id, dict(o.lines), o.station) for i, o in instance.orders.items()},
         destinations={i: Destination(d.id, d.at) for i, d in instance.destinations.items()},
-        assignment=dict(instance.assignment))
+        assignment=dict(instance.assignment), other_facts=list(instance.other_facts))
 
 
 # --- plans -------------------------------------------------------------------------------
 
 
-def result_to_plan(result: Result, instance: Instance | None = None) -> Plan:
+def result_to_plan(result: LacamResult, instance: Instance | None = None) -> Plan:
     """Agent k's path (0-based) becomes robot k+1's moves; waiting is no action."""
     configurations = result.configurations
     if instance is not None:
@@ -272,7 +277,7 @@ def result_to_plan(result: Result, instance: Instance | None = None) -> Plan:
             raise InputError("the result's first configuration is not the instance's robot positions")
     actions = []
     for step in range(1, len(configurations)):
-        for agent, (before, after) in enumerate(zip(configurations[step - 1], configurations[step])):
+        for agent, (before, after) in enumerate(zip(configurations[step - 1], configurations[step], strict=True)):
             dx, dy = after[0] - before[0], after[1] - before[1]
             if (dx, dy) == (0, 0):
                 continue
@@ -282,7 +287,7 @@ def result_to_plan(result: Result, instance: Instance | None = None) -> Plan:
     return Plan(actions)
 
 
-def plan_to_result(instance: Instance, plan: Plan) -> Result:
+def plan_to_result(instance: Instance, plan: Plan) -> LacamResult:
     """Robot positions at every step (moves only) as a LaCAM/PIBT result."""
     robots = sorted(instance.robots)
     position = {r: from_cell(instance.robots[r].at) for r in robots}
@@ -291,9 +296,9 @@ def plan_to_result(instance: Instance, plan: Plan) -> Result:
     last_move = dict.fromkeys(robots, 0)
     for step in range(1, plan.horizon + 1):
         for action in by_step.get(step, []):
-            if action.name != "move" or action.robot not in position:
-                raise InputError(f"only moves of the instance's robots convert, got {action.name} "
-                                 f"of {action.kind} {action.robot} at step {step}")
+            if action.name != "move" or action.robot not in position or action.kind != "robot" \
+                    or action.args not in DIRECTIONS:
+                raise InputError(f"only moves of the instance's robots convert, got {format_action(action)}")
             x, y = position[action.robot]
             position[action.robot] = (x + action.args[0], y + action.args[1])
             last_move[action.robot] = step
@@ -304,7 +309,7 @@ def plan_to_result(instance: Instance, plan: Plan) -> Result:
               "soc": str(sum(last_move.values())), "makespan": str(plan.horizon),
               "starts": "".join(f"({x},{y})," for x, y in configurations[0]),
               "goals": "".join(f"({x},{y})," for x, y in goals), "solution": ""}
-    return Result(fields, configurations)
+    return LacamResult(fields, configurations)
 
 
 # --- the command -------------------------------------------------------------------------
@@ -333,7 +338,8 @@ def _format(path: str, given: str | None, what: str) -> str:
         return given
     found = FORMATS.get(Path(path).suffix)
     if found is None:
-        raise InputError(f"cannot tell the format of {what} {path!r} from its ending; use --from/--to")
+        flag = "--from" if what == "IN" else "--to"
+        raise InputError(f"cannot tell the format from the ending {Path(path).suffix!r}; say it with {flag}", path)
     return found
 
 
@@ -355,19 +361,30 @@ def convert(args: argparse.Namespace) -> str:
         if target_format not in ("asprilo", "m", "md"):
             raise InputError(f"a {source_format} converts to an asprilo instance (.lp), not {target_format}")
         return _from_movingai(args, source_format)
-    if source_format == "asprilo":
-        instance, terrain = _instance_and_terrain(args.source)
-        if target_format == "map":
-            return format_map(instance_to_map(instance, terrain))
-        if target_format == "scen":
-            map_name = Path(args.map).name if args.map else terrain.get(
-                "map", Path(args.target).with_suffix(".map").name)
-            return format_scenario(instance_to_scenario(instance, map_name))
-        if target_format == "md":
-            return format_instance(m_to_md(instance))
-        if target_format == "m":
-            return format_instance(md_to_m(instance))
-        raise InputError("say --to m or --to md to convert an asprilo instance into another instance")
+    try:
+        if source_format == "asprilo":
+            return _from_instance(args, target_format)
+        return _plan_or_result(args, source_format, target_format)
+    except InputError as error:
+        raise error.at(args.source) from None
+
+
+def _from_instance(args: argparse.Namespace, target_format: str) -> str:
+    instance, terrain = _instance_and_terrain(args.source)
+    if target_format == "map":
+        return format_map(instance_to_map(instance, terrain))
+    if target_format == "scen":
+        map_name = Path(args.map).name if args.map else terrain.get(
+            "map", Path(args.target).with_suffix(".map").name)
+        return format_scenario(instance_to_scenario(instance, map_name))
+    if target_format == "md":
+        return format_instance(m_to_md(instance))
+    if target_format == "m":
+        return format_instance(md_to_m(instance))
+    raise InputError("say --to m or --to md to convert an asprilo instance into another instance")
+
+
+def _plan_or_result(args: argparse.Namespace, source_format: str, target_format: str) -> str:
     instance = read_instance(args.instance) if args.instance else None
     if source_format == "result":
         return format_plan(result_to_plan(parse_result(Source.from_path(args.source)), instance))
@@ -387,7 +404,7 @@ def _from_movingai(args: argparse.Namespace, source_format: str) -> str:
         instance = map_to_instance(grid)
     else:
         tasks = parse_scenario(Source.from_path(args.source))
-        map_path = Path(args.map) if args.map else Path(args.source).parent / tasks[0].map_name
+        map_path = Path(args.map) if args.map else _map_beside(args.source, tasks[0].map_name)
         grid = parse_map(Source.from_path(map_path))
         instance = scenario_to_instance(grid, tasks, len(tasks) if args.agents is None else args.agents,
                                         args.goals, args.labelled)
@@ -396,7 +413,16 @@ def _from_movingai(args: argparse.Namespace, source_format: str) -> str:
         "\n".join(terrain_facts(grid, map_path.name)) + "\n"
 
 
+def _map_beside(scenario: str, name: str) -> Path:
+    """The map a scenario names: a file in the scenario's folder."""
+    if Path(name).name != name or name in ("", ".", ".."):
+        raise InputError(f"the scenario names the map {name!r}, not a file beside it; give the map with --map",
+                         scenario)
+    return Path(scenario).parent / name
+
+
 def run(args: argparse.Namespace) -> int:
+    refuse_overwriting(args.target, [args.source, args.instance, args.map])
     text = convert(args)
     if args.target == "-":
         print(text, end="")

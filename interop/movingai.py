@@ -148,7 +148,7 @@ def octile_lengths(grid: Map, tasks: list[tuple[tuple[int, int], tuple[int, int]
 
 
 @dataclass
-class Result:
+class LacamResult:
     """A LaCAM/PIBT ``result.txt``: header fields and one configuration per time step."""
 
     fields: dict[str, str] = field(default_factory=dict)
@@ -169,9 +169,9 @@ def _pairs(text: str, name: str, number: int) -> list[tuple[int, int]]:
     return cells
 
 
-def parse_result(source: Source) -> Result:
+def parse_result(source: Source) -> LacamResult:
     """Parse ``key=value`` header lines and ``t:(x,y),(x,y),...`` configuration lines."""
-    result = Result()
+    result = LacamResult()
     for number, line in enumerate(source.text.splitlines(), 1):
         line = line.strip()
         if not line:
@@ -195,7 +195,7 @@ def parse_result(source: Source) -> Result:
     return result
 
 
-def format_result(result: Result) -> str:
+def format_result(result: LacamResult) -> str:
     lines = [f"{key}={value}" for key, value in result.fields.items()]
     lines += [f"{t}:" + "".join(f"({x},{y})," for x, y in configuration)
               for t, configuration in enumerate(result.configurations)]

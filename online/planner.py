@@ -83,7 +83,13 @@ class OnlinePlanner:
             self.stale = True
 
     def next_actions(self, step: int) -> list[Action]:
-        """The actions of step ``step + 1`` (after ``%$done(step).``); they are final once given."""
+        """The actions of step ``step + 1`` (after ``%$done(step).``); they are final once given.
+
+        Steps come in order: ``step`` is one answered before or the next (bad input otherwise).
+        """
+        following = max(self.sent, default=0)
+        if not 0 <= step <= following:
+            raise InputError(f"done({step}) asks about a step outside the plan: the next step is {following}")
         if step + 1 in self.sent:
             return self.sent[step + 1]
         if self.stale and self.facts:

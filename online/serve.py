@@ -8,26 +8,32 @@ Examples:
   asprilo serve simulator instance.lp --at 3:2 --at 8:3,4          (order 2 at step 3, 3 and 4 at step 8)
   asprilo serve solver --port 0                                     (any free port; the port is printed)
 
-Both listen on 127.0.0.1 (loopback) by default, serve one visualizer at a time and run
-until interrupted (Ctrl+C), or for one session with --once.
+Both listen on 127.0.0.1 (loopback) by default and run until interrupted (Ctrl+C), or for
+one session with --once.  Each client is served on its own (up to --clients at once) and
+with a session of its own; a client silent for --idle-timeout seconds is let go.  A line
+that is refused (not UTF-8, too long, not facts, a step outside the plan) is answered
+with an error (``%$error.``) and the connection closes; the server goes on.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import select
 import socket
 import sys
 import threading
 from collections.abc import Callable
 
-from asprilo.arguments import domain_argument
+from asprilo.arguments import domain_argument, port_argument
 from asprilo.errors import InputError
 
 from .planner import OnlinePlanner, Schedule, encodings_planner, parse_arrivals
-from .protocol import DONE, END, RESET, Channel, Message, action_facts
+from .protocol import DONE, END, RESET, Channel, Message, action_facts, check_facts, error
 
 DEFAULT_PORTS = {"solver": 5000, "simulator": 5001}
+CLIENTS = 16  # clients served at once
+IDLE_SECONDS = 3600.0  # a client silent this long is let go
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -45,17 +51,21 @@ def configure(parser: argparse.ArgumentParser) -> None:
                            help="orders arrive one by one in id order: the first at step 0, then one every K steps")
     for name, role in (("solver", solver), ("simulator", simulator)):
         role.add_argument("--host", default="127.0.0.1", help="address to listen on (default 127.0.0.1)")
-        role.add_argument("--port", type=int, default=DEFAULT_PORTS[name],
+        role.add_argument("--port", type=port_argument, default=DEFAULT_PORTS[name],
                           help="port (default %(default)s; 0: any free port, printed on start)")
         role.add_argument("--once", action="store_true", help="serve one session, then exit")
+        role.add_argument("--clients", type=int, default=CLIENTS, metavar="N",
+                          help=f"clients served at once (default {CLIENTS}); more are turned away")
+        role.add_argument("--idle-timeout", type=float, default=IDLE_SECONDS, metavar="S",
+                          help=f"let a client go after S seconds of silence (default {IDLE_SECONDS:g})")
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.clients < 1 or not args.idle_timeout > 0:
+        raise InputError("--clients and --idle-timeout must be positive")
     if args.role == "solver":
-        def log(text: str) -> None:
-            print(f"solver: {text}", file=sys.stderr, flush=True)
-        online = OnlinePlanner(encodings_planner(args.encoding, args.time_limit), args.domain, log)
-        session = lambda channel: solver_session(channel, online)  # noqa: E731
+        planner, log = encodings_planner(args.encoding, args.time_limit), _log("solver")
+        session = lambda channel: solver_session(channel, OnlinePlanner(planner, args.domain, log))  # noqa: E731
     else:
         schedule = _schedule(args)
         session = lambda channel: simulator_session(channel, schedule, _log("simulator"))  # noqa: E731
@@ -63,7 +73,7 @@ def run(args: argparse.Namespace) -> int:
     host, port = listener.getsockname()[:2]
     print(f"asprilo serve {args.role}: listening on {host}:{port}", flush=True)
     try:
-        serve(listener, session, once=args.once)
+        serve(listener, session, once=args.once, clients=args.clients, idle=args.idle_timeout)
     except KeyboardInterrupt:
         print(f"asprilo serve {args.role}: stopped", file=sys.stderr)
     finally:
@@ -100,23 +110,51 @@ def listen(host: str, port: int) -> socket.socket:
 
 
 def serve(listener: socket.socket, session: Callable[[Channel], None], once: bool = False,
-          stop: threading.Event | None = None) -> None:
-    """Serve one connection at a time until ``stop`` is set (or after one with ``once``)."""
+          stop: threading.Event | None = None, clients: int = CLIENTS, idle: float = IDLE_SECONDS) -> None:
+    """Serve each connection in a thread of its own, up to ``clients`` at once, until
+    ``stop`` is set (or until the first connection ends, with ``once``)."""
     listener.settimeout(0.2)
+    places = threading.BoundedSemaphore(clients)
     while stop is None or not stop.is_set():
         try:
             connection, _address = listener.accept()
         except TimeoutError:
             continue
-        channel = Channel(connection, timeout=None)  # the visualizer may pause as long as it likes
-        try:
-            session(channel)
-        except (OSError, InputError) as error:
-            print(f"session ended: {error}", file=sys.stderr, flush=True)
-        finally:
-            channel.close()
+        if not places.acquire(blocking=False):
+            _turn_away(connection, f"the server serves {clients} clients at once; try again later")
+            continue
+        thread = threading.Thread(target=_serve_one, args=(connection, session, idle, places), daemon=True)
+        thread.start()
         if once:
+            thread.join()
             return
+
+
+def _serve_one(connection: socket.socket, session: Callable[[Channel], None], idle: float,
+               place: threading.BoundedSemaphore) -> None:
+    """One client: its session; a refused line is answered with the reason, then the
+    connection closes (after its place is free for the next client)."""
+    channel = Channel(connection, timeout=idle)
+    try:
+        session(channel)
+    except InputError as refused:
+        _log("session")(f"refused: {refused}")
+        with contextlib.suppress(OSError):
+            channel.send(error(str(refused)))
+    except TimeoutError:
+        _log("session")(f"no word for {idle:g} s: connection closed")
+    except OSError as failure:
+        _log("session")(f"ended: {failure}")
+    finally:
+        place.release()
+        channel.close()
+
+
+def _turn_away(connection: socket.socket, reason: str) -> None:
+    channel = Channel(connection, timeout=1.0)
+    with contextlib.suppress(OSError):
+        channel.send(error(reason))
+    channel.close()
 
 
 def solver_session(channel: Channel, online: OnlinePlanner) -> None:
@@ -126,6 +164,7 @@ def solver_session(channel: Channel, online: OnlinePlanner) -> None:
         if message.control == RESET:
             online.reset()
             continue
+        check_facts(message.facts)
         online.learn(message.facts)
         if message.control == DONE:
             actions = _while_connected(channel, online, lambda: online.next_actions(message.step))
@@ -141,13 +180,14 @@ def _while_connected(channel: Channel, online: OnlinePlanner, work: Callable):
     def target() -> None:
         try:
             outcome["result"] = work()
-        except BaseException as error:  # handed to the session's thread
-            outcome["error"] = error
+        except BaseException as failure:  # handed to the session's thread
+            outcome["error"] = failure
 
     worker = threading.Thread(target=target, daemon=True)
     worker.start()
     while worker.is_alive():
-        readable, _, _ = select.select([channel.connection], [], [], 0.1)
+        worker.join(0.1)
+        readable, _, _ = select.select([channel.connection], [], [], 0)
         if readable and not channel.connection.recv(1, socket.MSG_PEEK):
             online.cancel.set()
             worker.join()
@@ -165,6 +205,8 @@ def simulator_session(channel: Channel, schedule: Schedule, log: Callable[[str],
             log("new session: sent the world at step 0")
         elif message.control == DONE:
             step = message.step
+            if step < 0:
+                raise InputError(f"done({step}): steps start at 0")
             facts = schedule.arriving(step)
             if facts:
                 arrived = sorted(o for o, t in schedule.arrivals.items() if t == step)

@@ -1,7 +1,8 @@
-"""Shared test fixtures: where the example data lives, and small instance texts."""
+"""Shared test fixtures (shared helpers that are not fixtures live in ``helpers/``)."""
 
 from __future__ import annotations
 
+import threading
 from pathlib import Path
 
 import pytest
@@ -13,11 +14,10 @@ except ImportError:  # pragma: no cover - a setup problem, not a test
                 "(pip install -e \".[test]\"); a non-editable install is shadowed by the checkout's "
                 "asprilo/ folder when tests run from the repository root", returncode=4)
 
-ROOT = Path(__file__).resolve().parent.parent
-EXAMPLES = ROOT / "examples"
-SMALL_A = EXAMPLES / "asprilo/dom-a/small/x11_y6_n66_r3_s12_ps2_pr5_u50_o3_N001.lp"
-OUTCOME = EXAMPLES / "asprilo/dom-a/small/outcome.txt"
-WRONG_OUTCOME = EXAMPLES / "asprilo/dom-a/small/wrong_outcome.txt"
+from helpers.online import WAIT, tiny  # noqa: E402
+
+from asprilo.online.planner import OnlinePlanner, Schedule, encodings_planner  # noqa: E402
+from asprilo.online.serve import listen, serve, simulator_session, solver_session  # noqa: E402
 
 
 @pytest.fixture
@@ -30,3 +30,24 @@ def write(tmp_path):
         return path
 
     return make
+
+
+@pytest.fixture
+def servers():
+    """A solver and a simulator (order 2 arrives at step 3) on ephemeral loopback ports."""
+    stop = threading.Event()
+    solver, simulator = listen("127.0.0.1", 0), listen("127.0.0.1", 0)
+    online = OnlinePlanner(encodings_planner(time_limit=WAIT))
+    schedule = Schedule(tiny(), {2: 3})
+    threads = [threading.Thread(target=serve, args=(solver, lambda c: solver_session(c, online)),
+                                kwargs={"stop": stop}, daemon=True),
+               threading.Thread(target=serve, args=(simulator, lambda c: simulator_session(c, schedule, print)),
+                                kwargs={"stop": stop}, daemon=True)]
+    for thread in threads:
+        thread.start()
+    yield solver.getsockname()[1], simulator.getsockname()[1], online
+    stop.set()
+    for thread in threads:
+        thread.join(WAIT)
+    solver.close()
+    simulator.close()

@@ -14,7 +14,7 @@ import time
 from pathlib import Path
 
 import pytest
-from conftest import EXAMPLES
+from helpers import EXAMPLES
 
 from asprilo.bench import runner as runner_module
 from asprilo.bench.btool import read_results

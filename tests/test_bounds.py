@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import EXAMPLES
+from helpers import EXAMPLES
 
 from asprilo.bounds import Floor, bottleneck_assignment, makespan_bound, mapf_bounds, min_cost_assignment
 from asprilo.domain import Domain

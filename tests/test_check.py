@@ -8,8 +8,8 @@ import math
 import sys
 
 import pytest
-from conftest import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
-from test_check_world import plan, walk, world
+from helpers import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
+from helpers.worlds import plan, walk, world
 
 from asprilo.bounds import makespan_bound
 from asprilo.checker import check
@@ -101,7 +101,8 @@ def _raw(text: str, domain: Domain = Domain.M) -> list[str]:
 def test_a_grid_instance_gives_all_nodes_of_the_rectangle():
     grid = "init(object(grid,1),value(xsize,3)). init(object(grid,1),value(ysize,2)). " \
            "init(object(robot,1),value(at,(1,1))). "
-    assert _raw(grid + "occurs(object(robot,1),action(move,(1,0)),1). occurs(object(robot,1),action(move,(0,1)),2).") == []
+    assert _raw(grid + "occurs(object(robot,1),action(move,(1,0)),1). "
+                       "occurs(object(robot,1),action(move,(0,1)),2).") == []
     assert _raw(grid + "occurs(object(robot,1),action(move,(0,-1)),1).") == ["err(move,offFloor,(1,1))"]
 
 

@@ -6,7 +6,7 @@ shelf stand on one node), the expected set names the companion violation too.
 from __future__ import annotations
 
 import pytest
-from test_check_world import plan, walk, world
+from helpers.worlds import plan, walk, world
 
 from asprilo.checker.programs import err_atoms
 from asprilo.domain import Domain

@@ -5,7 +5,7 @@ from __future__ import annotations
 import re
 
 import pytest
-from conftest import EXAMPLES
+from helpers import EXAMPLES
 
 from asprilo.cli import main
 from asprilo.interop.convert import m_to_md, md_to_m, result_to_plan
@@ -43,7 +43,7 @@ def test_octile_lengths_agree_with_the_scenario():
     tasks = parse_scenario(Source.from_path(SCEN))
     lengths = octile_lengths(grid, [(t.start, t.goal) for t in tasks])
     assert len(tasks) == 409
-    assert max(abs(length - t.optimal) for length, t in zip(lengths, tasks)) < 2e-8
+    assert max(abs(length - t.optimal) for length, t in zip(lengths, tasks, strict=True)) < 2e-8
 
 
 def test_scenario_to_md_and_back(tmp_path):
@@ -55,7 +55,7 @@ def test_scenario_to_md_and_back(tmp_path):
     original = SCEN.read_text().splitlines()[1:51]
     written = (tmp_path / "a.scen").read_text().splitlines()
     assert written[0] == "version 1" and len(written) == 51
-    for mine, theirs in zip(written[1:], original):
+    for mine, theirs in zip(written[1:], original, strict=True):
         assert mine.split("\t")[:8] == theirs.split("\t")[:8]
         assert abs(float(mine.split("\t")[8]) - float(theirs.split("\t")[8])) < 2e-8
 
@@ -163,7 +163,7 @@ def test_labelled_goals_are_checked_and_followed(write):
 def test_labelled_m_and_md_convert_both_ways():
     m = read_instance(EXAMPLES / "paper-m/2x3x5/x19_y9_n171_r5_s60_ps3_pr60_u60_o5_N001.lp")
     ordered = [next(iter(m.products[next(iter(o.lines))].stock)) for _id, o in sorted(m.orders.items())]
-    m.assignment = {robot: ("shelf", shelf) for robot, shelf in zip(sorted(m.robots), ordered)}
+    m.assignment = {robot: ("shelf", shelf) for robot, shelf in zip(sorted(m.robots), ordered, strict=True)}
     md = m_to_md(m)
     assert md.assigned_cells() == m.assigned_cells()
     assert set(kind for kind, _ in md.assignment.values()) == {"destination"}
@@ -184,3 +184,25 @@ def test_bad_assignments(write, text, message):
                            "init(object(destination,2),value(at,(1,1))).\n" + text)
     with pytest.raises(Exception, match=re.escape(f"{path}:2: {message}")):
         read_instance(path)
+
+
+def test_unknown_facts_are_carried_through_m_and_md(tmp_path, write, capsys):
+    """A robot's energy (later asprilo work) is ignored with a warning and written back."""
+    path = write("energy.lp", "init(object(node,1),value(at,(1,1))). init(object(node,2),value(at,(2,1))).\n"
+                              "init(object(robot,1),value(at,(1,1))). init(object(destination,1),value(at,(2,1))).\n"
+                              "init(object(robot,1),value(energy,80)). init(object(robot,1),value(max_energy,100)).\n")
+    kept = ["init(object(robot,1),value(energy,80)).", "init(object(robot,1),value(max_energy,100))."]
+    assert main(["convert", str(path), str(tmp_path / "m.lp"), "--to", "m"]) == 0
+    assert main(["convert", str(tmp_path / "m.lp"), str(tmp_path / "md.lp"), "--to", "md"]) == 0
+    heading = "% facts asprilo does not use (kept as they were read)"
+    for name in ("m.lp", "md.lp"):
+        assert (tmp_path / name).read_text().splitlines()[-3:] == [heading, *kept]
+    warnings = capsys.readouterr().err.splitlines()
+    assert warnings == [f"warning: {path}:3: ignored (and kept when written): attribute 'energy' of robot, "
+                        "attribute 'max_energy' of robot",
+                        f"warning: {tmp_path / 'm.lp'}:{_line_of(tmp_path / 'm.lp', kept[0])}: ignored (and kept "
+                        "when written): attribute 'energy' of robot, attribute 'max_energy' of robot"]
+
+
+def _line_of(path, text: str) -> int:
+    return path.read_text().splitlines().index(text) + 1

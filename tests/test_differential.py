@@ -13,7 +13,7 @@ from __future__ import annotations
 import random
 
 import pytest
-from conftest import OUTCOME, SMALL_A
+from helpers import OUTCOME, SMALL_A
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -34,6 +34,15 @@ def random_instance(rng: random.Random, domain: Domain, clean: bool) -> Instance
     2 stations, 3 products and 2 orders.  Unless ``clean``, objects may stand off the floor
     or on one node, robots carry shelves that are elsewhere, orders name unknown products
     and stations, and so on."""
+    instance = _random_floor(rng, clean)
+    spare = _random_robots_and_shelves(rng, instance, clean)
+    _random_stock_and_orders(rng, instance, domain, clean, spare)
+    _random_goals(rng, instance, domain)
+    return instance
+
+
+def _random_floor(rng: random.Random, clean: bool) -> Instance:
+    """Nodes, highways and picking stations."""
     width, height = rng.randint(1, 4), rng.randint(1, 3)
     grid = [(x, y) for y in range(1, height + 1) for x in range(1, width + 1)]
     nodes = [cell for cell in grid if rng.randint(0, 5)] or grid[:1]
@@ -41,6 +50,12 @@ def random_instance(rng: random.Random, domain: Domain, clean: bool) -> Instance
     instance.highways = {i: cell for i, cell in instance.nodes.items() if rng.randint(0, 3) == 0}
     for station in range(1, rng.randint(int(clean), 2) + 1):
         instance.stations[station] = PickingStation(station, rng.choice(nodes + [OFF_FLOOR] * (not clean)))
+    return instance
+
+
+def _random_robots_and_shelves(rng: random.Random, instance: Instance, clean: bool) -> list[int]:
+    """Robots, shelves and what robots carry; the ids of shelves the instance lacks."""
+    nodes = list(instance.nodes.values())
     blocked = set(instance.highways.values()) | {s.at for s in instance.stations.values()}
 
     def places(count: int, storage: bool) -> list:
@@ -59,6 +74,12 @@ def random_instance(rng: random.Random, domain: Domain, clean: bool) -> Instance
         for robot in instance.robots.values():
             if rng.randint(0, 4) == 0:
                 robot.carries = rng.choice(shelves + spare)
+    return spare
+
+
+def _random_stock_and_orders(rng: random.Random, instance: Instance, domain: Domain, clean: bool,
+                             spare: list[int]) -> None:
+    shelves = list(instance.shelves) or [1]
     quantities = domain is Domain.A or rng.randint(0, 3) == 0
 
     def units():
@@ -73,16 +94,19 @@ def random_instance(rng: random.Random, domain: Domain, clean: bool) -> Instance
         if stations:
             lines = {rng.choice(products): units() for _ in range(rng.randint(1, 2))}
             instance.orders[order] = Order(order, lines, rng.choice(stations))
+
+
+def _random_goals(rng: random.Random, instance: Instance, domain: Domain) -> None:
+    """Md destinations; labelled goals now and then (M, Md)."""
     if domain is Domain.MD:
         for destination in range(1, rng.randint(1, 2) + 1):
-            instance.destinations[destination] = Destination(destination, rng.choice(nodes))
+            instance.destinations[destination] = Destination(destination, rng.choice(list(instance.nodes.values())))
     goals = {Domain.MD: ("destination", instance.destinations), Domain.M: ("shelf", instance.shelves)}
     if domain in goals and goals[domain][1] and rng.randint(0, 2) == 0:  # labelled goals
         kind, table = goals[domain]
         for robot in instance.robots:
             if rng.randint(0, 2):
                 instance.assignment[robot] = (kind, rng.choice(list(table)))
-    return instance
 
 
 # --- plans -------------------------------------------------------------------------------
@@ -118,39 +142,48 @@ def guided_plan(rng: random.Random, instance: Instance) -> Plan:
     station and deliver ordered products they hold), so that later steps get to check deep
     state; with a slip or two (an action dropped or moved, renamed, to another step)."""
     position = {r.id: r.at for r in instance.robots.values()}
-    cells = set(instance.nodes.values())
     resting = {s.id: s.at for s in instance.shelves.values()}
     carried = {r.id: r.carries for r in instance.robots.values() if r.carries is not None}
     for shelf in carried.values():
         resting.pop(shelf, None)
-    stock = instance.shelf_stock()
     actions = []
     for step in range(1, rng.randint(1, 10) + 1):
         for robot in instance.robots:
-            here, shelf, choice = position[robot], carried.get(robot), rng.randint(0, 9)
-            orders = [o for o in instance.orders.values()
-                      if o.station in instance.stations and instance.stations[o.station].at == here]
-            if shelf is not None and orders and choice < 6:
-                order = rng.choice(orders)
-                products = sorted(set(order.lines) & set(stock.get(shelf, {}))) or list(order.lines)
-                actions.append(Action(step, robot, "deliver", (order.id, rng.choice(products), rng.randint(1, 3))))
-            elif shelf is None and here in resting.values() and choice < 6:
-                carried[robot] = next(s for s, cell in resting.items() if cell == here)
-                del resting[carried[robot]]
-                actions.append(Action(step, robot, "pickup", ()))
-            elif shelf is not None and choice == 6:
-                resting[carried.pop(robot)] = here
-                actions.append(Action(step, robot, "putdown", ()))
-            elif choice < 9:
-                actions.append(Action(step, robot, "move", _step_towards(rng, here, cells, choice < 7, [
-                    s.at for s in instance.stations.values()] if shelf is not None else list(resting.values()))))
-                position[robot] = (here[0] + actions[-1].args[0], here[1] + actions[-1].args[1])
+            action = _guided_action(rng, instance, step, robot, (position, resting, carried))
+            if action is not None:
+                actions.append(action)
     for _ in range(rng.randint(0, 2)):
         if actions:
             slip = actions.pop(rng.randrange(len(actions)))
             if rng.randint(0, 1):
                 actions.append(Action(rng.randint(0, slip.step + 1), slip.robot, rng.choice(NAMES), slip.args))
     return Plan(actions)
+
+
+def _guided_action(rng: random.Random, instance: Instance, step: int, robot: int, world: tuple) -> Action | None:
+    """What ``robot`` does at ``step``: deliver, pick up, put down, move or wait; ``world``
+    (positions, resting shelves, carried shelves) follows the action."""
+    position, resting, carried = world
+    here, shelf, choice = position[robot], carried.get(robot), rng.randint(0, 9)
+    orders = [o for o in instance.orders.values()
+              if o.station in instance.stations and instance.stations[o.station].at == here]
+    if shelf is not None and orders and choice < 6:
+        order = rng.choice(orders)
+        products = sorted(set(order.lines) & set(instance.shelf_stock().get(shelf, {}))) or list(order.lines)
+        return Action(step, robot, "deliver", (order.id, rng.choice(products), rng.randint(1, 3)))
+    if shelf is None and here in resting.values() and choice < 6:
+        carried[robot] = next(s for s, cell in resting.items() if cell == here)
+        del resting[carried[robot]]
+        return Action(step, robot, "pickup", ())
+    if shelf is not None and choice == 6:
+        resting[carried.pop(robot)] = here
+        return Action(step, robot, "putdown", ())
+    if choice < 9:
+        goals = [s.at for s in instance.stations.values()] if shelf is not None else list(resting.values())
+        direction = _step_towards(rng, here, instance.cells, choice < 7, goals)
+        position[robot] = (here[0] + direction[0], here[1] + direction[1])
+        return Action(step, robot, "move", direction)
+    return None
 
 
 def _step_towards(rng: random.Random, here, cells, purposeful: bool, goals: list):

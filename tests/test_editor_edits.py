@@ -5,7 +5,7 @@ from __future__ import annotations
 import copy
 
 import pytest
-from conftest import SMALL_A
+from helpers import SMALL_A
 
 from asprilo.model import Instance, Order, Product, Robot, Shelf
 from asprilo.reader import read_instance

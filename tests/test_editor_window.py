@@ -8,7 +8,7 @@ import os
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
-from conftest import OUTCOME, SMALL_A  # noqa: E402
+from helpers import OUTCOME, SMALL_A  # noqa: E402
 from PyQt5.QtCore import QEvent, QPointF, QSettings, Qt  # noqa: E402
 from PyQt5.QtGui import QMouseEvent  # noqa: E402
 from PyQt5.QtWidgets import QApplication, QMessageBox  # noqa: E402

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import pytest
-from conftest import EXAMPLES, SMALL_A
+from helpers import EXAMPLES, SMALL_A
 
 from asprilo.domain import Domain
 from asprilo.encodings import ENCODINGS, SolveStatus, solve

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import clingo
 import pytest
-from conftest import EXAMPLES
-from test_flow import WALLED
+from helpers import EXAMPLES
+from helpers.worlds import WALLED
 
 from asprilo.domain import Domain
 from asprilo.encodings import ENCODINGS, SolveStatus, solve

@@ -6,7 +6,7 @@ import subprocess
 import sys
 
 import pytest
-from conftest import SMALL_A
+from helpers import SMALL_A
 
 from asprilo.cli import main
 
@@ -24,11 +24,6 @@ def run(capsys, *args):
      "syntax.lp:2: syntax error, unexpected ., expecting ) or ;"),
     ("empty.lp", "% nothing but a comment\n",
      "empty.lp: no instance facts (expected init(object(..),value(..)) facts) found"),
-    ("type.lp", "init(object(node,1),value(at,(1,1))).\ninit(object(robott,1),value(at,(1,1))).\n",
-     "type.lp:2: unknown object type 'robott' (known: node, highway, robot, shelf, pickingStation, "
-     "destination, product, order, grid)"),
-    ("attribute.lp", "init(object(robot,1),value(colour,red)).\n",
-     "attribute.lp:1: unknown attribute 'colour' of robot (known: at, carries)"),
     ("shape.lp", "init(object(node,1),value(at,(1,1))).\n\ninit(object(robot,1),value(at,5)).\n",
      "shape.lp:3: robot 1: value of 'at' must be a cell (X,Y), got 5"),
     ("arity.lp", "init(object(shelf,1),value(at,(1,1,2))).\n",
@@ -42,13 +37,34 @@ def run(capsys, *args):
     ("unsafe.lp", "init(object(robot,1),value(at,(X,1))).\n",
      "unsafe.lp:1: unsafe variables in:"),
     ("contradiction.lp", "init(object(robot,1),value(at,(1,1))).\n:- init(object(robot,1),_).\n",
-     "contradiction.lp: the program has no answer set (its rules contradict each other)"),
+     "contradiction.lp:2: '#false :- init(object(robot,1),_).' is a rule; data holds only facts, #const and "
+     "'#program base.' (rules need --allow-rules)"),
 ])
 def test_bad_instances(capsys, write, name, text, message):
     path = write(name, text)
     code, out, err = run(capsys, path)
     assert (code, out) == (2, "")
     assert err == f"error: {path.parent}/{message}\n"
+
+
+def test_rules_are_read_when_allowed(capsys, write):
+    path = write("contradiction.lp", "init(object(robot,1),value(at,(1,1))).\n:- init(object(robot,1),_).\n")
+    assert run(capsys, path, "--allow-rules") == (
+        2, "", f"error: {path}: the program has no answer set (its rules contradict each other)\n")
+
+
+@pytest.mark.parametrize("name, text, warning", [
+    ("type.lp", "init(object(node,1),value(at,(1,1))).\ninit(object(robott,1),value(at,(1,1))).\n",
+     "type.lp:2: ignored (and kept when written): object type 'robott'"),
+    ("attribute.lp", "init(object(node,1),value(at,(1,1))).\ninit(object(robot,1),value(at,(1,1))).\n"
+     "init(object(robot,1),value(colour,red)).\ninit(object(robot,1),value(energy,(1,2))).\n",
+     "attribute.lp:3: ignored (and kept when written): attribute 'colour' of robot, attribute 'energy' of robot"),
+])
+def test_unknown_types_and_attributes_are_named_once_and_ignored(capsys, write, name, text, warning):
+    path = write(name, text)
+    code, out, err = run(capsys, path)
+    assert (code, err) == (0, f"warning: {path.parent}/{warning}\n")
+    assert out.startswith("instance: 1x1 grid, 1 nodes")
 
 
 def test_missing_file(capsys, tmp_path):

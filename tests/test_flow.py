@@ -3,13 +3,13 @@
 from __future__ import annotations
 
 import pytest
-from conftest import EXAMPLES
+from helpers import EXAMPLES
+from helpers.worlds import WALLED, md
 
 from asprilo.bounds import Floor
 from asprilo.checker import check
 from asprilo.domain import Domain
 from asprilo.encodings.flow import TimeExpandedNetwork, flow_plan
-from asprilo.model import Destination, Instance, Robot
 from asprilo.reader import read_instance
 
 #: minimal makespans of the paper's domain-M instances (bottleneck bound = flow optimum)
@@ -27,18 +27,6 @@ PAPER_M = {
     "4x5x8/x46_y15_n690_r35_s320_ps10_pr320_u320_o35_N001.lp": 24,
     "4x5x8/x46_y15_n690_r46_s320_ps10_pr320_u320_o46_N001.lp": 17,
 }
-
-
-def md(cells, starts, goals) -> Instance:
-    return Instance(nodes={i: c for i, c in enumerate(cells, 1)},
-                    robots={i: Robot(i, c) for i, c in enumerate(starts, 1)},
-                    destinations={i: Destination(i, c) for i, c in enumerate(goals, 1)})
-
-
-#: a 4x4 floor with three walls on which the bottleneck bound (3) is one step short of
-#: the minimal makespan (4): robots have to queue
-WALLED = md([(x, y) for x in range(1, 5) for y in range(1, 5) if (x, y) not in {(1, 4), (3, 1), (3, 2)}],
-            [(1, 2), (4, 2), (2, 1), (1, 1)], [(3, 3), (2, 4), (4, 4), (2, 1)])
 
 
 @pytest.mark.parametrize("name, makespan", PAPER_M.items())

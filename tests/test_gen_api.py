@@ -5,8 +5,8 @@ from __future__ import annotations
 from collections import Counter
 
 import pytest
-from conftest import ROOT
-from test_gen_layout import FIGURE_1, check_instance, one
+from helpers import ROOT
+from helpers.generated import FIGURE_1, check_instance, one
 
 from asprilo.errors import InputError
 from asprilo.generator import GenerationFailed, GeneratorConfig, RunOptions, generate, make_plan

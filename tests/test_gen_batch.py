@@ -5,8 +5,8 @@ from __future__ import annotations
 import textwrap
 
 import pytest
-from conftest import ROOT
-from test_gen_layout import PAPER, check_instance
+from helpers import ROOT
+from helpers.generated import PAPER, check_instance
 
 from asprilo.cli import main
 from asprilo.errors import InputError

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 
-from test_gen_layout import FIGURE_1, cells_of, check_instance
+from helpers.generated import FIGURE_1, cells_of, check_instance
 
 from asprilo.cli import main
 from asprilo.generator import GeneratorConfig, generate

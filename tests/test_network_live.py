@@ -10,8 +10,8 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 import socket  # noqa: E402
 
 import pytest  # noqa: E402
+from helpers.online import ORDER_2, TINY, WAIT  # noqa: E402
 from PyQt5.QtCore import QSettings  # noqa: E402
-from test_serve import ORDER_2, TINY, WAIT, servers  # noqa: E402,F401  (servers: a fixture)
 
 from asprilo.online.serve import listen  # noqa: E402
 from asprilo.visualizer import network  # noqa: E402

@@ -6,9 +6,11 @@ import io
 import sys
 
 import pytest
-from conftest import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
+from helpers import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
 
 from asprilo.domain import Domain, detect_domain
+from asprilo.errors import InputError
+from asprilo.limits import Limits
 from asprilo.model import Action, Order, PickingStation, Product, Robot, Shelf
 from asprilo.reader import read_instance, read_plan
 from asprilo.sources import Source
@@ -92,7 +94,7 @@ def test_grid_form_and_quantity_free_forms():
     assert read_instance(Source("w", written)) == instance
 
 
-def test_rules_constants_and_program_parts_go_through_clingo():
+def test_rules_constants_and_program_parts_go_through_clingo_when_rules_are_allowed():
     text = """
     #const width=4.
     #program base.
@@ -101,7 +103,11 @@ def test_rules_constants_and_program_parts_go_through_clingo():
     #program other.
     init(object(robot,2),value(at,(1,1))).
     """
-    instance = read_instance(Source("rules.lp", text))
+    with pytest.raises(InputError) as refused:
+        read_instance(Source("rules.lp", text))
+    assert str(refused.value) == ("rules.lp:4: 'init(object(node,X),value(at,(X,1))) :- X = (1..width).' is a rule; "
+                                  "data holds only facts, #const and '#program base.' (rules need --allow-rules)")
+    instance = read_instance(Source("rules.lp", text), Limits(allow_rules=True))
     assert instance.nodes == {1: (1, 1), 2: (2, 1), 3: (3, 1), 4: (4, 1)}
     assert list(instance.robots) == [1]
 
@@ -133,7 +139,8 @@ CPU Time     : 0.002s
 
 
 def test_clingo_quiet_output_with_atom_format():
-    output = "occurs(object(robot,1),action(move,(1,0)),1). occurs(object(robot,1),action(move,(0,1)),2).\nSATISFIABLE\n"
+    output = ("occurs(object(robot,1),action(move,(1,0)),1). occurs(object(robot,1),action(move,(0,1)),2).\n"
+              "SATISFIABLE\n")
     assert read_plan(Source("out", output)).horizon == 2
 
 

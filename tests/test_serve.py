@@ -5,43 +5,15 @@ from __future__ import annotations
 
 import subprocess
 import sys
-import threading
 
 import pytest
+from helpers.online import ORDER_2, TINY, WAIT, tiny
 
 from asprilo.errors import InputError
-from asprilo.model import Action, Instance, Plan
-from asprilo.online.planner import OnlinePlanner, Schedule, encodings_planner, parse_arrivals, world_at
+from asprilo.model import Action, Plan
+from asprilo.online.planner import OnlinePlanner, Schedule, parse_arrivals, world_at
 from asprilo.online.protocol import DONE, END, RESET, Channel, Message, done, parse, read_actions, read_world, reset
-from asprilo.online.serve import listen, serve, simulator_session, solver_session
-from asprilo.reader import read_instance
 from asprilo.simulate import simulate
-from asprilo.sources import Source
-
-#: 4x3: a highway row in the middle, picking station 1 top right; robot 1 starts carrying
-#: shelf 1 (1 unit of product 1), shelf 2 holds 3 units of product 2
-TINY = """
-init(object(node,1),value(at,(1,1))). init(object(node,2),value(at,(2,1))). init(object(node,3),value(at,(3,1))).
-init(object(node,4),value(at,(4,1))). init(object(node,5),value(at,(1,2))). init(object(node,6),value(at,(2,2))).
-init(object(node,7),value(at,(3,2))). init(object(node,8),value(at,(4,2))). init(object(node,9),value(at,(1,3))).
-init(object(node,10),value(at,(2,3))). init(object(node,11),value(at,(3,3))). init(object(node,12),value(at,(4,3))).
-init(object(highway,5),value(at,(1,2))). init(object(highway,6),value(at,(2,2))).
-init(object(highway,7),value(at,(3,2))). init(object(highway,8),value(at,(4,2))).
-init(object(pickingStation,1),value(at,(4,1))).
-init(object(robot,1),value(at,(1,1))). init(object(robot,1),value(carries,1)).
-init(object(robot,2),value(at,(2,3))).
-init(object(shelf,1),value(at,(1,1))). init(object(shelf,2),value(at,(3,3))).
-init(object(product,1),value(on,(1,1))). init(object(product,2),value(on,(2,3))).
-init(object(order,1),value(line,(1,1))). init(object(order,1),value(pickingStation,1)).
-init(object(order,2),value(line,(2,2))). init(object(order,2),value(pickingStation,1)).
-"""
-ORDER_2 = "init(object(order,2),value(line,(2,2))). init(object(order,2),value(pickingStation,1))."
-WAIT = 30.0  # seconds any network wait may take at most
-
-
-def tiny() -> Instance:
-    return read_instance(Source("tiny.lp", TINY))
-
 
 # --- messages -----------------------------------------------------------------------------------------
 
@@ -119,27 +91,6 @@ def test_online_planner_replans_from_the_state_reached_when_facts_arrive():
 
 # --- both servers on loopback, a plain client -----------------------------------------------------------
 
-@pytest.fixture
-def servers():
-    """A solver and a simulator (order 2 arrives at step 3) on ephemeral loopback ports."""
-    stop = threading.Event()
-    solver, simulator = listen("127.0.0.1", 0), listen("127.0.0.1", 0)
-    online = OnlinePlanner(encodings_planner(time_limit=WAIT))
-    schedule = Schedule(tiny(), {2: 3})
-    threads = [threading.Thread(target=serve, args=(solver, lambda c: solver_session(c, online)),
-                                kwargs={"stop": stop}, daemon=True),
-               threading.Thread(target=serve, args=(simulator, lambda c: simulator_session(c, schedule, print)),
-                                kwargs={"stop": stop}, daemon=True)]
-    for thread in threads:
-        thread.start()
-    yield solver.getsockname()[1], simulator.getsockname()[1], online
-    stop.set()
-    for thread in threads:
-        thread.join(WAIT)
-    solver.close()
-    simulator.close()
-
-
 def test_an_order_injected_at_step_3_is_delivered(servers):
     solver_port, simulator_port, _online = servers
     solver = Channel.connect("127.0.0.1", solver_port, timeout=WAIT)
@@ -194,7 +145,8 @@ def test_serve_command_prints_its_port_and_rejects_bad_input(tmp_path):
         process.communicate()
     instance = tmp_path / "tiny.lp"
     instance.write_text(TINY)
-    for args, message in ((["simulator", str(instance), "--at", "3:9"], f"error: {instance}: the instance has no order 9"),
+    for args, message in ((["simulator", str(instance), "--at", "3:9"],
+                           f"error: {instance}: the instance has no order 9"),
                           (["simulator", str(tmp_path / "none.lp")], f"error: {tmp_path / 'none.lp'}: no such file"),
                           (["simulator", str(instance), "--every", "0"], "error: --every needs K >= 1")):
         result = subprocess.run([sys.executable, "-m", "asprilo.cli", "serve", *args, "--port", "0"],

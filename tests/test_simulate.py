@@ -5,8 +5,8 @@ from __future__ import annotations
 import random
 
 import pytest
-from conftest import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
-from test_check_world import plan, walk, world
+from helpers import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
+from helpers.worlds import plan, walk, world
 
 from asprilo.domain import Domain
 from asprilo.model import Product

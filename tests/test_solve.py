@@ -7,7 +7,7 @@ import threading
 import time
 
 import pytest
-from conftest import EXAMPLES, SMALL_A
+from helpers import EXAMPLES, SMALL_A
 
 from asprilo.cli import main
 from asprilo.domain import Domain

@@ -10,7 +10,7 @@ import sys
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
-from conftest import OUTCOME, ROOT, SMALL_A, WRONG_OUTCOME  # noqa: E402
+from helpers import OUTCOME, ROOT, SMALL_A, WRONG_OUTCOME  # noqa: E402
 from PIL import Image  # noqa: E402
 
 from asprilo.cli import main  # noqa: E402

@@ -7,7 +7,7 @@ import os
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
-from conftest import OUTCOME, WRONG_OUTCOME  # noqa: E402
+from helpers import OUTCOME, WRONG_OUTCOME  # noqa: E402
 
 from asprilo.reader import read_instance, read_plan  # noqa: E402
 from asprilo.visualizer.describe import action_text, actions_text, tooltip  # noqa: E402

@@ -7,7 +7,7 @@ import os
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
-from conftest import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME  # noqa: E402
+from helpers import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME  # noqa: E402
 from PyQt5.QtCore import QPointF  # noqa: E402
 
 from asprilo.model import Action, Instance, Plan, Robot, Shelf  # noqa: E402

@@ -7,7 +7,7 @@ import os
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
-from conftest import OUTCOME, SMALL_A, WRONG_OUTCOME  # noqa: E402
+from helpers import OUTCOME, SMALL_A, WRONG_OUTCOME  # noqa: E402
 from PIL import Image  # noqa: E402
 from PyQt5.QtCore import QMimeData, QPoint, QSettings, Qt, QUrl  # noqa: E402
 from PyQt5.QtGui import QDropEvent  # noqa: E402
@@ -82,7 +82,7 @@ def test_play_to_the_end_and_loop(window, qtbot):
     assert player.loop
     seen.clear()
     qtbot.keyClick(window, Qt.Key_Space)                   # from the end: starts over
-    qtbot.waitUntil(lambda: any(b < a for a, b in zip(seen, seen[1:])), timeout=5000)
+    qtbot.waitUntil(lambda: any(b < a for a, b in zip(seen, seen[1:], strict=False)), timeout=5000)
     assert player.playing                                  # wrapped around, still playing
     qtbot.keyClick(window, Qt.Key_Space)
     assert not player.playing

@@ -7,6 +7,7 @@ import os
 import pytest
 
 from asprilo import writer
+from asprilo.errors import InputError
 from asprilo.model import Action, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
 from asprilo.reader import read_instance, read_plan
 
@@ -84,8 +85,9 @@ def test_failed_write_leaves_old_file_and_no_debris(tmp_path, monkeypatch):
         raise OSError("disk full")
 
     monkeypatch.setattr(os, "replace", broken)
-    with pytest.raises(OSError):
+    with pytest.raises(InputError) as error:
         writer.write_text(path, "new")
+    assert str(error.value) == f"{path}: cannot be written (disk full)"
     assert path.read_text() == "old"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["instance.lp"]
 

@@ -1,4 +1,4 @@
-"""Tiny warehouses and plans for the checker and simulator tests (this file holds no tests).
+"""Tiny warehouses and plans for the checker, simulator and solver tests.
 
 ``world("R.S", ...)`` draws a floor row by row: ``.`` a storage node, ``#`` a highway,
 ``P`` a picking station (ids 1, 2, ... in reading order), ``R`` a robot, ``S`` a shelf
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from asprilo.model import Action, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
+from asprilo.model import Action, Cell, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
 
 
 def world(layout: str, products: dict[int, dict[int, int | None]] | None = None,
@@ -19,28 +19,10 @@ def world(layout: str, products: dict[int, dict[int, int | None]] | None = None,
     """An instance drawn as text; ``products``: product -> shelf -> units; ``orders``:
     order -> (product -> units, station); ``carries``: robot -> shelf."""
     instance = Instance()
-    node = 0
     for y, row in enumerate(layout.split("/"), start=1):
         for x, mark in enumerate(row, start=1):
-            if mark == " ":
-                continue
-            node += 1
-            cell = (x, y)
-            instance.nodes[node] = cell
-            if mark == "#":
-                instance.highways[node] = cell
-            if mark == "P":
-                ident = len(instance.stations) + 1
-                instance.stations[ident] = PickingStation(ident, cell)
-            if mark in "RB":
-                ident = len(instance.robots) + 1
-                instance.robots[ident] = Robot(ident, cell)
-            if mark in "SB":
-                ident = len(instance.shelves) + 1
-                instance.shelves[ident] = Shelf(ident, cell)
-            if mark == "D":
-                ident = len(instance.destinations) + 1
-                instance.destinations[ident] = Destination(ident, cell)
+            if mark != " ":
+                _place(instance, mark, (x, y))
     for product, stock in (products or {}).items():
         instance.products[product] = Product(product, dict(stock))
     for order, (lines, station) in (orders or {}).items():
@@ -48,6 +30,20 @@ def world(layout: str, products: dict[int, dict[int, int | None]] | None = None,
     for robot, shelf in (carries or {}).items():
         instance.robots[robot].carries = shelf
     return instance
+
+
+def _place(instance: Instance, mark: str, cell: Cell) -> None:
+    """A node at ``cell`` and what ``mark`` puts on it (ids in reading order)."""
+    node = len(instance.nodes) + 1
+    instance.nodes[node] = cell
+    if mark == "#":
+        instance.highways[node] = cell
+    tables = {"P": (instance.stations, PickingStation), "R": (instance.robots, Robot),
+              "S": (instance.shelves, Shelf), "D": (instance.destinations, Destination)}
+    for kind in "RS" if mark == "B" else mark:
+        if kind in tables:
+            table, make = tables[kind]
+            table[len(table) + 1] = make(len(table) + 1, cell)
 
 
 _DIRECTIONS = {"E": (1, 0), "W": (-1, 0), "S": (0, 1), "N": (0, -1)}
@@ -71,3 +67,18 @@ def plan(*actions: tuple) -> Plan:
 def walk(robot: int, directions: str, start: int = 1) -> list[tuple]:
     """Moves of one robot, one per step from ``start``: ``walk(1, "EES")``."""
     return [(start + i, robot, d) for i, d in enumerate(directions)]
+
+
+# --- domain Md ---------------------------------------------------------------------------
+
+def md(cells: list[Cell], starts: list[Cell], goals: list[Cell]) -> Instance:
+    """A domain-Md instance: nodes, robots at ``starts``, destinations at ``goals`` (ids from 1)."""
+    return Instance(nodes={i: c for i, c in enumerate(cells, 1)},
+                    robots={i: Robot(i, c) for i, c in enumerate(starts, 1)},
+                    destinations={i: Destination(i, c) for i, c in enumerate(goals, 1)})
+
+
+#: a 4x4 floor with three walls on which the bottleneck bound (3) is one step short of
+#: the minimal makespan (4): robots have to queue
+WALLED = md([(x, y) for x in range(1, 5) for y in range(1, 5) if (x, y) not in {(1, 4), (3, 1), (3, 2)}],
+            [(1, 2), (4, 2), (2, 1), (1, 1)], [(3, 3), (2, 4), (4, 4), (2, 1)])

@@ -1,0 +1,101 @@
+"""The limits that reading data stays within (README: "Reading data").
+
+Instances, plans and online messages are data: whatever a file holds, reading it checks
+these bounds before anything is built, and a file beyond one is refused with a message
+that names the limit and how to raise it (``--limit NAME=N`` on every command that reads
+files).  Rules in data are refused unless allowed (``--allow-rules``); then they are
+grounded in a child process under ``rule-seconds`` and ``rule-memory``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, fields, replace
+
+from .errors import InputError
+from .model import Instance, Plan
+
+
+@dataclass(frozen=True)
+class Limits:
+    """Bounds on data (see the module docstring); the names are those of ``--limit``."""
+
+    coordinate: int = 10_000  # largest |X| and |Y| of any cell, and grid xsize / ysize
+    facts: int = 2_000_000  # facts of an instance (grid nodes counted) or a plan, cells of a map
+    robot_steps: int = 2_000_000  # a plan's horizon times the robots of its instance; also the largest |T|
+    depth: int = 100  # nesting of terms: f(g(h(1))) has depth 3
+    file_mb: int = 256  # megabytes of one file or message
+    rule_seconds: float = 10.0  # grounding time with --allow-rules
+    rule_mb: int = 2048  # grounding memory (megabytes) with --allow-rules
+    allow_rules: bool = False  # rules in data (never #include or #script)
+
+    def exceeded(self, name: str, what: str) -> InputError:
+        """The error for data beyond limit ``name``: ``what`` says what was found."""
+        value = getattr(self, name)
+        option = name.replace("_", "-")
+        return InputError(f"{what}, beyond the limit {option}={value:,} (raise it with --limit {option}=N)")
+
+    def with_options(self, options: list[str], allow_rules: bool = False) -> Limits:
+        """These limits changed by ``--limit NAME=N`` options and ``--allow-rules``."""
+        changes: dict[str, object] = {"allow_rules": self.allow_rules or allow_rules}
+        for option in options:
+            name, value = parse_option(option)
+            changes[name] = value
+        return replace(self, **changes)
+
+
+#: the limits ``--limit`` can change, with their types
+NAMES = {field.name: field.type for field in fields(Limits) if field.name != "allow_rules"}
+_CEILINGS = {"depth": 500}  # deeper terms would exhaust Python's own recursion
+
+
+def parse_option(text: str) -> tuple[str, int | float]:
+    """``robot-steps=5000000`` -> ``("robot_steps", 5000000)``."""
+    name, equals, value = text.partition("=")
+    key = name.strip().replace("-", "_")
+    known = ", ".join(n.replace("_", "-") for n in NAMES)
+    if not equals or key not in NAMES:
+        raise InputError(f"--limit {text}: expected NAME=N with NAME one of {known}")
+    try:
+        number = float(value) if NAMES[key] == "float" else int(value.replace("_", ""))
+    except ValueError:
+        raise InputError(f"--limit {text}: {value!r} is not a number") from None
+    if not number > 0 or number > _CEILINGS.get(key, float("inf")):
+        ceiling = f" and at most {_CEILINGS[key]}" if key in _CEILINGS else ""
+        raise InputError(f"--limit {text}: the limit must be positive{ceiling}")
+    return key, number
+
+
+def require_plan_fits(instance: Instance, plan: Plan, limits: Limits | None = None) -> None:
+    """Refuse a plan whose horizon times the instance's robots is beyond ``robot-steps``:
+    replaying and checking it takes time and memory in proportion."""
+    limits = limits or current()
+    horizon, robots = max(plan.horizon, 0), max(len(instance.robots), 1)
+    if horizon * robots > limits.robot_steps:
+        raise limits.exceeded("robot_steps", f"a plan of horizon {horizon:,} for {robots:,} robots")
+
+
+_current = Limits()
+
+
+def current() -> Limits:
+    """The limits in force (the command line's, or the defaults)."""
+    return _current
+
+
+def set_current(limits: Limits) -> None:
+    """Put ``limits`` in force for the whole process (the command line does this once)."""
+    global _current
+    _current = limits
+
+
+@contextmanager
+def using(limits: Limits) -> Iterator[Limits]:
+    """Put ``limits`` in force within a ``with`` block."""
+    before = current()
+    set_current(limits)
+    try:
+        yield limits
+    finally:
+        set_current(before)
