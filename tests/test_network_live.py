@@ -40,7 +40,7 @@ def test_orders_arrive_and_robots_are_replanned_live(window, qtbot, servers):
 
     def shown(step: int) -> None:
         seen_orders.setdefault(step, sorted(window.scenario.instance.orders))
-        verdicts.setdefault(step, window.problems.text())
+        verdicts.setdefault(step, window.status_line.verdict.text())
 
     window.player.step_changed.connect(shown)
     qtbot.waitUntil(lambda: window.live.session is None, timeout=int(WAIT * 1000))
@@ -57,7 +57,7 @@ def test_orders_arrive_and_robots_are_replanned_live(window, qtbot, servers):
     assert window.player.time == plan.horizon
     assert window.editor.palette.isEnabled()
     assert "Online session ended" in window.statusBar().currentMessage()
-    assert "no rule broken so far" in verdicts[2] and "valid plan" in window.problems.text()
+    assert "no rule broken so far" in verdicts[2] and "valid plan" in window.status_line.verdict.text()
 
 
 def test_solver_alone_plans_for_the_instance_shown(window, qtbot, servers, write):

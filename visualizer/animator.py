@@ -147,7 +147,7 @@ def _move(items: list, cells: np.ndarray, shown: np.ndarray) -> np.ndarray:
     if not len(changed):
         return changed
     points = ((cells[changed] - 0.5) * CELL).tolist()
-    for index, (x, y) in zip(changed.tolist(), points):
+    for index, (x, y) in zip(changed.tolist(), points, strict=True):
         items[index].setPos(x, y)
     shown[changed] = cells[changed]
     return changed

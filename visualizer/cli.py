@@ -39,7 +39,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
                        help="pixels per cell (default 48, less for big warehouses)")
     online = parser.add_argument_group("online link (see asprilo serve)")
     online.add_argument("--solver", type=int, metavar="PORT",
-                        help="connect to a solver: it plans step by step for the INSTANCE, or for the simulator's world")
+                        help="connect to a solver: it plans step by step for the INSTANCE, "
+                             "or for the simulator's world")
     online.add_argument("--simulator", type=int, metavar="PORT",
                         help="connect to a simulator as well: it says what the world is and when orders arrive")
     online.add_argument("--host", default="127.0.0.1", help="where solver and simulator run (default 127.0.0.1)")
@@ -93,7 +94,7 @@ def _show(args: argparse.Namespace, scenario) -> int:
     window = MainWindow()
     if scenario is not None:
         window.show_scenario(scenario)
-        window.remember(scenario)
+        window.files.remember(scenario)
         if args.step:
             if args.step > window.track.horizon:
                 raise InputError(f"--step {args.step} lies beyond the plan, whose last step is "

@@ -27,7 +27,7 @@ from asprilo.simulate import Violation
 
 from . import edits
 from .dialogs import MAX_COUNT, spin
-from .edit_commands import Document
+from .document import Document
 from .edits import Edit, EditRefused
 from .tables import PROBLEM, RowsModel
 
@@ -225,11 +225,8 @@ class OrderEditor(QWidget):
     def _perform_all(self, makers: list[Callable[[], Edit]], text: str) -> bool:
         if len(makers) == 1:
             return self.perform(makers[0])
-        self.document.stack.beginMacro(text)
-        try:
+        with self.document.history.group(text):
             done = [self.perform(maker) for maker in makers]
-        finally:
-            self.document.stack.endMacro()
         return any(done)
 
     def _default_units(self) -> int | None:

@@ -25,8 +25,9 @@ from .style import CELL
 MISSING, STORAGE, HIGHWAY = 0, 1, 2
 
 
-class Floor:
-    """The floor's cells by kind (missing, storage, highway) over its bounding box."""
+class FloorPicture:
+    """The floor drawn as the scene's background: its cells by kind (missing, storage,
+    highway) over its bounding box, as tiles or, when cells are tiny, one pixel each."""
 
     def __init__(self, nodes: Iterable[Cell], highways: Iterable[Cell]):
         nodes, highways = _cells(nodes), _cells(highways)
@@ -79,7 +80,7 @@ class Floor:
             size = CELL - 2 * inset
             painter.setBrush(colour)
             painter.drawRects([QRectF((x0 + x) * CELL + inset, (y0 + y) * CELL + inset, size, size)
-                               for x, y in zip(xs.tolist(), ys.tolist())])
+                               for x, y in zip(xs.tolist(), ys.tolist(), strict=True)])
         painter.restore()
 
 
@@ -118,7 +119,7 @@ class WarehouseScene(QGraphicsScene):
     # --- the floor ----------------------------------------------------------------------
 
     def set_floor(self, nodes: Iterable[Cell], highways: Iterable[Cell]) -> None:
-        self.floor = Floor(nodes, highways)
+        self.floor = FloorPicture(nodes, highways)
         self._update_rect()
         self.invalidate(self.sceneRect(), QGraphicsScene.BackgroundLayer)
 

@@ -22,6 +22,7 @@ CURRENT = QColor("#d0ebff")    # the step shown
 CHANGED = QColor("#fff3bf")    # stock that differs from the initial one
 PROBLEM = QColor("#ffe3e3")    # violations
 FADED = QColor("#868e96")      # what lies in the past
+_TOP = QModelIndex()           # the parent of a table's rows
 
 
 class RowsModel(QAbstractTableModel):
@@ -30,10 +31,10 @@ class RowsModel(QAbstractTableModel):
     columns: tuple[str, ...] = ()
     rows: list[Any]
 
-    def rowCount(self, parent: QModelIndex = QModelIndex()) -> int:
+    def rowCount(self, parent: QModelIndex = _TOP) -> int:
         return 0 if parent.isValid() else len(self.rows)
 
-    def columnCount(self, parent: QModelIndex = QModelIndex()) -> int:
+    def columnCount(self, parent: QModelIndex = _TOP) -> int:
         return 0 if parent.isValid() else len(self.columns)
 
     def headerData(self, section: int, orientation, role=Qt.DisplayRole):
