@@ -18,6 +18,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import traceback
 
 from asprilo.arguments import domain_argument
 from asprilo.errors import InputError
@@ -92,6 +93,7 @@ def _show(args: argparse.Namespace, scenario) -> int:
     from .window import MainWindow
     app = application()
     window = MainWindow()
+    sys.excepthook = report_exceptions_to(window)
     if scenario is not None:
         window.show_scenario(scenario)
         window.files.remember(scenario)
@@ -104,3 +106,13 @@ def _show(args: argparse.Namespace, scenario) -> int:
     if args.solver is not None:
         window.live.connect_to(args.host, args.solver, args.simulator)
     return app.exec_()
+
+
+def report_exceptions_to(window):
+    """An exception hook that keeps the window alive: the traceback goes to standard error,
+    a dialog says what broke (without a hook of its own PyQt would abort the viewer)."""
+    def report(kind, value, trace) -> None:
+        traceback.print_exception(kind, value, trace, file=sys.stderr)
+        window.state.report_error(f"Something went wrong inside the viewer ({kind.__name__}: {value}). "
+                                  "It goes on; the details are on standard error.")
+    return report

@@ -35,11 +35,15 @@ def remember_folder(settings: QSettings, path: str) -> None:
     settings.setValue("last_folder", str(Path(path).parent))
 
 
-def read_problem(error: Exception) -> str:
+def read_problem(error: Exception, names: list[str]) -> str:
     """What to say when reading failed: the reader's ``FILE:LINE: …``, or what broke."""
     if isinstance(error, InputError):
         return str(error)
-    return f"the file could not be read ({type(error).__name__}: {error})"
+    return f"{', '.join(names)}: cannot be read ({type(error).__name__}: {error})"
+
+
+def _names(inputs: Iterable) -> list[str]:
+    return [getattr(item, "name", None) or str(item) for item in inputs]
 
 
 class FileActions(QObject):
@@ -54,7 +58,8 @@ class FileActions(QObject):
 
     def open_files(self, instance: Iterable, plans: Iterable = ()) -> bool:
         """Show an instance (files, ``-`` or sources) and its plan."""
-        return self._load(lambda: loading.load_scenario(list(instance), list(plans)))
+        instance, plans = list(instance), list(plans)
+        return self._load(lambda: loading.load_scenario(instance, plans), _names(instance + plans))
 
     def open_plan_files(self, plans: Iterable) -> bool:
         """Show a plan on the instance already open."""
@@ -62,14 +67,15 @@ class FileActions(QObject):
         if scenario is None:
             self.state.report_error("Open an instance first: a plan needs its warehouse.")
             return False
-        return self._load(lambda: loading.add_plan(scenario, list(plans)))
+        plans = list(plans)
+        return self._load(lambda: loading.add_plan(scenario, plans), _names(plans))
 
     def open_dropped(self, paths: list[str]) -> bool:
         """Files dropped on the window: instances (and plans) or plans for the open instance."""
         try:
             instances, plans = loading.sort_files(paths)
         except Exception as error:  # whatever breaks, the window stays
-            self.state.report_error(read_problem(error))
+            self.state.report_error(read_problem(error, paths))
             return False
         if instances:
             return self.open_files(instances, plans)
@@ -79,14 +85,15 @@ class FileActions(QObject):
         scenario = self.state.document.scenario
         if scenario is None:
             return False
-        return self._load(lambda: loading.reload(scenario), keep_time=True)
+        instances, plans = scenario.files
+        return self._load(lambda: loading.reload(scenario), instances + plans, keep_time=True)
 
-    def _load(self, read: Callable[[], Scenario], keep_time: bool = False) -> bool:
+    def _load(self, read: Callable[[], Scenario], names: list[str], keep_time: bool = False) -> bool:
         QApplication.setOverrideCursor(Qt.WaitCursor)
         try:
             scenario = read()
         except Exception as error:  # whatever breaks, the window stays
-            self.state.report_error(read_problem(error))
+            self.state.report_error(read_problem(error, names))
             return False
         finally:
             QApplication.restoreOverrideCursor()

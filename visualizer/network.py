@@ -2,10 +2,16 @@
 simulator (QTcpSocket), and the session that plays the world they describe step by step.
 
 Nothing here ever waits: sockets report through Qt signals, and every answer that is
-expected has a deadline, after which the session stops with a message.
+expected has a deadline, after which the session stops with a message.  Whatever a server
+sends, the session ends with a reason rather than the window: bytes that are not UTF-8, a
+line longer than ``MAX_LINE_BYTES``, a message that is malformed or whose facts the reader
+refuses.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
 
 from PyQt5.QtCore import QObject, QTimer, pyqtSignal
 from PyQt5.QtNetwork import QAbstractSocket, QTcpSocket
@@ -16,6 +22,8 @@ from asprilo.online.protocol import DONE, END, Message, done, instance_facts, pa
 
 #: seconds to wait for a connection, for the simulator's and for the solver's answers
 CONNECT_SECONDS, SIMULATOR_SECONDS, SOLVER_SECONDS = 10.0, 30.0, 300.0
+#: the longest line a server may send (a 200x200 warehouse's world is about 2 MB)
+MAX_LINE_BYTES = 32 * 2**20
 
 
 class LineLink(QObject):
@@ -67,18 +75,30 @@ class LineLink(QObject):
 
     def _read(self) -> None:
         while self.socket.canReadLine():
-            line = bytes(self.socket.readLine()).decode("utf-8", errors="replace")
+            data = bytes(self.socket.readLine(MAX_LINE_BYTES + 2))
+            if not data.endswith(b"\n"):
+                self._refuse(f"a line longer than {_size(MAX_LINE_BYTES)}")
+                return
             self.waiting = max(0, self.waiting - 1)
             if self.waiting:
                 self.deadline.start(int(self.answer_seconds * 1000))
             else:
                 self.deadline.stop()
             try:
-                message = parse(line)
+                message = parse(data.decode("utf-8"))
+            except UnicodeDecodeError as error:
+                self._refuse(f"bytes that are not UTF-8 (0x{data[error.start]:02X} at byte {error.start + 1} "
+                             "of a line)")
+                return
             except InputError as error:
-                self.failed.emit(f"{self.where} sent a bad message: {error.message}")
+                self._refuse(f"a bad message: {error.message}")
                 return
             self.received.emit(message)
+        if self.socket.bytesAvailable() > MAX_LINE_BYTES:
+            self._refuse(f"a line longer than {_size(MAX_LINE_BYTES)}")
+
+    def _refuse(self, what: str) -> None:
+        self.failed.emit(f"{self.where} sent {what}")
 
     def _error(self, _error) -> None:
         if self.socket.error() == QAbstractSocket.RemoteHostClosedError:
@@ -91,6 +111,10 @@ class LineLink(QObject):
             self.failed.emit(f"{self.where} does not accept connections (waited {CONNECT_SECONDS:g} s)")
         else:
             self.failed.emit(f"{self.where} did not answer within {self.answer_seconds:g} s")
+
+
+def _size(count: int) -> str:
+    return f"{count / 2**20:g} MB" if count >= 2**20 else f"{count:,} bytes"
 
 
 class LiveSession(QObject):
@@ -195,10 +219,9 @@ class LiveSession(QObject):
         self.solver.send(Message(message.facts, DONE, self.asking), answered=True)
 
     def _learn(self, facts: str) -> bool:
-        try:
-            world = read_world(self.facts + [facts], "<simulator>")
-        except InputError as error:
-            self.stop(f"the simulator sent facts that are no instance: {error}")
+        world = self._read(lambda: read_world(self.facts + [facts], "<simulator>"),
+                           "the simulator sent facts that are no instance")
+        if world is None:
             return False
         self.facts.append(facts)
         if self.instance is None:
@@ -210,10 +233,8 @@ class LiveSession(QObject):
     def _from_solver(self, message: Message) -> None:
         if not self.running or self.asking is None:
             return
-        try:
-            actions = read_actions(message.facts)
-        except InputError as error:
-            self.stop(f"the solver sent no actions: {error}")
+        actions = self._read(lambda: read_actions(message.facts), "the solver sent no actions")
+        if actions is None:
             return
         step, self.asking = self.asking + 1, None
         wrong = [a for a in actions if a.step != step]
@@ -226,3 +247,13 @@ class LiveSession(QObject):
         self.actions += actions
         self.frontier = step
         self.stepped.emit(step)
+
+    def _read(self, read: Callable[[], Any], what: str) -> Any:
+        """``read()``, or ``None`` when it fails: then the session stops, saying ``what`` and why."""
+        try:
+            return read()
+        except InputError as error:
+            self.stop(f"{what}: {error}")
+        except Exception as error:  # whatever the reader cannot cope with ends the session, not the window
+            self.stop(f"{what}: {type(error).__name__}: {error}")
+        return None

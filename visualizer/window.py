@@ -55,6 +55,8 @@ ACTIONS: Table = {
     "loop": ("&Loop", ("L",)),
     "shortcuts": ("&Keyboard shortcuts", ("F1",)),
 }
+#: the longest error message a dialog shows whole
+ERROR_CHARACTERS = 600
 MENUS = (("file", "&File"), ("edit", "&Edit"), ("view", "&View"), ("play", "&Play"), ("run", "&Run"),
          ("online", "&Online"), ("help", "&Help"))
 _ICONS = {"play": "SP_MediaPlay", "forward": "SP_MediaSeekForward", "back": "SP_MediaSeekBackward",
@@ -204,6 +206,9 @@ class MainWindow(QMainWindow):
 
     def _report_error(self, message: str) -> None:
         """Say what went wrong in a dialog (not blocking: the viewer stays usable)."""
+        if len(message) > ERROR_CHARACTERS:  # e.g. a term thousands of levels deep: the dialog stays on screen
+            half = ERROR_CHARACTERS // 2
+            message = f"{message[:half]} … {message[-half:]}"
         box = QMessageBox(QMessageBox.Warning, "asprilo viz", message, QMessageBox.Ok, self)
         box.setAttribute(Qt.WA_DeleteOnClose)
         box.open()
