@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from itertools import pairwise
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
@@ -82,7 +83,7 @@ def test_play_to_the_end_and_loop(window, qtbot):
     assert player.loop
     seen.clear()
     qtbot.keyClick(window, Qt.Key_Space)                   # from the end: starts over
-    qtbot.waitUntil(lambda: any(b < a for a, b in zip(seen, seen[1:])), timeout=5000)
+    qtbot.waitUntil(lambda: any(b < a for a, b in pairwise(seen)), timeout=5000)
     assert player.playing                                  # wrapped around, still playing
     qtbot.keyClick(window, Qt.Key_Space)
     assert not player.playing

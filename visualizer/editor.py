@@ -11,6 +11,7 @@ The mouse's part (clicks, drags, strokes) is in ``edit_mouse.py``.
 from __future__ import annotations
 
 from collections.abc import Callable
+from contextlib import AbstractContextManager
 from pathlib import Path
 
 from PyQt5.QtCore import QObject, QSettings, Qt
@@ -22,12 +23,14 @@ from . import edits
 from .commands import Table, make_actions
 from .dialogs import SizeDialog, StockDialog, confirm_discard
 from .document import Change
+from .drafts import DraftOrders
 from .edit_mouse import MouseEditing
 from .edits import NAMES, Edit, EditRefused
 from .files import remember_folder, start_folder
 from .loading import Scenario
 from .order_editor import OrderEditor
 from .palette import OBJECT_TOOLS, EditPalette
+from .panels import Panels
 from .stage import Stage
 from .state import ViewerState
 
@@ -59,7 +62,11 @@ class Editor(QObject):
         self.last_message: str | None = None  # the last refusal (tests and status bar)
         self.palette = EditPalette(window)
         self.palette.tool_changed.connect(self._tool_changed)
-        self.orders = OrderEditor(self.document, self.perform)
+        self.document_orders = _DocumentOrders(self)
+        self.drafts: DraftOrders | None = None  # orders written during an online session
+        self.orders = OrderEditor(self.document_orders)
+        self.orders.send_clicked.connect(self.send_drafts)
+        self.orders.discard_clicked.connect(self.discard_drafts)
         self.commands = make_actions(window, EDIT_ACTIONS, {
             "new": self.ask_new, "save": self.save, "save_as": self.ask_save_as,
             "save_template": self.ask_save_template, "save_plan": self.ask_save_plan, "resize": self.ask_resize,
@@ -71,8 +78,8 @@ class Editor(QObject):
         state.locks_changed.connect(self._show_locks)
         self._follow()
 
-    def install(self, menus: dict[str, QMenu]) -> QDockWidget:
-        """Fill the Edit menu, put the palette on the left; returns the order editor's dock."""
+    def install(self, menus: dict[str, QMenu], panels: Panels) -> QDockWidget:
+        """Fill the Edit menu, put the palette on the left and the order editor beside the inventory."""
         edit = menus["edit"]
         edit.addAction(self.commands["undo"])
         edit.addAction(self.commands["redo"])
@@ -82,9 +89,7 @@ class Editor(QObject):
             tools.addAction(action)
         edit.addAction(self.commands["resize"])
         self.window.addToolBar(Qt.LeftToolBarArea, self.palette)
-        dock = QDockWidget("Order editor", self.window)
-        dock.setObjectName("dock_order_editor")
-        dock.setWidget(self.orders)
+        dock = panels.add_dock("order_editor", "Order editor", self.orders, panels.docks["inventory"])
         edit.addAction(dock.toggleViewAction())
         return dock
 
@@ -98,6 +103,8 @@ class Editor(QObject):
         self._refresh_orders()
 
     def _changed(self, change: Change) -> None:
+        if self.drafts is not None:
+            self.drafts.sync()  # the session's world grew
         self._refresh_orders()
         if change.edit is not None:
             self.state.say(change.edit.text, 4000)
@@ -106,9 +113,10 @@ class Editor(QObject):
         """Enable what may be edited now."""
         history = self.document.history
         editable = self.state.layout_lock() is None and self.document.scenario is not None
+        live = self._follow_session()
         self.palette.setEnabled(editable)
         self.commands["resize"].setEnabled(editable)
-        self.orders.setEnabled(editable)
+        self.orders.setEnabled(editable or (live and self.state.order_lock() is None))
         self.commands["undo"].setEnabled(editable and history.can_undo)
         self.commands["redo"].setEnabled(editable and history.can_redo)
         self.commands["undo"].setStatusTip(f"Undo {history.undo_text}" if history.can_undo else "")
@@ -116,7 +124,39 @@ class Editor(QObject):
 
     def _refresh_orders(self) -> None:
         track = self.state.track
-        self.orders.refresh(track.violations if track is not None else [])
+        self.orders.refresh(track.violations if track is not None and self.drafts is None else [])
+
+    # --- orders during an online session -----------------------------------------------------------
+
+    def _follow_session(self) -> bool:
+        """Orders written during a session are drafts until sent; whether one runs."""
+        live = self.state.session.running and self.document.scenario is not None
+        if live and (self.drafts is None or self.drafts.world is not self.document.instance):
+            self.drafts = DraftOrders(self.document.instance, self.refuse)
+            self.drafts.changed.connect(self.orders.refresh)
+            self.orders.set_book(self.drafts, live=True)
+        elif not live and self.drafts is not None:
+            self.drafts = None
+            self.orders.set_book(self.document_orders, live=False)
+            self._refresh_orders()
+        return live
+
+    def send_drafts(self) -> bool:
+        """Send the orders written during the session to the solver."""
+        if self.drafts is None:
+            return False
+        problems = self.drafts.problems()
+        if not self.drafts.drafts or problems:
+            self.refuse(problems[0] if problems else "no orders to send: add one first")
+            return False
+        count = len(self.drafts.drafts)
+        self.state.session.send(self.drafts.take())
+        self.state.say(f"sent {count} order{'s' if count != 1 else ''} to the solver", 8000)
+        return True
+
+    def discard_drafts(self) -> None:
+        if self.drafts is not None:
+            self.drafts.discard()
 
     def _tool_changed(self, tool: str) -> None:
         self.mouse.tool_changed(tool)
@@ -280,6 +320,27 @@ class Editor(QObject):
             self.state.report_error(f"{path}: cannot write {what} ({error.strerror or error})")
             return False
         self.state.say(done)
+        return True
+
+
+class _DocumentOrders:
+    """The document's orders for the order editor: edits go through the editor (locks,
+    refusals) into the history."""
+
+    def __init__(self, editor: Editor):
+        self.editor = editor
+
+    @property
+    def instance(self) -> Instance:
+        return self.editor.document.instance
+
+    def perform(self, make: Callable[[], Edit]) -> bool:
+        return self.editor.perform(make)
+
+    def group(self, text: str) -> AbstractContextManager:
+        return self.editor.document.history.group(text)
+
+    def shows(self, order: int) -> bool:
         return True
 
 

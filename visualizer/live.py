@@ -2,7 +2,8 @@
 
 While a session runs, the window plays each step as soon as its actions arrive and asks
 for the next one when it has shown the last; new orders from the simulator appear in the
-panels when they arrive.  Editing is locked meanwhile: the world belongs to the session.
+panels when they arrive.  The layout cannot be edited meanwhile (the world belongs to the
+session), but orders written in the order editor go to the solver when sent.
 """
 
 from __future__ import annotations
@@ -40,6 +41,7 @@ class LiveControl(QObject):
                                                             "disconnect": self.disconnect})
         self.commands["disconnect"].setEnabled(False)
         state.step_changed.connect(self._shown)
+        state.session.outgoing.connect(self._send)
 
     @property
     def last_reason(self) -> str | None:
@@ -112,10 +114,18 @@ class LiveControl(QObject):
     def _stepped(self, step: int) -> None:
         if not self._still_shown():
             return
+        if len(self.session.actions) == len(self.state.document.plan):  # the robots waited: ask on
+            self.session.shown(self.state.step)
+            return
         at_end = self.player.time >= self.player.horizon
         self.state.document.grow_plan(Plan(list(self.session.actions)))
         if at_end:
             self.player.play()
+
+    def _send(self, facts: str) -> None:
+        if self.session is not None:
+            self.session.send(facts)
+            self.session.shown(self.state.step)
 
     def _shown(self, step: int) -> None:
         if self.session is not None:

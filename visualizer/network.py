@@ -124,7 +124,9 @@ class LiveSession(QObject):
     The window reports every state it has shown through :meth:`shown`; when that is the last
     state known, the session asks for the next step: ``%$done(T).`` to the simulator, whose
     answer (the facts arriving at T) goes to the solver followed by ``%$done(T).``; the
-    solver's answer holds the actions of step T+1.
+    solver's answer holds the actions of step T+1.  Facts the window sends (orders written
+    during the session, :meth:`send`) go to the solver with the next ``%$done(T).``, like
+    facts from the simulator.
     """
 
     world_changed = pyqtSignal(object, bool)   # the Instance; whether it is the first world
@@ -142,6 +144,8 @@ class LiveSession(QObject):
         self.actions: list[Action] = []
         self.frontier = 0          # the last step whose actions are known
         self.asking: int | None = None  # the step being asked about
+        self.outbox: list[str] = []  # facts from the window for the solver, sent with the next question
+        self._sending = ""  # those facts, while their question waits for the simulator
         self.ended = simulator_port is None  # nothing more will arrive
         self.running = False
         self._pending: set[LineLink] = set()  # links not connected yet
@@ -172,15 +176,27 @@ class LiveSession(QObject):
             link.close()
         self.stopped.emit(reason)
 
+    def send(self, facts: str) -> None:
+        """Tell the solver these facts (new orders) with the next question."""
+        self.outbox.append(facts)
+
     def shown(self, step: int) -> None:
-        """The window shows the state after ``step``: ask for the next one if it is the last known."""
-        if self.running and step == self.frontier and self.asking is None and not self._pending:
-            self.asking = step
-            if self.simulator is not None:
-                self.simulator.send(done(step), answered=True)
-            else:
-                self.solver.send(done(step), answered=True)
-            self.status.emit(f"asking for step {step + 1}…")
+        """The window shows the state after ``step``: ask for the next one if it is the last
+        known (when the robots waited at the last steps, the last state the plan shows)."""
+        last = max((action.step for action in self.actions), default=0)
+        if not self.running or step < min(self.frontier, last) or self.asking is not None or self._pending:
+            return
+        self.asking = self.frontier
+        self._sending, self.outbox = " ".join(self.outbox), []
+        if self._sending and not self._learn(self._sending):
+            return
+        if self._sending:
+            self.world_changed.emit(self.instance, False)
+        if self.simulator is not None:
+            self.simulator.send(done(self.asking), answered=True)
+        else:
+            self.solver.send(Message(self._sending, DONE, self.asking), answered=True)
+        self.status.emit(f"asking for step {self.asking + 1}…")
 
     # --- answers ---------------------------------------------------------------------------------
 
@@ -216,7 +232,8 @@ class LiveSession(QObject):
                 return
             self.world_changed.emit(self.instance, False)
             self.status.emit(f"step {self.asking}: new facts arrived, the solver re-plans…")
-        self.solver.send(Message(message.facts, DONE, self.asking), answered=True)
+        facts = " ".join(part for part in (message.facts, self._sending) if part)
+        self.solver.send(Message(facts, DONE, self.asking), answered=True)
 
     def _learn(self, facts: str) -> bool:
         world = self._read(lambda: read_world(self.facts + [facts], "<simulator>"),
@@ -241,7 +258,7 @@ class LiveSession(QObject):
         if wrong:
             self.stop(f"asked for step {step}, the solver sent an action of step {wrong[0].step}")
             return
-        if not actions and self.ended:
+        if not actions and self.ended and not self.outbox:
             self.stop(f"the solver has nothing more to do after step {step - 1}")
             return
         self.actions += actions

@@ -29,18 +29,12 @@ class Panels(QObject):
 
     def __init__(self, state: ViewerState, window: QMainWindow, menu: QMenu):
         super().__init__(window)
-        self.state, self.menu = state, menu
+        self.state, self.menu, self.window = state, menu, window
         self.tables = {name: TablePanel(_MODELS[name](), hint) for name, (_title, hint) in PANELS.items()}
         self.docks: dict[str, QDockWidget] = {}
         for name, (title, _hint) in PANELS.items():
-            dock = QDockWidget(title, window)
-            dock.setObjectName(f"dock_{name}")
-            dock.setWidget(self.tables[name])
-            window.addDockWidget(Qt.RightDockWidgetArea, dock)
-            menu.addAction(dock.toggleViewAction())
-            self.docks[name] = dock
-        window.tabifyDockWidget(self.docks["orders"], self.docks["inventory"])
-        window.tabifyDockWidget(self.docks["robots"], self.docks["plan"])
+            beside = {"inventory": "orders", "plan": "robots", "violations": "plan"}.get(name)
+            self.add_dock(name, title, self.tables[name], self.docks[beside] if beside else None)
         self.docks["orders"].raise_()
         self.docks["robots"].raise_()
         self.tables["plan"].row_activated.connect(lambda action: state.seek(action.step))
@@ -50,6 +44,18 @@ class Panels(QObject):
         state.step_changed.connect(self._show_step)
         state.selection.changed.connect(self._show_selection)
         state.checked.connect(self._show_report)
+
+    def add_dock(self, name: str, title: str, widget, beside: QDockWidget | None = None) -> QDockWidget:
+        """Put ``widget`` in a dock on the right (a tab ``beside`` another), listed in View > Panels."""
+        dock = QDockWidget(title, self.window)
+        dock.setObjectName(f"dock_{name}")
+        dock.setWidget(widget)
+        self.window.addDockWidget(Qt.RightDockWidgetArea, dock)
+        if beside is not None:
+            self.window.tabifyDockWidget(beside, dock)
+        self.menu.addAction(dock.toggleViewAction())
+        self.docks[name] = dock
+        return dock
 
     def __getitem__(self, name: str) -> TablePanel:
         return self.tables[name]

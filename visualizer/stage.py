@@ -40,11 +40,14 @@ class Stage(QObject):
         self.trails: Trails | None = None
         self.paths = PathMode.REMAINING
         self.show_paths = True
+        self.show_goals = True
+        self.show_labels = True
         state.shown.connect(self._show_new)
         state.track_changed.connect(self._show_change)
         state.step_changed.connect(self._show_step)
         state.selection.changed.connect(self._show_selection)
         player.time_changed.connect(self._show_time)
+        view.zoom_changed.connect(self._zoomed)
         view.clicked.connect(self._clicked)
         view.describe = self._describe
 
@@ -109,6 +112,7 @@ class Stage(QObject):
     def _animate(self) -> None:
         self.animator = Animator(self.scene, self.state.track)
         self.trails = Trails(self.scene, self.state.track)
+        self.animator.goals.shown = self.show_goals
 
     def _show_time(self, time: float) -> None:
         if self.animator is not None:
@@ -116,6 +120,23 @@ class Stage(QObject):
 
     def _show_step(self, _step: int) -> None:
         self._show_trails()
+
+    def _zoomed(self, cell_px: float) -> None:
+        if self.scene is not None:
+            self.scene.show_labels(self.show_labels, cell_px)
+
+    # --- what is shown on the map -------------------------------------------------------------
+
+    def set_goals(self, shown: bool) -> None:
+        """Mark the goals (those of the state shown) or not."""
+        self.show_goals = shown
+        if self.animator is not None:
+            self.animator.show_goals(shown)
+
+    def set_labels(self, shown: bool) -> None:
+        """Show the ids of robots, shelves, stations, destinations (where they can be read)."""
+        self.show_labels = shown
+        self._zoomed(self.view.pixels_per_cell)
 
     # --- selection, paths, violations ---------------------------------------------------------
 

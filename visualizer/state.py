@@ -43,6 +43,7 @@ class Session:
         self.ended_because: str | None = None  # shown until dismissed
         self.last_reason: str | None = None
         self.changed = Signal()
+        self.outgoing = Signal()  # (facts) for the solver: orders written during the session
 
     def start(self, name: str) -> None:
         self.name, self.running, self.ended_because = name, True, None
@@ -53,6 +54,11 @@ class Session:
         self.running, self.last_reason = False, reason
         self.ended_because = reason + note
         self.changed.emit()
+
+    def send(self, facts: str) -> None:
+        """Send facts (new orders) to the solver with the next step."""
+        if self.running:
+            self.outgoing.emit(facts)
 
     def dismiss(self) -> None:
         if self.ended_because is not None:

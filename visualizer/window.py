@@ -10,8 +10,10 @@ what only a window can: its title, dialogs, dropped files, closing.
 from __future__ import annotations
 
 from PyQt5.QtCore import QSettings, Qt
-from PyQt5.QtWidgets import QInputDialog, QMainWindow, QMenu, QMessageBox, QToolBar
+from PyQt5.QtWidgets import QApplication, QInputDialog, QMainWindow, QMenu, QMessageBox, QToolBar, QVBoxLayout, QWidget
 
+from .atoms_pane import AtomsPane
+from .banner import SessionBanner
 from .commands import Table, make_actions, show_shortcuts
 from .controls import TransportBar
 from .dialogs import confirm_discard
@@ -19,6 +21,7 @@ from .editor import Editor
 from .exporting import ExportActions
 from .files import FileActions
 from .jobs import JobRunner
+from .legend import Legend
 from .live import LiveControl
 from .loading import Scenario
 from .panels import Panels
@@ -40,6 +43,8 @@ ACTIONS: Table = {
     "zoom_in": ("Zoom &in", ("Ctrl++", "+", "=")),
     "zoom_out": ("Zoom &out", ("Ctrl+-", "-")),
     "fit": ("&Fit to window", ("Ctrl+0", "0")),
+    "goals": ("Show &goals", ("G",)),
+    "labels": ("Show &ids (where they can be read)", ("I",)),
     "paths": ("Show &paths of selected robots", ("T",)),
     "whole_paths": ("&Whole paths (not only what remains)", ("Shift+T",)),
     "select_all": ("Select &all robots", ("Ctrl+A",)),
@@ -54,7 +59,10 @@ ACTIONS: Table = {
     "slower": ("S&lower", ("[",)),
     "loop": ("&Loop", ("L",)),
     "shortcuts": ("&Keyboard shortcuts", ("F1",)),
+    "legend": ("&Legend: what the symbols mean", ("F2",)),
 }
+#: the side panels' width (pixels) in a new window
+DOCK_WIDTH = 440
 #: the longest error message a dialog shows whole
 ERROR_CHARACTERS = 600
 MENUS = (("file", "&File"), ("edit", "&Edit"), ("view", "&View"), ("play", "&Play"), ("run", "&Run"),
@@ -72,7 +80,14 @@ class MainWindow(QMainWindow):
         self.state = ViewerState()
         self.player = Player(self)
         self.view = WarehouseView(self)
-        self.setCentralWidget(self.view)
+        self.banner = SessionBanner(self.state.session, self)
+        centre = QWidget(self)
+        layout = QVBoxLayout(centre)
+        layout.setContentsMargins(0, 0, 0, 0)
+        layout.setSpacing(0)
+        layout.addWidget(self.banner)
+        layout.addWidget(self.view, 1)
+        self.setCentralWidget(centre)
         self.menus = {name: self.menuBar().addMenu(title) for name, title in MENUS}
         # the panels and the status line follow a new track before the stage moves the clock
         self.panels = Panels(self.state, self, QMenu("&Panels", self))
@@ -93,7 +108,8 @@ class MainWindow(QMainWindow):
         bar.addWidget(self.transport)
         self.addToolBar(Qt.BottomToolBarArea, bar)
         self.setAcceptDrops(True)
-        self.resize(1360, 860)
+        screen = QApplication.primaryScreen().availableGeometry()
+        self.resize(min(1360, screen.width()), min(860, screen.height()))
         geometry, state = self.settings.value("window/geometry"), self.settings.value("window/state")
         if geometry is not None:
             self.restoreGeometry(geometry)
@@ -127,16 +143,19 @@ class MainWindow(QMainWindow):
             "open": files.ask_open, "open_plan": files.ask_open_plan, "reload": files.reload,
             "export_picture": exports.ask_picture, "export_animation": exports.ask_animation,
             "quit": self.close, "zoom_in": view.zoom_in, "zoom_out": view.zoom_out, "fit": view.fit,
+            "goals": lambda: self.stage.set_goals(self.commands["goals"].isChecked()),
+            "labels": lambda: self.stage.set_labels(self.commands["labels"].isChecked()),
             "paths": self._show_paths, "whole_paths": self._show_paths,
             "select_all": lambda: self.select_robots(self.track.robot_ids if self.track else []),
             "select_none": self.clear_selection, "play": player.toggle, "forward": player.step_forward,
             "back": player.step_back, "start": player.to_start, "end": player.to_end, "goto": self.ask_go_to,
             "faster": player.faster, "slower": player.slower,
             "loop": lambda: player.set_loop(self.commands["loop"].isChecked()),
-            "shortcuts": lambda: show_shortcuts(self)})
-        for name in ("paths", "whole_paths", "loop"):
+            "shortcuts": lambda: show_shortcuts(self), "legend": lambda: self._show_dock("legend")})
+        for name in ("goals", "labels", "paths", "whole_paths", "loop"):
             actions[name].setCheckable(True)
-        actions["paths"].setChecked(True)
+        for name in ("goals", "labels", "paths"):
+            actions[name].setChecked(True)
         for name, icon in _ICONS.items():
             actions[name].setIcon(self.style().standardIcon(getattr(self.style(), icon)))
         return actions
@@ -148,18 +167,22 @@ class MainWindow(QMainWindow):
         self.files.install_recent(file.addMenu("Recent &files"))
         _fill(file, [None, editor["save"], editor["save_as"], editor["save_template"], editor["save_plan"], None,
                      commands["export_picture"], commands["export_animation"], None, commands["quit"]])
-        _fill(menus["view"], [commands[n] if n else None for n in ("zoom_in", "zoom_out", "fit", None, "paths",
-                                                                   "whole_paths", "select_all", "select_none")])
+        _fill(menus["view"], [commands[n] if n else None for n in (
+            "zoom_in", "zoom_out", "fit", None, "goals", "labels", "paths", "whole_paths", "select_all",
+            "select_none")])
         menus["view"].addMenu(self.panels.menu)
         _fill(menus["play"], [commands[n] if n else None for n in ("play", "forward", "back", "start", "end",
                                                                    "goto", None, "faster", "slower", "loop")])
         menus["help"].addAction(commands["shortcuts"])
-        order_editor = self.editor.install(menus)
-        self.addDockWidget(Qt.RightDockWidgetArea, order_editor)
-        self.tabifyDockWidget(self.panels.docks["inventory"], order_editor)
-        self.panels.docks["orders"].raise_()
-        self.resizeDocks([self.panels.docks["orders"]], [560], Qt.Horizontal)
-        self.docks = {**self.panels.docks, "order_editor": order_editor}
+        menus["help"].addAction(commands["legend"])
+        docks = self.panels.docks
+        self.editor.install(menus, self.panels)
+        docks["atoms"] = self.panels.add_dock("atoms", "Atoms", AtomsPane(self.state), docks["violations"])
+        docks["legend"] = self.panels.add_dock("legend", "Legend", Legend(), docks["order_editor"])
+        docks["orders"].raise_()
+        docks["robots"].raise_()
+        self.resizeDocks([docks["orders"]], [DOCK_WIDTH], Qt.Horizontal)
+        self.docks = docks
         self.jobs.install(menus["run"])
         self.live.install(menus["online"])
 
@@ -203,6 +226,10 @@ class MainWindow(QMainWindow):
     def _show_paths(self) -> None:
         mode = PathMode.WHOLE if self.commands["whole_paths"].isChecked() else PathMode.REMAINING
         self.stage.set_paths(self.commands["paths"].isChecked(), mode)
+
+    def _show_dock(self, name: str) -> None:
+        self.docks[name].show()
+        self.docks[name].raise_()
 
     def _report_error(self, message: str) -> None:
         """Say what went wrong in a dialog (not blocking: the viewer stays usable)."""
