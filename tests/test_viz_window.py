@@ -26,6 +26,7 @@ def window(qtbot, tmp_path_factory):
     settings = QSettings(str(tmp_path_factory.mktemp("settings") / "viz.ini"), QSettings.IniFormat)
     window = MainWindow(settings)
     qtbot.addWidget(window)
+    window.resize(1366, 768)  # a laptop's screen (the offscreen one is 800x600)
     window.show()
     qtbot.waitExposed(window)
     return window

@@ -68,6 +68,8 @@ class AtomsPane(QWidget):
         self.plan_note.setWordWrap(True)
         self.lines: dict[str, list[AtomLine]] = {"instance": [], "plan": []}
         self._stale = {"instance": True, "plan": True}
+        self.shown = False  # the pane can be seen (its dock is open and its tab chosen)
+        self._by_step: dict[int, list[int]] = {}  # step -> numbers of the plan's lines
         self._own_edit = False  # the plan shown came from this pane's text
         self._problem_marks: list = []  # the line the reader refused
         self._filling = False
@@ -118,9 +120,14 @@ class AtomsPane(QWidget):
         self._own_edit = False
         self.refresh()
 
+    def set_shown(self, shown: bool) -> None:
+        """The pane's dock was opened or closed, its tab chosen or left."""
+        self.shown = shown
+        self.refresh()
+
     def refresh(self) -> None:
         """Fill in what went out of date (only while the pane can be seen: big plans take a while)."""
-        if not self.isVisible():
+        if not self.shown:
             return
         document = self.state.document
         if self._stale["instance"]:
@@ -131,20 +138,24 @@ class AtomsPane(QWidget):
         self._show_note()
         self._follow_selection()
 
-    def showEvent(self, event) -> None:
-        super().showEvent(event)
-        self.refresh()
-
     def _fill(self, part: str, box: QPlainTextEdit, lines: list[AtomLine]) -> None:
         self._filling = True
         try:
             box.setPlainText("\n".join(line.text for line in lines))
         finally:
             self._filling = False
-        self.lines[part] = lines
         self._stale[part] = False
+        self._set_lines(part, lines)
         if part == "plan":
             self._problem_marks = []
+
+    def _set_lines(self, part: str, lines: list[AtomLine]) -> None:
+        self.lines[part] = lines
+        if part == "plan":
+            self._by_step = {}
+            for number, line in enumerate(lines):
+                if line.step is not None:
+                    self._by_step.setdefault(line.step, []).append(number)
 
     def _show_locks(self) -> None:
         self.plan_box.setReadOnly(self.state.layout_lock() is not None or self.state.document.scenario is None)
@@ -165,18 +176,18 @@ class AtomsPane(QWidget):
     def _follow_selection(self) -> None:
         focus = self.state.selection.focus
         numbers = lines_about(self.lines["instance"], focus) if focus is not None else []
-        if numbers and self.isVisible() and not self.instance_box.hasFocus():
+        if numbers and self.shown and not self.instance_box.hasFocus():
             _scroll_to(self.instance_box, numbers[0])
         self._mark()
 
     def _mark(self) -> None:
-        if not self.isVisible():
+        if not self.shown:
             return
         focus, step = self.state.selection.focus, self.state.step
         subject = lines_about(self.lines["instance"], focus) if focus else []
         self.instance_box.setExtraSelections(_marks(self.instance_box, subject, SUBJECT))
         plan = self.lines["plan"]
-        now = [n for n, line in enumerate(plan) if line.step == step]
+        now = self._by_step.get(step, [])
         mine = [n for n in lines_about(plan, focus) if plan[n].step != step] if focus else []
         self.plan_box.setExtraSelections(_marks(self.plan_box, now, CURRENT) + _marks(self.plan_box, mine, SUBJECT)
                                          + self._problem_marks)
@@ -198,7 +209,7 @@ class AtomsPane(QWidget):
     def _read(self) -> None:
         """Show the plan the text holds, or say what is wrong with it."""
         text = self.plan_box.toPlainText()
-        self.lines["plan"] = [about(line) for line in text.split("\n")]
+        self._set_lines("plan", [about(line) for line in text.split("\n")])
         try:
             plan = read_plan_text(text, self.state.document.instance)
         except InputError as error:

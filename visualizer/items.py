@@ -37,20 +37,26 @@ class ObjectItem:
         self.label: Label | None = None
         self.flag: QGraphicsItem | None = None
         self.goal: GoalMark | None = None
+        self.labelled = True  # labels (and goal tags) can be read
 
     def set_detail(self, fine: bool) -> None:
         if self.goal is not None:
             self.goal.set_detail(fine)
 
     def set_label_shown(self, shown: bool) -> None:
-        """Show the id label (the scene says so when labels are on and large enough to read)."""
+        """Show the id label and a goal's tag (the scene says so when labels are on and large
+        enough to read)."""
+        self.labelled = shown
         if self.label is not None:
             self.label.setVisible(shown)
+        if self.goal is not None:
+            self.goal.set_tag_shown(shown)
 
     def set_goal(self, look: GoalLook | None) -> None:
         """Mark the object as a goal (``None``: it is none now)."""
         if look is not None and self.goal is None:
             self.goal = GoalMark(self)
+            self.goal.set_tag_shown(self.labelled)
         if self.goal is not None:
             self.goal.show(look)
 
@@ -277,6 +283,7 @@ class StationItem(QGraphicsRectItem, ObjectItem):
         return super().itemChange(change, value)
 
     def set_label_shown(self, shown: bool) -> None:
+        super().set_label_shown(shown)
         self.tag.setVisible(shown)
 
 

@@ -50,6 +50,7 @@ class GoalMark(QGraphicsPathItem):
         self.text = Label("", 0.19 * CELL, QColor("white"), self.pill)
         self.look: GoalLook | None = None
         self.fine = True
+        self.tag_shown = True
 
     def show(self, look: GoalLook | None) -> None:
         self.setVisible(look is not None)
@@ -66,13 +67,22 @@ class GoalMark(QGraphicsPathItem):
         self.pill.setBrush(look.colour)
         self.pill.setPos(0.49 * CELL - width / 2, -0.49 * CELL + height / 2)
         self.text.centre_at(QPointF(0, 0))
-        self.pill.setVisible(bool(look.tag) and self.fine)
+        self._show_tag()
 
     def set_detail(self, fine: bool) -> None:
         self.fine = fine
         if self.look is not None:
             self._restyle()
-            self.pill.setVisible(bool(self.look.tag) and fine)
+            self._show_tag()
+
+    def set_tag_shown(self, shown: bool) -> None:
+        """Show the tag where it can be read (as id labels)."""
+        self.tag_shown = shown
+        if self.look is not None:
+            self._show_tag()
+
+    def _show_tag(self) -> None:
+        self.pill.setVisible(bool(self.look.tag) and self.fine and self.tag_shown)
 
     def _restyle(self) -> None:
         width = (0.07 if self.fine else 0.16) * CELL

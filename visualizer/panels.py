@@ -80,7 +80,7 @@ class Panels(QObject):
         """The ASP checker's violations instead of the replay's, until the next change."""
         panel = self.tables["violations"]
         panel.model.set_rows(violations)
-        panel.table.resizeColumnsToContents()
+        panel.fit_columns()
         self.docks["violations"].setWindowTitle(f"Violations — ASP checker ({len(violations)})")
         self.docks["violations"].raise_()
 

@@ -62,7 +62,7 @@ ACTIONS: Table = {
     "legend": ("&Legend: what the symbols mean", ("F2",)),
 }
 #: the side panels' width (pixels) in a new window
-DOCK_WIDTH = 440
+DOCK_WIDTH = 470
 #: the longest error message a dialog shows whole
 ERROR_CHARACTERS = 600
 MENUS = (("file", "&File"), ("edit", "&Edit"), ("view", "&View"), ("play", "&Play"), ("run", "&Run"),
@@ -109,7 +109,7 @@ class MainWindow(QMainWindow):
         self.addToolBar(Qt.BottomToolBarArea, bar)
         self.setAcceptDrops(True)
         screen = QApplication.primaryScreen().availableGeometry()
-        self.resize(min(1360, screen.width()), min(860, screen.height()))
+        self.resize(min(1366, screen.width()), min(860, screen.height()))
         geometry, state = self.settings.value("window/geometry"), self.settings.value("window/state")
         if geometry is not None:
             self.restoreGeometry(geometry)
@@ -177,7 +177,9 @@ class MainWindow(QMainWindow):
         menus["help"].addAction(commands["legend"])
         docks = self.panels.docks
         self.editor.install(menus, self.panels)
-        docks["atoms"] = self.panels.add_dock("atoms", "Atoms", AtomsPane(self.state), docks["violations"])
+        atoms = AtomsPane(self.state)
+        docks["atoms"] = self.panels.add_dock("atoms", "Atoms", atoms, docks["violations"])
+        docks["atoms"].visibilityChanged.connect(atoms.set_shown)
         docks["legend"] = self.panels.add_dock("legend", "Legend", Legend(), docks["order_editor"])
         docks["orders"].raise_()
         docks["robots"].raise_()
