@@ -14,9 +14,9 @@ from .api import Generated, generate, generate_one, instance_seed, iter_generate
 from .config import GeneratorConfig, RunOptions
 from .options import DEFAULT_SEED
 from .pipeline import GenerationFailed
-from .plan import Plan, make_plan
+from .plan import GenerationPlan, make_plan
 from .runs import generate_batch
 
-__all__ = ["GeneratorConfig", "RunOptions", "Generated", "GenerationFailed", "Plan", "DEFAULT_SEED",
+__all__ = ["GeneratorConfig", "RunOptions", "Generated", "GenerationFailed", "GenerationPlan", "DEFAULT_SEED",
            "generate", "iter_generate", "generate_one", "populate", "make_plan", "instance_seed",
            "generate_batch"]

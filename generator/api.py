@@ -12,7 +12,7 @@ from .assemble import assemble
 from .config import GeneratorConfig, RunOptions
 from .options import DEFAULT_SEED
 from .pipeline import Generator
-from .plan import Plan, make_plan
+from .plan import GenerationPlan, make_plan
 from .sampling import derive_seed
 
 TOOL = "asprilo gen"
@@ -37,7 +37,7 @@ def instance_seed(seed: int, number: int) -> int:
     return derive_seed(seed, "instance", number)
 
 
-def generate_one(plan: Plan, seed: int, number: int = 1, command: str | None = None) -> Generated:
+def generate_one(plan: GenerationPlan, seed: int, number: int = 1, command: str | None = None) -> Generated:
     """Generate instance ``number`` of a checked plan (raises GenerationFailed)."""
     generator = Generator(plan, instance_seed(seed, number))
     instance = assemble(plan, generator.run())

@@ -14,7 +14,7 @@ from copy import deepcopy
 from asprilo.model import Cell, Instance, Order, PickingStation, Product, Robot, Shelf
 
 from .pipeline import World
-from .plan import Plan
+from .plan import GenerationPlan
 
 
 def _reading_order(cell: Cell) -> tuple[int, int]:
@@ -32,7 +32,7 @@ def _add(table: dict, cells: list[Cell], make: Callable[[int, Cell], object]) ->
     return ids
 
 
-def assemble(plan: Plan, world: World) -> Instance:
+def assemble(plan: GenerationPlan, world: World) -> Instance:
     instance = deepcopy(plan.template) if plan.template is not None else Instance()
     if plan.template is None:
         for x, y in sorted(world.nodes, key=_reading_order):

@@ -20,10 +20,11 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from asprilo import __version__
 from asprilo.arguments import domain_argument
 
 from .config import parse_values
-from .options import BY_NAME, OPTIONS
+from .options import ALWAYS_ON, BY_NAME, OPTIONS, REFUSED, refuse_original
 from .runs import batch_jobs, command_job, run_jobs
 
 _TYPES = {"int": int, "float": float, "str": str, "domain": domain_argument}
@@ -33,7 +34,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     groups: dict[str, argparse._ArgumentGroup] = {}
     for option in OPTIONS:
         group = groups.get(option.group) or groups.setdefault(option.group, parser.add_argument_group(option.group))
-        kwargs: dict[str, Any] = {"dest": option.name, "help": option.help, "default": argparse.SUPPRESS}
+        kwargs: dict[str, Any] = {"dest": option.name, "help": option.help_text, "default": argparse.SUPPRESS}
         if option.kind == "flag":
             kwargs["action"] = "store_true"
         elif option.kind == "paths":
@@ -47,10 +48,31 @@ def configure(parser: argparse.ArgumentParser) -> None:
                             "every run and override the file's")
     batch.add_argument("-V", "--verbose", action="store_true",
                        help="report each instance's stages (rounds and seconds) on stderr")
+    batch.add_argument("-q", "--quiet", action="store_true",
+                       help="no progress bar and no closing line saying where the files went")
+    parser.add_argument("-v", "--version", action="version", version=f"gen (asprilo) {__version__}")
+    _original_flags(parser)
+
+
+class _Refused(argparse.Action):
+    """Notes a flag of the original generator that is refused (after parsing, as bad input)."""
+
+    def __call__(self, parser, namespace, values, option_string=None) -> None:
+        namespace.refused = option_string
+
+
+def _original_flags(parser: argparse.ArgumentParser) -> None:
+    """The original's flags that old command lines use: refused with advice, or taken (--random)."""
+    for flags in REFUSED:
+        parser.add_argument(*flags, action=_Refused, nargs="*", dest="refused", default=None, help=argparse.SUPPRESS)
+    for flag in ALWAYS_ON:
+        parser.add_argument(flag, action="store_true", help=argparse.SUPPRESS)
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.refused:
+        refuse_original(args.refused)
     given = {name: value for name, value in vars(args).items() if name in BY_NAME}
     values = parse_values(given)
     jobs = batch_jobs(args.batch, values) if args.batch else [command_job(values)]
-    return 1 if run_jobs(jobs, args.verbose) else 0
+    return 1 if run_jobs(jobs, args.verbose, quiet=args.quiet) else 0

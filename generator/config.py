@@ -1,64 +1,27 @@
 """What to generate (:class:`GeneratorConfig`) and how to run it (:class:`RunOptions`).
 
-Fields left ``None`` were not given; :func:`asprilo.generator.plan.make_plan` fills in the
-defaults and checks that the options fit together.
+Both classes are made from the options table (:mod:`.options`): one field per option.  Fields
+of GeneratorConfig left ``None`` were not given; :func:`asprilo.generator.plan.make_plan` fills
+in the defaults and checks that the options fit together.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field, fields
+from dataclasses import field, fields, make_dataclass
 from typing import Any
 
 from asprilo.domain import Domain
 from asprilo.errors import InputError
 from asprilo.model import Instance
 
-from .options import DEFAULT_SEED, SHORTHANDS, convert, format_command, option_for, split_values
+from .options import ALWAYS_ON, OPTIONS, SHORTHANDS, Option, convert, format_command, option_for, split_values
+
+_TYPES = {"int": int, "float": float, "str": str, "flag": bool, "paths": tuple[str, ...], "domain": Domain}
 
 
-@dataclass(frozen=True)
-class GeneratorConfig:
-    """The options that decide what an instance looks like (flags in brackets)."""
-
-    # floor and layout
-    width: int | None = None            # -x
-    height: int | None = None           # -y
-    nodes: int | None = None            # -n
-    gap_size: int | None = None         # --gs
-    structured: bool = False            # -H
-    zone_x: int | None = None           # -X
-    zone_y: int | None = None           # -Y
-    border: int | None = None           # -B
-    templates: tuple[str, ...] = ()     # -T
-    template: Instance | None = field(default=None, compare=False)  # API: a layout to populate
-    # objects
-    stations: int | None = None         # -p
-    robots: int | None = None           # -r
-    shelves: int | None = None          # -s
-    shelf_coverage: float | None = None  # --sc
-    reachable: bool = False             # -R
-    # products on shelves
-    products: int | None = None         # -P
-    units: int | None = None            # -u
-    pus_min: int | None = None          # --pusmin (--pus)
-    pus_max: int | None = None          # --pusmax
-    prs_min: int | None = None          # --prsmin (--prs)
-    prs_max: int | None = None          # --prsmax
-    spr_min: int | None = None          # --sprmin (--spr)
-    spr_max: int | None = None          # --sprmax
-    # orders
-    orders: int | None = None           # -o
-    ol_min: int | None = None           # --olmin (--ol)
-    ol_max: int | None = None           # --olmax
-    order_all: bool = False             # --oap
-    domain: Domain | None = None        # --domain
-    # solving
-    threads: int | None = None          # -t
-    time_limit: float | None = None     # -w
-    incremental: bool = False           # -I
-    split_threshold: int | None = None  # --split-threshold
-    one_shot: bool = False              # --one-shot
+class _ConfigMethods:
+    """The methods of GeneratorConfig (its fields come from the options table)."""
 
     @classmethod
     def from_options(cls, options: Mapping[str, Any]) -> GeneratorConfig:
@@ -95,21 +58,47 @@ class GeneratorConfig:
         return format_command(values)
 
 
-@dataclass(frozen=True)
-class RunOptions:
-    """How many instances, from which seed, and where they go."""
-
-    count: int = 1                      # -N
-    seed: int = DEFAULT_SEED            # --seed
-    directory: str = "generatedInstances"  # -d
-    console: bool = False               # -C
-    prefix: str = ""                    # -f
-    instance_dir: bool = False          # --instance-dir
-    skip_existing: bool = False         # --se
-
+class _RunMethods:
     def values(self) -> dict[str, Any]:
-        """Count and seed (what decides the instances; where they are written does not)."""
-        return {"count": self.count, "seed": self.seed}
+        """Count, seed and first number (what decides the instances; where they are written does not)."""
+        first = {"first": self.first} if self.first != 1 else {}
+        return {"count": self.count, "seed": self.seed, **first}
+
+
+def _config_field(option: Option) -> tuple[str, Any, Any]:
+    """A GeneratorConfig field: flags default to False, paths to (), values to None (not given)."""
+    if option.kind == "flag":
+        return option.name, bool, field(default=False)
+    if option.kind == "paths":
+        return option.name, tuple[str, ...], field(default=())
+    return option.name, _TYPES[option.kind] | None, field(default=None)
+
+
+def _run_field(option: Option) -> tuple[str, Any, Any]:
+    default = False if option.kind == "flag" else option.default
+    return option.name, _TYPES[option.kind], field(default=default)
+
+
+def _doc(summary: str, options: list[Option]) -> str:
+    lines = [f"    {option.name} ({option.flag}): {option.help_text}" for option in options]
+    return summary + "\n\nFields (flags in brackets):\n\n" + "\n".join(lines)
+
+
+_CONFIG_OPTIONS = [o for o in OPTIONS if not o.run and o.name not in SHORTHANDS]
+_RUN_OPTIONS = [o for o in OPTIONS if o.run]
+
+#: The options that decide what an instance looks like; ``template`` is an Instance to populate (API only).
+GeneratorConfig = make_dataclass(
+    "GeneratorConfig",
+    [*map(_config_field, _CONFIG_OPTIONS), ("template", Instance | None, field(default=None, compare=False))],
+    bases=(_ConfigMethods,), frozen=True)
+GeneratorConfig.__module__ = __name__
+GeneratorConfig.__doc__ = _doc("The options that decide what an instance looks like.", _CONFIG_OPTIONS)
+
+#: How many instances, from which seed, and where they go.
+RunOptions = make_dataclass("RunOptions", [*map(_run_field, _RUN_OPTIONS)], bases=(_RunMethods,), frozen=True)
+RunOptions.__module__ = __name__
+RunOptions.__doc__ = _doc("How many instances, from which seed, and where they go.", _RUN_OPTIONS)
 
 
 def parse_values(options: Mapping[str, Any]) -> dict[str, Any]:
@@ -119,6 +108,8 @@ def parse_values(options: Mapping[str, Any]) -> dict[str, Any]:
     """
     values = {}
     for key, value in options.items():
+        if key in ALWAYS_ON:
+            continue
         option = option_for(str(key))
         values[option.name] = convert(option, value)
     for name in SHORTHANDS:
@@ -129,3 +120,22 @@ def parse_values(options: Mapping[str, Any]) -> dict[str, Any]:
                 raise InputError(f"give either {option_for(name).flag} or {'/'.join(given)}, not both")
             values[f"{name}_min"] = values[f"{name}_max"] = both
     return values
+
+
+def given_flags(config: GeneratorConfig, *names: str) -> list[str]:
+    """The flags of those of ``names`` that ``config`` gives (for messages)."""
+    return [option_for(name).flag for name in names if getattr(config, name) not in (None, False)]
+
+
+def value_of(config: GeneratorConfig, name: str) -> Any:
+    """The value ``config`` gives for option ``name``, or the option's default."""
+    value = getattr(config, name)
+    return option_for(name).default if value is None else value
+
+
+def check_given(config: GeneratorConfig) -> None:
+    """Check every given value against its option's range (values made through the API, too)."""
+    for option in _CONFIG_OPTIONS:
+        value = getattr(config, option.name)
+        if value is not None:
+            option.check(value)

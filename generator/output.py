@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 from typing import TextIO
 
+from asprilo.errors import InputError
 from asprilo.writer import format_instance, write_text
 
 from .api import Generated
@@ -29,14 +31,33 @@ def exists(directory: str | Path, number: int, prefix: str = "", instance_dir: b
     return any(Path(directory).glob(pattern))
 
 
-def save(item: Generated, directory: str | Path, prefix: str = "", instance_dir: bool = False) -> Path:
-    """Write an instance atomically; returns its path."""
+def save(item: Generated, directory: str | Path, prefix: str = "", instance_dir: bool = False,
+         replace: bool = False) -> Path:
+    """Write an instance atomically; returns its path.  A file of the same name is replaced
+    only with ``replace`` (else an :class:`InputError` says how to go on)."""
     path = instance_path(directory, item, prefix, instance_dir)
-    write_text(path, format_instance(item.instance, item.header))
+    if path.exists() and not replace:
+        raise InputError("exists already; give --force to replace it or --skip-existing to keep it", str(path))
+    try:
+        write_text(path, format_instance(item.instance, item.header))
+    except OSError as error:
+        raise InputError(f"cannot write the instance: {error.strerror}", str(path)) from None
     return path
 
 
-class Progress:
+def check_output_folder(folder: str | Path, flag: str) -> None:
+    """Refuse an output folder (given with ``flag``) that cannot be made or written to, before any work."""
+    folder = Path(folder)
+    if folder.exists() and not folder.is_dir():
+        raise InputError(f"is a file, not a folder ({flag} names the output folder)", str(folder))
+    existing = next(p for p in (folder, *folder.absolute().parents) if p.exists())
+    if not existing.is_dir():
+        raise InputError(f"cannot make the output folder ({flag}): {existing} is a file", str(folder))
+    if not os.access(existing, os.W_OK | os.X_OK):
+        raise InputError(f"cannot write to the output folder ({flag}): permission denied", str(folder))
+
+
+class WriteProgress:
     """A progress bar on stderr: redrawn in place on a terminal, a line per tenth otherwise."""
 
     WIDTH = 30

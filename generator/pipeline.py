@@ -27,7 +27,7 @@ from asprilo.model import Cell, Instance
 from asprilo.solver import Solver
 from asprilo.writer import format_instance
 
-from .plan import Plan
+from .plan import GenerationPlan
 from .sampling import rng, sample_options
 
 HERE = Path(__file__).resolve().parent
@@ -111,7 +111,7 @@ def _geometric(mean: float) -> int:
 class Generator:
     """Generates one instance of a plan from one seed."""
 
-    def __init__(self, plan: Plan, seed: int):
+    def __init__(self, plan: GenerationPlan, seed: int):
         self.plan = plan
         self.seed = seed
         self.solver = Solver(options=["--heuristic=Domain", f"--parallel-mode={plan.threads}"],

@@ -15,13 +15,13 @@ from typing import Any, TextIO
 from asprilo.errors import InputError
 from asprilo.writer import format_instance
 
-from .api import generate_one
+from .api import Generated, generate_one
 from .batch import load_batch
 from .config import GeneratorConfig, RunOptions, parse_values
 from .options import DEFAULT_SEED, split_values
-from .output import Progress, exists, save
+from .output import WriteProgress, check_output_folder, exists, save
 from .pipeline import GenerationFailed
-from .plan import Plan, make_plan
+from .plan import GenerationPlan, make_plan
 from .sampling import derive_seed
 
 
@@ -54,22 +54,55 @@ def batch_jobs(path: str | Path, overrides: dict[str, Any] | None = None) -> lis
     return jobs
 
 
-def run_jobs(jobs: list[Job], verbose: bool = False, stream: TextIO | None = None) -> int:
+@dataclass
+class Tally:
+    """What became of the instances of some jobs."""
+
+    written: int = 0
+    kept: int = 0    # existing files kept (--skip-existing)
+    failed: int = 0  # instances that could not be made
+
+    def __add__(self, other: Tally) -> Tally:
+        return Tally(self.written + other.written, self.kept + other.kept, self.failed + other.failed)
+
+
+def run_jobs(jobs: list[Job], verbose: bool = False, stream: TextIO | None = None, quiet: bool = False) -> int:
     """Generate every job's instances; returns how many instances could not be made.
 
     Inconsistent options are reported (as :class:`InputError`, naming the batch file and
-    line) before anything is generated.
+    line) before anything is generated.  Unless ``quiet``, a progress bar and a last line
+    saying where the files went are written to ``stream``.
     """
     stream = stream or sys.stderr
     plans = []
     for job in jobs:
         try:
             plans.append(make_plan(job.config))
+            _check_output(job.options)
         except InputError as error:
             raise error.at(*job.where) from None
+    files = [job for job in jobs if not job.options.console]
+    for job in files:
+        check_output_folder(job.directory, "-d")
     # a progress bar when writing files (with -C the instances themselves show the progress)
-    progress = Progress(sum(job.options.count for job in jobs if not job.options.console), stream)
-    return sum(_generate(job, plan, progress, verbose, stream) for job, plan in zip(jobs, plans))
+    progress = WriteProgress(0 if quiet else sum(job.options.count for job in files), stream)
+    tally = sum((_generate(job, plan, progress, verbose, stream) for job, plan in zip(jobs, plans, strict=True)),
+                Tally())
+    if files and not quiet and (tally.written or tally.kept):
+        print(_where_files_went(files, tally), file=stream)
+    return tally.failed
+
+
+def _where_files_went(jobs: list[Job], tally: Tally) -> str:
+    folders = {job.directory for job in jobs}
+    where = f"to {jobs[0].directory}" if len(folders) == 1 else \
+        f"below {jobs[0].options.directory} ({len(folders)} folders)"
+    line = f"wrote {tally.written} instance file{'s' if tally.written != 1 else ''} {where}"
+    if tally.kept:
+        line += f", kept {tally.kept} that existed"
+    if tally.failed:
+        line += f"; {tally.failed} could not be made"
+    return line
 
 
 def generate_batch(path: str | Path, directory: str | Path, skip_existing: bool = True,
@@ -83,37 +116,53 @@ def generate_batch(path: str | Path, directory: str | Path, skip_existing: bool 
     return run_jobs(batch_jobs(path, overrides), stream=stream)
 
 
-def _generate(job: Job, plan: Plan, progress: Progress, verbose: bool, stream: TextIO) -> int:
-    """Generate (and write or print) the instances of one job; returns the number that failed."""
+def _generate(job: Job, plan: GenerationPlan, progress: WriteProgress, verbose: bool, stream: TextIO) -> Tally:
+    """Generate (and write or print) the instances of one job."""
     options = job.options
     command = job.config.command_line(options)
-    failed = 0
-    for number in range(1, options.count + 1):
+    tally = Tally()
+    for number in range(options.first, options.first + options.count):
         if not options.console and options.skip_existing and \
                 exists(job.directory, number, options.prefix, options.instance_dir):
             progress.advance(f"{job.directory}: N{number:03d} exists")
+            tally.kept += 1
             continue
         try:
             item = generate_one(plan, options.seed, number, command)
         except GenerationFailed as failure:
             progress.interrupt()
             print(f"error: {_place(job)}no instance {number}: {failure}", file=stream)
-            failed += 1
+            tally.failed += 1
             if not failure.timed_out:
                 break  # unsatisfiable: the other instances of this configuration are too
             continue
-        if options.console:
-            sys.stdout.write(format_instance(item.instance, item.header) + "\n")
-            label = item.file_name(options.prefix)
-        else:
-            label = str(save(item, job.directory, options.prefix, options.instance_dir))
+        label = _put(job, item, progress)
+        tally.written += not options.console
         if verbose:
             stages = ", ".join(f"{stage} {rounds}x {seconds:.2f}s" for stage, (rounds, seconds) in item.stages.items())
             progress.interrupt()
             print(f"{label}: {stages}", file=stream)
         if not options.console:
             progress.advance(label)
-    return failed
+    return tally
+
+
+def _put(job: Job, item: Generated, progress: WriteProgress) -> str:
+    """Print an instance (-C) or write its file; its name or path, for messages."""
+    options = job.options
+    if options.console:
+        sys.stdout.write(format_instance(item.instance, item.header) + "\n")
+        return item.file_name(options.prefix)
+    try:
+        return str(save(item, job.directory, options.prefix, options.instance_dir, options.force))
+    except InputError:
+        progress.interrupt()
+        raise
+
+
+def _check_output(options: RunOptions) -> None:
+    if options.force and options.skip_existing:
+        raise InputError("give either --force (replace files) or --skip-existing (keep them), not both")
 
 
 def _place(job: Job) -> str:

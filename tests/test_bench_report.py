@@ -7,6 +7,7 @@ import pytest
 from asprilo.bench import report
 from asprilo.bench.results import append_result, load_results
 from asprilo.bench.suite import load_suite
+from asprilo.cli import main
 from asprilo.domain import Domain
 from asprilo.errors import InputError
 
@@ -52,24 +53,51 @@ def test_first_keeps_the_first_files_of_each_folder(write):
     assert [f"{p.parent.name}/{p.name}" for p in picked] == ["r02/N1.lp", "r02/N2.lp", "r05/N1.lp", "r05/N2.lp"]
 
 
+SUITE_HEAD = "name: t\ninstances:\n  x: {files: [a]}\nruns:\n"
+
+
 @pytest.mark.parametrize("text, message", [
-    ("runs: [\n  - a\n", "suite.yml:2: bad YAML: expected the node content, but found '-'"),
-    ("instances: {x: {files: [a]}}\nruns: [{domain: z}]\n",
-     "suite.yml: runs[0].domain: unknown domain 'z' (choose one of a, b, c, m, md)"),
+    ("runs: [\n  - a\n", "2: not valid YAML: expected the node content, but found '-'"),
+    (SUITE_HEAD + "  - {domain: m}\n  - {domain: z}\n",
+     "6: runs[1].domain: unknown domain 'z' (choose one of a, b, c, m, md)"),
     ("instances: {}\nruns: []\n",
-     "suite.yml: instances: must map set names to {batch: FILE, select: DIR} or {files: [GLOB, ...]}"),
-    ("instances: {x: {batch: nope.yml}}\nruns: [{domain: m}]\n", "suite.yml: instances.x.batch: no such file"),
-    ("time_limit: -1\n", "suite.yml: time_limit: must be a positive number of seconds"),
-    ("colour: red\n", "suite.yml: colour: unknown key"),
-    ("instances: {x: {files: [a], first: 0}}\nruns: [{domain: m}]\n",
-     "suite.yml: instances.x.first: must be a positive number of files per folder"),
-    ("instances: {x: {files: [a]}}\nruns: [{domain: m, sets: [y]}]\n", "suite.yml: runs[0].sets: no instance set 'y'"),
+     "1: instances: must map set names to {batch: FILE, select: DIR} or {files: [GLOB, ...]}"),
+    ("name: t\ninstances:\n  x: {batch: nope.yml}\nruns: [{domain: m}]\n", "3: instances.x.batch: no such file "),
+    ("name: t\ntime_limit: -1\n", "2: time_limit: must be a positive number of seconds"),
+    ("colour: red\n",
+     "1: colour: unknown key (known: name, time_limit, memory_limit, makespan_time_limit, instances, runs)"),
+    ("instances:\n  x:\n    files: [a]\n    first: 0\nruns: [{domain: m}]\n",
+     "4: instances.x.first: must be a positive number of files per folder"),
+    (SUITE_HEAD + "  - domain: m\n    sets: [y]\n", "6: runs[0].sets: no instance set 'y'"),
+    (SUITE_HEAD + "  - domain: m\n    colour: red\n",
+     "6: runs[0].colour: unknown key (known: domain, encoding, assign, sets)"),
+    (SUITE_HEAD + "  - {domain: m}\ninstances: {}\n", "6: duplicate key 'instances'"),
+    ("name: t\nname: u\n", "2: duplicate key 'name'"),
+    ("name: t\ninstances:\n  x: {files: [a]}\n  x: {files: [b]}\n", "4: duplicate key 'x'"),
 ])
-def test_bad_suites(write, text, message):
+def test_bad_suites_name_file_and_line(write, text, message):
     path = write("suite.yml", text)
     with pytest.raises(InputError) as error:
         load_suite(path)
-    assert str(error.value).startswith(f"{path.parent}/{message}")
+    assert str(error.value).startswith(f"{path}:{message}")
+
+
+@pytest.mark.parametrize("data, message", [
+    (b"name: caf\xe9\n", "1: not UTF-8 text (byte 0xe9)"),
+    (b"name: t\ninstances: {}\n\x00\x01\x02", "3: a binary file, not YAML text"),
+])
+def test_suites_that_are_not_utf8_text_are_bad_input(tmp_path, capsys, data, message):
+    path = tmp_path / "suite.yml"
+    path.write_bytes(data)
+    assert main(["bench", str(path), "-o", str(tmp_path / "out")]) == 2
+    assert capsys.readouterr().err == f"error: {path}:{message}\n"
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_byte_order_mark_is_fine(write, tmp_path):
+    path = tmp_path / "suite.yml"
+    path.write_bytes(b"\xef\xbb\xbfname: bom\ninstances: {x: {files: [a]}}\nruns: [{domain: m}]\n")
+    assert load_suite(path).name == "bom"
 
 
 def test_results_survive_a_torn_line(tmp_path):

@@ -2,18 +2,24 @@
 
 from __future__ import annotations
 
+import io
 import json
 import os
+import re
+import shutil
 import signal
 import subprocess
 import sys
 import time
+from pathlib import Path
 
+import pytest
 from conftest import EXAMPLES
 
 from asprilo.bench import runner as runner_module
-from asprilo.bench.limits import Outcome
-from asprilo.bench.results import load_results
+from asprilo.bench.btool import read_results
+from asprilo.bench.limits import LimitedRun
+from asprilo.bench.results import STATUSES, load_results
 from asprilo.bench.runner import Runner
 from asprilo.bench.suite import load_suite
 from asprilo.cli import main
@@ -28,16 +34,17 @@ def suite_file(write, files, runs="[{domain: m, encoding: [plain, split]}]"):
                               f"instances: {{tiny: {{files: [{listed}]}}}}\nruns: {runs}\n")
 
 
+def off_the_floor(job, time_limit, memory_mb):
+    """A solver whose makespan is 1 and whose plan breaks the rules."""
+    if job["kind"] == "makespan":
+        return LimitedRun("done", 0.1, {"status": "found", "horizon": 1, "minimal": True})
+    plan = "occurs(object(robot,1),action(move,(0,-1)),1)."  # off the 2x2 floor
+    return LimitedRun("done", 0.2, {"status": "found", "time": 0.2, "plan": plan, "stats": {}})
+
+
 def test_an_invalid_plan_is_a_failure(write, tmp_path, monkeypatch, capsys):
     """A solver that returns a plan breaking the rules: the runner's own check catches it."""
-
-    def fake_run(job, time_limit, memory_mb):
-        if job["kind"] == "makespan":
-            return Outcome("done", 0.1, {"status": "found", "horizon": 1, "minimal": True})
-        plan = "occurs(object(robot,1),action(move,(0,-1)),1)."  # off the 2x2 floor
-        return Outcome("done", 0.2, {"status": "found", "time": 0.2, "plan": plan, "stats": {}})
-
-    monkeypatch.setattr(runner_module, "run_limited", fake_run)
+    monkeypatch.setattr(runner_module, "run_limited", off_the_floor)
     suite = load_suite(suite_file(write, [TINY], "[{domain: m}]"))
     records = Runner(suite, tmp_path / "out").run()
     assert [(r["status"], r["horizon"]) for r in records] == [("invalid", 1)]
@@ -71,34 +78,131 @@ def test_a_killed_runner_resumes_without_repeating_runs(write, tmp_path):
         str(TINY): {"M": 1}, str(SMALL): {"M": 6}}
 
 
-def test_btool_export_and_its_results_read_back(write, tmp_path, capsys):
-    """export-btool writes a runscript btool understands; report reads what such runs leave."""
-    from asprilo.bench import single
-    from asprilo.bench.btool import read_results
-    suite = suite_file(write, [SMALL])
-    folder = tmp_path / "cluster"
-    assert main(["bench", "export-btool", str(suite), str(folder)]) == 0
-    script = (folder / "runscripts/t.xml").read_text()
-    assert '<setting name="M-plain" tag="all" cmdline="--domain m --encoding plain"/>' in script
-    assert '<seqjob name="seq" timeout="30s" memout="2048"' in script
-    assert '<folder path="benchmarks/tiny"/>' in script
-    assert "{args} {files}" in (folder / "templates/asprilo.sh").read_text()
-    copied = folder / "benchmarks/tiny" / SMALL.name
-    assert json.loads((folder / "benchmarks/tiny/makespans.json").read_text()) == {SMALL.name: {"M": 6}}
-    # what btool leaves behind: a finished run of M-plain and a run of M-split that runlim stopped
-    runs = folder / "output/t-seq-tiny/cluster/results/tiny"
-    solved = runs / "asprilo-0.1.0-M-plain/tiny" / SMALL.name / "run1"
-    solved.mkdir(parents=True)
+BTOOL = shutil.which("btool", path=f"{Path(sys.executable).parent}{os.pathsep}{os.environ.get('PATH', '')}")
+
+
+def masked(summary: str) -> str:
+    """A report with the run times (and so the best-encoding marks, which follow them, and the
+    column widths) left out."""
+    return re.sub(r" +", " ", re.sub(r"-{2,}", "-", re.sub(r"\b\d+(\.\d)?\((\d+)\)( !\d+)?\*?", r"T(\2)\3", summary)))
+
+
+needs_runlim = pytest.mark.skipif(
+    shutil.which("runlim") is None,
+    reason="runlim is not installed (Debian/Ubuntu: apt-get install runlim); btool's runs need it")
+needs_btool = pytest.mark.skipif(
+    BTOOL is None, reason="btool is not installed (pip install -e '.[test]' brings potassco-benchmark-tool)")
+
+
+def btool_round_trip(cluster: Path) -> list[dict]:
+    """btool gen, the sequential job, btool eval (into results.xml) in an export folder; the records."""
+    for command in ([BTOOL, "gen", "runscripts/t.xml"], [sys.executable, "output/t-seq/cluster/start.py"]):
+        done = subprocess.run(command, cwd=cluster, capture_output=True, text=True, timeout=300)
+        assert done.returncode == 0, done.stderr
+    evaluated = subprocess.run([BTOOL, "eval", "runscripts/t.xml"], cwd=cluster, capture_output=True, text=True,
+                               timeout=300)
+    assert evaluated.returncode == 0, evaluated.stderr
+    (cluster / "results.xml").write_text(evaluated.stdout)
+    records = read_results(cluster / "results.xml")
+    assert {r["status"] for r in records} <= set(STATUSES)
+    return records
+
+
+@needs_runlim
+@needs_btool
+def test_the_btool_round_trip_gives_the_local_summary(write, tmp_path, capsys):
+    """export-btool -> btool gen -> the sequential job -> btool eval -> bench report, against a local run."""
+    suite = write("suite.yml", f"name: t\ntime_limit: 60\nmemory_limit: 2048\nmakespan_time_limit: 60\n"
+                               f"instances: {{tiny: {{files: ['{TINY}']}}, small: {{files: ['{SMALL}']}}}}\n"
+                               f"runs: [{{domain: m, encoding: [plain, split]}}, {{domain: a, sets: [tiny]}}]\n")
+    cluster = tmp_path / "cluster"
+    assert main(["bench", "export-btool", str(suite), str(cluster)]) == 0
+    assert not list(cluster.glob("benchmarks/*/*.makespans.json"))  # the runs find them, not the export
+    records = btool_round_trip(cluster)
     capsys.readouterr()
-    assert single.main([str(copied), "--domain", "m", "--encoding", "plain", "--time-limit", "30"]) == 0
-    (solved / "runsolver.solver").write_text(capsys.readouterr().out)
-    stopped = runs / "asprilo-0.1.0-M-split/tiny" / SMALL.name / "run1"
-    stopped.mkdir(parents=True)
-    (stopped / "runsolver.solver").write_text("")
-    (stopped / "runsolver.watcher").write_text("[runlim] time limit:\t30 seconds\n[runlim] status:\tout of time\n")
-    records = sorted(read_results(folder), key=lambda r: r["encoding"])
-    assert [(r["label"], r["encoding"], r["status"], r["horizon"]) for r in records] == [
-        ("M", "plain", "solved", 6), ("M", "split", "timeout", None)]
-    assert records[1]["time"] == 30
-    assert main(["bench", "report", str(folder)]) == 0
-    assert "                  split     30(1)\n" in capsys.readouterr().out  # the time-out counts at the limit
+    assert main(["bench", "report", str(cluster / "results.xml")]) == 0
+    from_btool = capsys.readouterr().out
+    assert main(["bench", str(suite), "-o", str(tmp_path / "local")]) == 0
+    local = capsys.readouterr().out
+    assert masked(from_btool) == masked(local)
+    assert masked(local).splitlines()[2:6] == [  # M's makespans: 1 (2x2) and 6 (the paper's r02 instance)
+        "domain makespan encoding tiny small", "- - - - -", "M 1/6 plain T(0) T(0)", " split T(0) T(0)"]
+    assert sorted((r["set"], r["label"], r["encoding"], r["status"]) for r in records) == [
+        ("small", "M", "plain", "solved"), ("small", "M", "split", "solved"), ("tiny", "A", "plain", "solved"),
+        ("tiny", "M", "plain", "solved"), ("tiny", "M", "split", "solved")]
+    local_spans = json.loads((tmp_path / "local/makespans.json").read_text())
+    for instance in (TINY, SMALL):  # the runs cached the minimal makespans they found beside the instances
+        cached = json.loads((cluster / "benchmarks" / ("tiny" if instance == TINY else "small")
+                             / f"{instance.name}.makespans.json").read_text())
+        assert cached == local_spans[str(instance)]
+
+
+@needs_runlim
+@needs_btool
+def test_a_run_that_runlim_stops_counts_as_a_memout(write, tmp_path, capsys):
+    """40 MB are less than Python with clingo needs to start: runlim stops the run, whatever the machine."""
+    suite = write("suite.yml", f"name: t\ntime_limit: 60\nmemory_limit: 40\n"
+                               f"instances: {{tiny: {{files: ['{TINY}']}}}}\nruns: [{{domain: m}}]\n")
+    cluster = tmp_path / "cluster"
+    assert main(["bench", "export-btool", str(suite), str(cluster)]) == 0
+    records = btool_round_trip(cluster)
+    assert [(r["label"], r["status"], r["time"], r["time_limit"], r["robots"]) for r in records] == [
+        ("M", "memout", 60.0, 60.0, 2)]
+    capsys.readouterr()
+    assert main(["bench", "report", str(cluster / "results.xml")]) == 0
+    assert "M       -         plain     60(1)\n" in capsys.readouterr().out  # unsolved, at the limit
+
+
+def test_a_rerun_with_other_limits_is_refused_or_restarted(write, tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(runner_module, "run_limited", off_the_floor)
+    suite, out = suite_file(write, [TINY], "[{domain: m}]"), tmp_path / "out"
+    assert main(["bench", str(suite), "-o", str(out)]) == 0
+    before = (out / "results.jsonl").read_text()
+    capsys.readouterr()
+    assert main(["bench", str(suite), "-o", str(out), "--time-limit", "5", "--memory-limit", "1000"]) == 2
+    assert capsys.readouterr().err == (
+        f"error: {out}: its results were run with --time-limit 30.0 (this run: 5.0), --memory-limit 2048 "
+        f"(this run: 1000); give --restart to discard them and run again, or -o ANOTHER_FOLDER\n")
+    assert (out / "results.jsonl").read_text() == before
+    assert main(["bench", str(suite), "-o", str(out)]) == 0  # the same limits: resumes
+    assert (out / "results.jsonl").read_text() == before
+    assert main(["bench", str(suite), "-o", str(out), "--time-limit", "5", "--restart"]) == 0
+    assert f"{out}: earlier results discarded (--restart)\n" in capsys.readouterr().err
+    assert [(r["time_limit"], r["status"]) for r in load_results(out)] == [(5.0, "invalid")]
+
+
+def test_a_folder_of_an_older_version_is_checked_by_its_records(write, tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(runner_module, "run_limited", off_the_floor)
+    suite, out = suite_file(write, [TINY], "[{domain: m}]"), tmp_path / "out"
+    assert main(["bench", str(suite), "-o", str(out)]) == 0
+    (out / "suite.json").write_text('{"name": "t", "sets": ["tiny"]}\n')  # no limits recorded
+    assert main(["bench", str(suite), "-o", str(out), "--time-limit", "5"]) == 2
+    assert "its results were run with --time-limit 30.0 (this run: 5.0);" in capsys.readouterr().err
+
+
+def test_a_corrupt_makespans_file_is_reported_and_recomputed(write, tmp_path, monkeypatch):
+    monkeypatch.setattr(runner_module, "run_limited", off_the_floor)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "makespans.json").write_text('{"a.lp": {"M": 3')  # cut off
+    stream = io.StringIO()
+    records = Runner(load_suite(suite_file(write, [TINY], "[{domain: m}]")), out, stream=stream).run()
+    assert stream.getvalue().splitlines()[0] == (
+        f"warning: {out}/makespans.json: not a makespans file (Expecting ',' delimiter: line 1 column 17 "
+        f"(char 16)); finding the minimal makespans again")
+    assert json.loads((out / "makespans.json").read_text()) == {str(TINY): {"M": 1}}
+    assert [r["horizon"] for r in records] == [1]
+    (out / "makespans.json").write_text('{"a.lp": [1, 2]}')  # valid JSON, wrong shape
+    stream = io.StringIO()
+    Runner(load_suite(suite_file(write, [TINY], "[{domain: m}]")), out, stream=stream).run()
+    assert "not a makespans file (not a mapping of instances to makespans by domain)" in stream.getvalue()
+
+
+def test_an_output_folder_that_is_a_file_is_bad_input(write, tmp_path, capsys):
+    suite, taken = suite_file(write, [TINY], "[{domain: m}]"), write("taken", "")
+    assert main(["bench", str(suite), "-o", str(taken)]) == 2
+    assert capsys.readouterr().err == f"error: {taken}: is a file, not a folder (-o names the output folder)\n"
+    assert main(["bench", str(suite), "-o", str(taken / "sub")]) == 2
+    assert capsys.readouterr().err == \
+        f"error: {taken / 'sub'}: cannot make the output folder (-o): {taken} is a file\n"
+

@@ -62,7 +62,9 @@ def test_generating_a_batch_writes_one_directory_per_leaf(tmp_path, capsys):
     assert main([*command, "-d", str(tmp_path / "again")]) == 0
     again, = (tmp_path / "again").iterdir()
     assert again.read_bytes() == (out / files[0]).read_bytes()
-    assert capsys.readouterr().err.splitlines()[-1].startswith("[12/12] ")
+    assert capsys.readouterr().err.splitlines()[-3:] == [
+        f"[12/12] {out}/{files[-1]}", f"wrote 12 instance files below {out} (12 folders)",
+        f"wrote 1 instance file to {tmp_path / 'again'}"]
 
 
 def test_presets_conf_and_lists(write):
@@ -121,6 +123,8 @@ BAD = [
     ("run_configs:\n  ../up: {}\n", 2, "'../up' cannot name a directory"),
     ("runs: {}\n", 1, "unknown key 'runs' (expected global_settings, run_configs)"),
     ("run_configs:\n  a: {}\n  a: {}\n", 3, "duplicate key 'a'"),
+    ("run_configs:\n  a:\n    args:\n      '-f': ../../x-\n", 4,
+     "-f must be part of a file name (no '/'), got '../../x-'"),
 ]
 
 
@@ -140,3 +144,16 @@ def test_bad_batch_file_through_the_command(write, capsys):
         f"stations and robots (-x, -y, -n, -p, -r)\n"
     assert main(["gen", "-j", str(path.parent / "missing.yml")]) == 2
     assert capsys.readouterr().err == f"error: {path.parent / 'missing.yml'}: no such file\n"
+
+
+@pytest.mark.parametrize("data, message", [
+    (b"run_configs:\n  a: {args: {'-f': 'caf\xe9'}}\n", "2: not UTF-8 text (byte 0xe9)"),
+    (b"\x89PNG\r\n\x1a\n\x00\x00", "3: a binary file, not YAML text"),  # the NUL follows two line ends
+])
+def test_batch_files_that_are_not_utf8_text_are_bad_input(tmp_path, capsys, data, message):
+    path = tmp_path / "bad.yml"
+    path.write_bytes(data)
+    assert main(["gen", "-j", str(path), "-d", str(tmp_path / "out")]) == 2
+    assert capsys.readouterr().err == f"error: {path}:{message}\n"
+    assert not (tmp_path / "out").exists()
+

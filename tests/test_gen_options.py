@@ -43,6 +43,13 @@ REJECTED = [
     ("-x 5 -y 5 -r -1", "-r must be at least 0, got -1"),
     ("-x 5 -y 5 --domain md", "--domain md is not generated; generate m and convert it"),
     ("-x 4 -y 4 -T layout.lp", "-T: the template fixes the floor; leave out -x, -y"),
+    ("-x 5 -y 5 -t 1000", "-t must be at most 14, got 1000"),
+    ("-x 5 -y 5 -w 0", "-w must be positive, got 0.0"),
+    ("-x 5 -y 5 -f ../x-", "-f must be part of a file name (no '/'), got '../x-'"),
+    ("-x 5 -y 5 --force --se", "give either --force (replace files) or --skip-existing (keep them), not both"),
+    ("-x 5 -y 5 -d layout.lp", "layout.lp: is a file, not a folder (-d names the output folder)"),
+    ("-x 5 -y 5 -d layout.lp/out", "layout.lp/out: cannot make the output folder (-d): "
+                                    "{tmp}/layout.lp is a file"),
 ]
 
 
@@ -51,7 +58,7 @@ def test_inconsistent_options_are_rejected_before_solving(arguments, message, tm
     monkeypatch.chdir(tmp_path)
     (tmp_path / "layout.lp").write_text("init(object(node,1),value(at,(1,1))).\n")
     assert main(["gen", *arguments.split()]) == 2
-    assert capsys.readouterr().err == f"error: {message}\n"
+    assert capsys.readouterr().err == f"error: {message.format(tmp=tmp_path)}\n"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["layout.lp"]  # nothing written
 
 

@@ -97,7 +97,7 @@ def test_prefix_instance_directories_and_progress(tmp_path, capsys):
     assert names == [f"pre_x11_y6_n66_r3_s12_ps1_pr20_u60_o4_N00{k}/pre_x11_y6_n66_r3_s12_ps1_pr20_u60_o4_N00{k}.lp"
                      for k in (1, 2)]
     err = capsys.readouterr().err
-    assert err.splitlines()[-1] == f"[2/2] {tmp_path}/{names[1]}"
+    assert err.splitlines()[-2:] == [f"[2/2] {tmp_path}/{names[1]}", f"wrote 2 instance files to {tmp_path}"]
 
 
 def test_skip_existing_keeps_files_and_fills_gaps(tmp_path):
@@ -108,8 +108,32 @@ def test_skip_existing_keeps_files_and_fills_gaps(tmp_path):
     assert gen(*SMALL, "-N", "3", "-d", str(tmp_path), "--skip-existing") == 0
     assert sorted(tmp_path.iterdir()) == [first, second, third]
     assert first.stat().st_mtime == 1  # kept, not written again
-    assert gen(*SMALL, "-N", "3", "-d", str(tmp_path)) == 0
-    assert first.stat().st_mtime != 1  # without the option, files are written again
+
+
+def test_one_closing_line_says_where_the_files_went_and_q_silences_it(tmp_path, capsys):
+    assert gen(*SMALL, "-d", str(tmp_path)) == 0
+    assert capsys.readouterr().err == f"wrote 1 instance file to {tmp_path}\n"
+    assert gen(*SMALL, "-N", "3", "-d", str(tmp_path), "--se") == 0
+    assert capsys.readouterr().err.splitlines()[-1] == f"wrote 2 instance files to {tmp_path}, kept 1 that existed"
+    assert gen(*SMALL, "-N", "4", "-d", str(tmp_path), "--se", "-q") == 0
+    assert capsys.readouterr() == ("", "")
+    assert len(list(tmp_path.iterdir())) == 4
+    assert gen(*SMALL, "-C") == 0
+    assert capsys.readouterr().err == ""  # the instance on stdout is what was made
+
+
+
+def test_existing_files_are_replaced_only_with_force(tmp_path, capsys):
+    assert gen(*SMALL, "-N", "2", "-d", str(tmp_path)) == 0
+    first, second = sorted(tmp_path.iterdir())
+    second.write_text("% my own file\n")
+    capsys.readouterr()
+    assert gen(*SMALL, "-N", "2", "-d", str(tmp_path)) == 2
+    assert capsys.readouterr().err == \
+        f"error: {first}: exists already; give --force to replace it or --skip-existing to keep it\n"
+    assert second.read_text() == "% my own file\n"
+    assert gen(*SMALL, "-N", "2", "-d", str(tmp_path), "--force") == 0
+    assert "% instance: 2" in second.read_text() and read_instance(second).counts()["robots"] == 3
 
 
 def test_template_from_stdin(tmp_path, monkeypatch, capsys):

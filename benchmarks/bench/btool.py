@@ -1,94 +1,141 @@
-"""Export a suite for potassco's benchmark-tool (``btool``), which runs it on a cluster, and
-read the results of such runs back.
+"""Export a suite for potassco's benchmark-tool (``btool`` 2.x), which runs it on a cluster or
+on one machine, and read back what ``btool eval`` makes of such runs.
 
-``asprilo bench export-btool SUITE.yml DIR`` makes the instances and their minimal
-makespans here (like ``asprilo bench``), then writes into DIR::
+``asprilo bench export-btool SUITE.yml DIR`` makes the suite's instances (like ``asprilo
+bench``) and writes into DIR::
 
     runscripts/<suite>.xml        one <setting> per (domain, encoding, assignment); a sequential
-                                  job and a Slurm (dist) job; one benchmark folder per instance set
+                                  job (seq) and a Slurm job (dist); one benchmark per instance set
     programs/asprilo-<version>    the system under test: one run of ``asprilo.bench.single``
-    templates/asprilo.sh          the run template (runlim enforces time and memory limits)
-    resultparsers/asprilo.py      reads the run's JSON line and runlim's report
-    benchmarks/<set>/...          the instances, with makespans.json beside them
+    programs/runlim               calls the runlim found on the PATH (or replace it by a binary)
+    templates/asprilo.sh          the run template: runlim enforces the time and memory limits
+    templates/single.dist         the Slurm script of the dist job
+    resultparsers/asprilo.py      reads a run's JSON record and runlim's report for btool eval
+    benchmarks/<set>/*.lp         the instances; <name>.makespans.json beside an instance caches
+                                  its minimal makespans
 
-Then, on the cluster: put a runlim binary (https://github.com/arminbiere/runlim) at
-``DIR/programs/runlim``, ``cd DIR && btool gen runscripts/<suite>.xml`` and start the
-generated script; afterwards ``asprilo bench report DIR`` reads the results.  The machine
-needs this asprilo installed (the program calls ``python -m asprilo.bench.single`` with the
-Python that made the export).
+Minimal makespans are not computed here: each run finds its instance's minimal makespan
+(under the suite's makespan_time_limit) unless the cache beside the instance knows it, and
+caches it for the runs after it; makespans that a local run of the suite found
+(``DIR/prepared/makespans.json``) are copied into the caches.  Each run's record (as in
+results.jsonl) is the last JSON line of its output; ``btool eval`` collects the records as
+measures and ``asprilo bench report RESULTS.xml`` reads them.
 """
 
 from __future__ import annotations
 
-import gzip
 import json
 import os
-import re
-import shutil
 import sys
+import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
 from asprilo import __version__
+from asprilo.errors import InputError
 from asprilo.writer import write_text
 
+from .btool_files import PARSER, SLURM, TEMPLATE
 from .results import run_key
-from .runner import Runner
+from .runner import Runner, SuiteInstance, read_makespans
 from .suite import RunSpec, Suite
 
 SYSTEM = "asprilo"
+#: seconds a run gets beyond its time limit and makespan search (Python start-up, checking the plan)
+SLACK = 30
+#: the memory limit (MB) of runs when the suite sets none
+MEMORY = 20000
 
 
 def setting_name(spec: RunSpec) -> str:
-    return f"{spec.label}-{spec.encoding}".replace("^", "")
+    return f"{spec.label}-{spec.encoding}"
 
 
-def export(suite: Suite, folder: str | Path, runner: Runner) -> Path:
+def makespan_cache(instance: Path) -> Path:
+    """The file beside an exported instance that caches its minimal makespans."""
+    return instance.with_name(instance.name + ".makespans.json")
+
+
+def read_makespan_cache(path: Path) -> dict[str, int | None]:
+    """The minimal makespans cached beside an exported instance (domain label -> makespan, None:
+    its search ran out of time); an unreadable cache is empty (the makespans are searched again)."""
+    try:
+        spans = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    if not isinstance(spans, dict):
+        return {}
+    return {label: span for label, span in spans.items() if span is None or type(span) is int}
+
+
+def export(suite: Suite, folder: str | Path, runner: Runner, jobs: int = 1) -> Path:
     """Write the btool set-up for ``suite`` into ``folder``; returns the runscript's path."""
     folder = Path(folder).resolve()
     instances = runner.instances()
-    makespans = runner.makespans(instances)
-    for instance in instances:
-        target = folder / "benchmarks" / instance.set / Path(instance.name).name
-        target.parent.mkdir(parents=True, exist_ok=True)
-        shutil.copyfile(instance.path, target)
-    for instance_set in suite.sets:
-        spans = {Path(i.name).name: makespans.get(i.name, {}) for i in instances if i.set == instance_set.name}
-        write_text(folder / "benchmarks" / instance_set.name / "makespans.json",
-                   json.dumps(spans, indent=1, sort_keys=True) + "\n")
+    known = read_makespans(runner.folder / "makespans.json", runner.stream)
+    files = _copy_instances(instances, folder, known)
     program = folder / "programs" / f"{SYSTEM}-{__version__}"
     write_text(program, f"#!/bin/sh\nexec {sys.executable} -m asprilo.bench.single \"$@\"\n")
-    os.chmod(program, 0o755)
-    write_text(folder / "templates" / "asprilo.sh", _TEMPLATE)
-    write_text(folder / "resultparsers" / "asprilo.py", _PARSER)
+    runlim = folder / "programs" / "runlim"
+    write_text(runlim, "#!/bin/sh\n# runlim (Debian: apt-get install runlim); replace this file by a runlim binary "
+                       "if there is none on the PATH\nexec runlim \"$@\"\n")
+    for path in (program, runlim):
+        os.chmod(path, 0o755)
+    write_text(folder / "templates" / "asprilo.sh", TEMPLATE)
+    write_text(folder / "templates" / "single.dist", SLURM)
+    write_text(folder / "resultparsers" / "asprilo.py", PARSER)
     runscript = folder / "runscripts" / f"{suite.name}.xml"
-    write_text(runscript, _runscript(suite, runner))
+    write_text(runscript, _runscript(suite, runner, files, jobs))
     return runscript
 
 
-def _runscript(suite: Suite, runner: Runner) -> str:
+def _copy_instances(instances: list[SuiteInstance], folder: Path, known: dict) -> dict[str, list[str]]:
+    """Copy the instances to benchmarks/<set>/ with their makespan caches; set -> file names."""
+    files: dict[str, list[str]] = {}
+    for instance in instances:
+        name = Path(instance.name).name
+        if name in files.setdefault(instance.set, []):
+            raise InputError(f"instances.{instance.set}: two instances are named {name}; btool needs distinct "
+                             f"names within a set")
+        files[instance.set].append(name)
+        target = folder / "benchmarks" / instance.set / name
+        write_text(target, instance.path.read_text(encoding="utf-8"))
+        cache = makespan_cache(target)
+        spans = {**read_makespan_cache(cache),
+                 **{label: span for label, span in known.get(instance.name, {}).items() if span is not None}}
+        if spans:
+            write_text(cache, json.dumps(spans, sort_keys=True) + "\n")
+    return files
+
+
+def _runscript(suite: Suite, runner: Runner, files: dict[str, list[str]], jobs: int) -> str:
+    limits = f"--time-limit {runner.time_limit:g} --makespan-time-limit {suite.makespan_time_limit:g}"
+    tags = {name: f"set{number}" for number, name in enumerate(files)}  # a setting runs on the sets it is tagged with
     settings = "\n".join(
-        f'    <setting name={quoteattr(setting_name(spec))} tag="all" '
-        f'cmdline={quoteattr(_arguments(spec))}/>' for spec in suite.runs)
+        f'    <setting name={quoteattr(setting_name(spec))} '
+        f'tag="{" ".join(tag for name, tag in tags.items() if spec.runs_on(name))}" '
+        f'cmdline={quoteattr(_arguments(spec))} dist_template="templates/single.dist"/>' for spec in suite.runs)
     benchmarks = "\n".join(
-        f'  <benchmark name={quoteattr(s.name)}>\n    <folder path="benchmarks/{s.name}"/>\n  </benchmark>'
-        for s in suite.sets)
-    timeout = int(runner.time_limit)
-    memory = runner.memory_limit or 20000
+        f'  <benchmark name={quoteattr(name)}>\n    <files path="benchmarks">\n'
+        + "".join(f'      <add file={quoteattr(f"{name}/{file}")}/>\n' for file in names)
+        + "    </files>\n  </benchmark>" for name, names in files.items())
+    timeout = int(runner.time_limit + suite.makespan_time_limit + SLACK)
+    memory = runner.memory_limit or MEMORY
     projects = "\n".join(
-        f'  <project name="{suite.name}-{kind}-{s.name}" job="{kind}">\n'
-        f'    <runtag machine="cluster" benchmark={quoteattr(s.name)} tag="all"/>\n  </project>'
-        for kind in ("seq", "dist") for s in suite.sets)
+        f'  <project name="{suite.name}-{kind}" job="{kind}">\n'
+        + "".join(f'    <runtag machine="cluster" benchmark={quoteattr(name)} tag="{tags[name]}"/>\n'
+                  for name in files)
+        + "  </project>" for kind in ("seq", "dist"))
     return f"""<runscript output="output">
   <!-- made by asprilo {__version__} from {suite.path.name}; see asprilo.bench.btool -->
   <machine name="cluster" cpu="any" memory="{memory}MB"/>
   <config name="asprilo" template="templates/asprilo.sh"/>
-  <system name="{SYSTEM}" version="{__version__}" measures="asprilo" config="asprilo">
+  <system name="{SYSTEM}" version="{__version__}" measures="asprilo" config="asprilo" cmdline="{limits}">
 {settings}
   </system>
-  <seqjob name="seq" timeout="{timeout}s" memout="{memory}" runs="1" parallel="1"/>
+  <seqjob name="seq" timeout="{timeout}s" memout="{memory}" runs="1" parallel="{jobs}"/>
   <distjob name="dist" timeout="{timeout}s" memout="{memory}" runs="1" script_mode="timeout"
-           walltime="23h 59m 59s" cpt="1"/>
+           walltime="23h 59m 59s" cpt="1" partition="all"/>
 {benchmarks}
 {projects}
 </runscript>
@@ -99,101 +146,41 @@ def _arguments(spec: RunSpec) -> str:
     return f"--domain {spec.domain.value} --encoding {spec.encoding}" + (" --assign" if spec.assign else "")
 
 
-_TEMPLATE = """#!/bin/bash
-# One asprilo benchmark run under runlim (https://github.com/arminbiere/runlim).
-cd "$(dirname $0)"
-if [[ ! -e .finished ]]; then
-  "{root}/programs/runlim" --space-limit={memout} --real-time-limit={timeout} \\
-      --output-file=runsolver.watcher \\
-      "{root}/programs/{solver}" --time-limit={timeout} {args} {files} > runsolver.solver
-fi
-touch .finished
-"""
+# --- reading btool eval's output ---------------------------------------------------------
 
-_PARSER = r'''"""btool result parser for asprilo runs: the JSON line of asprilo.bench.single and runlim's report."""
-
-import json
-import os
-import re
+#: record fields that btool's measures carry as text
+_TEXT = ("set", "instance", "domain", "label", "encoding", "status")
+#: record fields that btool's measures carry as numbers, and their Python types
+_NUMBERS = {"robots": int, "horizon": int, "time": float, "time_limit": float, "memory_mb": float, "assign": bool,
+            "ground_time": float, "solve_time": float, "rules": int, "atoms": int, "choices": int,
+            "conflicts": int}
 
 
-def asprilo(root, runspec, instance):
-    timeout = runspec.project.job.timeout
-    report, status, seconds = {}, None, None
-    solver = os.path.join(root, "runsolver.solver")
-    if os.path.isfile(solver):
-        for line in open(solver, encoding="utf-8", errors="ignore"):
-            if line.startswith("{"):
-                report = json.loads(line)
-    watcher = os.path.join(root, "runsolver.watcher")
-    if os.path.isfile(watcher):
-        for line in open(watcher, encoding="utf-8", errors="ignore"):
-            match = re.search(r"\[runlim\] status:\s*(.*)", line)
-            if match:
-                status = match.group(1).strip()
-            match = re.search(r"\[runlim\] real:\s*([0-9.]+)", line)
-            if match:
-                seconds = float(match.group(1))
-    outcome = report.get("status", "error")
-    timedout = outcome in ("timeout", "no-makespan") or (status or "").startswith("out of time")
-    memout = (status or "").startswith("out of memory")
-    solved = outcome == "solved" and not timedout and not memout
-    time = report.get("time", seconds) if solved else timeout
-    return [("time", "float", float(time if time is not None else timeout)),
-            ("timeout", "float", int(timedout)), ("memout", "float", int(memout)),
-            ("error", "float", int(outcome in ("invalid", "error"))),
-            ("status", "string", outcome if not (timedout or memout) else ("memout" if memout else "timeout")),
-            ("horizon", "float", float(report.get("horizon") or 0)),
-            ("choices", "float", float(report.get("choices") or 0)),
-            ("conflicts", "float", float(report.get("conflicts") or 0))]
-'''
+def read_results(path: str | Path) -> list[dict]:
+    """The run records in the XML that ``btool eval`` printed (measures of our result parser)."""
+    path = Path(path)
+    try:
+        root = ElementTree.parse(path).getroot()
+    except ElementTree.ParseError as error:
+        raise InputError(f"not btool eval output: {error}", str(path)) from None
+    except OSError as error:
+        raise InputError(f"cannot read: {error.strerror}", str(path)) from None
+    if root.tag != "result":
+        raise InputError("not btool eval output (no <result> element)", str(path))
+    records: dict[str, dict] = {}
+    for run in root.iter("run"):
+        measures = {m.get("name"): m.get("val") for m in run.iter("measure")}
+        if "key" in measures:  # runs that did not run have no measures
+            record = _record(measures)
+            records.setdefault(record["key"], record)
+    return list(records.values())
 
 
-def read_results(folder: str | Path, time_limit: float | None = None) -> list[dict]:
-    """Records (as in results.jsonl) of the runs btool made under ``folder/output``.
-
-    A run that runlim stopped counts as a time-out (mem-out) at the limit.
-    """
-    folder = Path(folder)
-    records = []
-    for solver in sorted(folder.glob("output/*/*/results/*/*/*/*/run*/runsolver.solver*")):
-        run = solver.parent
-        opener = gzip.open if solver.suffix == ".gz" else open
-        with opener(solver, "rt", encoding="utf-8", errors="ignore") as stream:
-            lines = [line for line in stream if line.startswith("{")]
-        status = _runlim_status(run)
-        if lines and not status.startswith("out of"):
-            records.append(json.loads(lines[-1]))
-            continue
-        instance, instance_set = run.parent.name, run.parent.parent.name
-        setting = run.parent.parent.parent.name.split("-", 2)[-1]
-        label, _, encoding = setting.partition("-")
-        robots = re.search(r"_r(\d+)_", instance)
-        limit = time_limit or _runlim_limit(run)
-        records.append({"key": run_key(instance_set, instance, label, encoding), "set": instance_set,
-                        "instance": instance, "robots": int(robots.group(1)) if robots else 0,
-                        "label": label, "encoding": encoding, "time": limit, "time_limit": limit,
-                        "status": "memout" if "memory" in status else "timeout", "horizon": None})
-    return records
-
-
-def _runlim_lines(run: Path) -> list[str]:
-    for name in ("runsolver.watcher", "runsolver.watcher.gz"):
-        path = run / name
-        if path.exists():
-            opener = gzip.open if path.suffix == ".gz" else open
-            with opener(path, "rt", encoding="utf-8", errors="ignore") as stream:
-                return stream.readlines()
-    return []
-
-
-def _runlim_status(run: Path) -> str:
-    return next((line.split("status:", 1)[1].strip() for line in _runlim_lines(run) if "status:" in line), "")
-
-
-def _runlim_limit(run: Path) -> float:
-    for line in _runlim_lines(run):
-        match = re.search(r"time limit:\s*([0-9.]+)", line)
-        if match:
-            return float(match.group(1))
-    return 0.0
+def _record(measures: dict[str, str]) -> dict:
+    record: dict = {name: measures[name] for name in _TEXT if name in measures}
+    for name, kind in _NUMBERS.items():
+        if name in measures:
+            record[name] = float(measures[name]) if kind is float else kind(float(measures[name]))
+    record.setdefault("horizon", None)
+    record["key"] = run_key(record["set"], record["instance"], record["label"], record["encoding"])
+    return record

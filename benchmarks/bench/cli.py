@@ -4,14 +4,17 @@
       make the suite's instances, find their minimal makespans, run every (instance,
       domain, encoding, assignment) under OS-enforced limits, check every plan, append
       one JSON line per run to DIR/results.jsonl and print the summary table;
-      rerunning resumes where a previous run stopped
-  asprilo bench report DIR
+      rerunning resumes where a previous run stopped (with the same limits: results of
+      other limits are not mixed in; --restart discards them)
+  asprilo bench report DIR | RESULTS.xml
       print the paper's summary table and the tables by robot count, and write
       DIR/report/{summary.txt,results.csv,cactus.png,time-by-robots.png}; reads
-      results.jsonl, or the output of potassco's benchmark-tool under DIR/output
+      DIR/results.jsonl, or what `btool eval` printed (RESULTS.xml, written to
+      RESULTS-report/)
   asprilo bench export-btool SUITE.yml DIR
-      write a runscript, a run template and a result parser for potassco's
-      benchmark-tool (btool), to run the suite on a cluster
+      write a runscript, run templates and a result parser for potassco's
+      benchmark-tool (btool 2.x), to run the suite on a cluster (benchmarks/README.md);
+      the runs find the minimal makespans themselves
 
 Examples:
   asprilo bench benchmarks/smoke.yml -o out/smoke
@@ -27,11 +30,12 @@ from pathlib import Path
 
 from asprilo.arguments import domain_argument
 from asprilo.errors import InputError
+from asprilo.generator.output import check_output_folder
 from asprilo.writer import write_text
 
 from . import btool, report
-from .results import load_results
-from .runner import Runner
+from .results import RESULTS, load_results
+from .runner import Runner, forget_unknown_makespans
 from .suite import load_suite
 
 SUITE_ORDER = "suite.json"
@@ -45,6 +49,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--memory-limit", type=int, metavar="MB", help="MB per run (default: the suite's)")
     parser.add_argument("--domain", type=domain_argument, action="append", metavar="D",
                         help="only the runs of this domain (a|b|c|m|md; may be repeated)")
+    parser.add_argument("--restart", action="store_true",
+                        help="discard the output folder's results (e.g. to run again with other limits)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -56,21 +62,72 @@ def run(args: argparse.Namespace) -> int:
     if words[0] == "export-btool":
         if len(words) != 3:
             raise InputError("usage: asprilo bench export-btool SUITE.yml DIR")
-        suite = load_suite(words[1])
-        runner = _runner(suite, Path(words[2]) / "prepared", args)
-        runscript = btool.export(suite, words[2], runner)
-        print(f"wrote {runscript}; on the cluster: put runlim at {words[2]}/programs/runlim, then "
-              f"cd {words[2]} && btool gen {runscript.relative_to(Path(words[2]).resolve())}")
-        return 0
+        return _export(words[1], Path(words[2]), args)
     if len(words) != 1:
         raise InputError("give one suite file (or: report DIR, export-btool SUITE.yml DIR)")
     suite = load_suite(words[0])
     folder = Path(args.output or Path("out") / suite.name)
+    check_output_folder(folder, "-o")
     runner = _runner(suite, folder, args)
+    limits = {"time_limit": runner.time_limit, "memory_limit": runner.memory_limit,
+              "makespan_time_limit": suite.makespan_time_limit}
+    _same_limits(folder, limits, args.restart)
     folder.mkdir(parents=True, exist_ok=True)
-    write_text(folder / SUITE_ORDER, json.dumps({"name": suite.name, "sets": [s.name for s in suite.sets]}) + "\n")
+    write_text(folder / SUITE_ORDER, json.dumps({"name": suite.name, "sets": [s.name for s in suite.sets],
+                                                  "limits": limits}) + "\n")
     runner.run()
     return _report(folder)
+
+
+#: how each limit is set, for messages
+LIMIT_NAMES = {"time_limit": "--time-limit", "memory_limit": "--memory-limit",
+               "makespan_time_limit": "the suite's makespan_time_limit"}
+
+
+def _same_limits(folder: Path, limits: dict, restart: bool) -> None:
+    """Results of runs under other limits are not mixed with this run's: refuse, or with
+    ``restart`` discard them (and the makespans not found, to search them again)."""
+    results = folder / RESULTS
+    if not results.exists():
+        return
+    if restart:
+        results.unlink()
+        forget_unknown_makespans(folder)
+        print(f"{folder}: earlier results discarded (--restart)", file=sys.stderr)
+        return
+    earlier = _recorded_limits(folder)
+    changed = [f"{LIMIT_NAMES[key]} {earlier[key]} (this run: {value})" for key, value in limits.items()
+               if key in earlier and earlier[key] != value]
+    if changed:
+        raise InputError(f"its results were run with {', '.join(changed)}; give --restart to discard them "
+                         f"and run again, or -o ANOTHER_FOLDER", str(folder))
+
+
+def _recorded_limits(folder: Path) -> dict:
+    """The limits of a folder's runs: from suite.json, or (older folders) the time limit of its records."""
+    try:
+        recorded = json.loads((folder / SUITE_ORDER).read_text(encoding="utf-8")).get("limits")
+    except (OSError, ValueError, AttributeError):
+        recorded = None
+    if isinstance(recorded, dict):
+        return recorded
+    limits = {record.get("time_limit") for record in load_results(folder)}
+    return {"time_limit": limits.pop()} if len(limits) == 1 else {}
+
+
+def _export(suite_file: str, folder: Path, args: argparse.Namespace) -> int:
+    suite = load_suite(suite_file)
+    check_output_folder(folder, "export-btool DIR")
+    runner = _runner(suite, folder / "prepared", args)
+    runscript = btool.export(suite, folder, runner, args.jobs)
+    write_text(folder / SUITE_ORDER, json.dumps({"name": suite.name, "sets": [s.name for s in suite.sets]}) + "\n")
+    print(f"wrote {runscript.relative_to(folder.resolve())} and what it needs below {folder}; run it with:\n"
+          f"  cd {folder} && btool gen {runscript.relative_to(folder.resolve())}\n"
+          f"  ./output/{suite.name}-seq/cluster/start.py     # here, or on Slurm: "
+          f"./output/{suite.name}-dist/cluster/start.sh\n"
+          f"  btool eval {runscript.relative_to(folder.resolve())} > results.xml && "
+          f"asprilo bench report results.xml")
+    return 0
 
 
 def _runner(suite, folder: Path, args: argparse.Namespace) -> Runner:
@@ -86,19 +143,25 @@ def _runner(suite, folder: Path, args: argparse.Namespace) -> Runner:
     return Runner(suite, folder, args.jobs, args.time_limit, args.memory_limit)
 
 
-def _report(folder: Path) -> int:
-    if not folder.is_dir():
-        raise InputError("no such folder", str(folder))
-    records = load_results(folder) or btool.read_results(folder)
+def _report(path: Path) -> int:
+    """The report of a results folder (results.jsonl), or of the XML that ``btool eval`` printed."""
+    if path.is_file():
+        records, folder = btool.read_results(path), path.parent / f"{path.stem}-report"
+    elif path.is_dir():
+        records, folder = load_results(path), path
+        if not records and (path / "results.xml").is_file():
+            records = btool.read_results(path / "results.xml")
+    else:
+        raise InputError("no such folder or file", str(path))
     if not records:
-        raise InputError("no results here (neither results.jsonl nor benchmark-tool output)", str(folder))
-    order_file = folder / SUITE_ORDER
+        raise InputError("no results here (neither results.jsonl nor btool eval's results.xml)", str(path))
+    order_file = (path if path.is_dir() else path.parent) / SUITE_ORDER
     order = json.loads(order_file.read_text())["sets"] if order_file.exists() else None
     text = "\n\n".join([report.summary(records, order), *report.by_robots(records, order)])
     print(text)
-    out = folder / "report"
+    out = folder / "report" if path.is_dir() else folder
     write_text(out / "summary.txt", text + "\n")
     write_text(out / "results.csv", report.to_csv(records))
-    for path in report.plot(records, out, order):
-        print(f"wrote {path}", file=sys.stderr)
+    for picture in report.plot(records, out, order):
+        print(f"wrote {picture}", file=sys.stderr)
     return 0

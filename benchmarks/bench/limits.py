@@ -8,6 +8,7 @@ or a mem-out of that run, never a crash of the runner.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import signal
@@ -15,6 +16,11 @@ import subprocess
 import sys
 import time
 from dataclasses import dataclass
+
+from .results import ERROR, MEMOUT, TIMEOUT
+
+#: the status of a child that ran to its end (its report says what it found)
+DONE = "done"
 
 #: seconds a child gets beyond its own time limit to stop cleanly before it is killed
 GRACE = 5.0
@@ -24,16 +30,16 @@ RUNNING: set[int] = set()
 
 
 @dataclass
-class Outcome:
+class LimitedRun:
     """What became of one child process."""
 
-    status: str            # "done", "timeout", "memout" or "error"
+    status: str            # DONE, or the run's status: TIMEOUT, MEMOUT or ERROR
     wall: float            # seconds
     report: dict           # the JSON object the worker printed last (empty if none)
     detail: str = ""       # for errors: the last line the child wrote to stderr
 
 
-def run_limited(job: dict, time_limit: float, memory_mb: int | None) -> Outcome:
+def run_limited(job: dict, time_limit: float, memory_mb: int | None) -> LimitedRun:
     """Run ``asprilo.bench.worker`` on ``job`` within the limits."""
 
     job = {**job, "time_limit": time_limit, "memory_mb": memory_mb}
@@ -47,25 +53,23 @@ def run_limited(job: dict, time_limit: float, memory_mb: int | None) -> Outcome:
     except subprocess.TimeoutExpired:
         _kill(child.pid)
         child.communicate()
-        return Outcome("timeout", time.perf_counter() - started, {})
+        return LimitedRun(TIMEOUT, time.perf_counter() - started, {})
     finally:
         RUNNING.discard(child.pid)
     wall = time.perf_counter() - started
     report = _last_json(out)
     if child.returncode == 0 and report:
-        return Outcome("done", wall, report)
+        return LimitedRun(DONE, wall, report)
     if "MemoryError" in err or "bad_alloc" in err or "std::bad_alloc" in out:
-        return Outcome("memout", wall, report)
+        return LimitedRun(MEMOUT, wall, report)
     lines = [line for line in err.splitlines() if line.strip()]
     detail = lines[-1] if lines else f"exit status {child.returncode}"
-    return Outcome("error", wall, report, detail)
+    return LimitedRun(ERROR, wall, report, detail)
 
 
 def _kill(pid: int) -> None:
-    try:
+    with contextlib.suppress(ProcessLookupError):
         os.killpg(pid, signal.SIGKILL)
-    except ProcessLookupError:
-        pass
 
 
 def kill_running() -> None:

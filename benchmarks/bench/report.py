@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from statistics import mean
 
-FAILED = ("invalid", "error")
+from .results import FAILED, SOLVED
 
 
 @dataclass
@@ -39,8 +39,8 @@ class Cell:
 
 
 def _cell(records: list[dict]) -> Cell:
-    times = [r["time"] if r["status"] == "solved" else r["time_limit"] for r in records]
-    unsolved = sum(r["status"] != "solved" for r in records)
+    times = [r["time"] if r["status"] == SOLVED else r["time_limit"] for r in records]
+    unsolved = sum(r["status"] != SOLVED for r in records)
     return Cell(times, unsolved, sum(r["status"] in FAILED for r in records))
 
 
@@ -66,7 +66,7 @@ def _rows(records: list[dict]) -> list[tuple[str, str]]:
 
 def _table(header: list[str], rows: list[list[str]]) -> str:
     widths = [max(len(row[i]) for row in [header, *rows]) for i in range(len(header))]
-    lines = ["  ".join(text.ljust(width) for text, width in zip(row, widths)).rstrip()
+    lines = ["  ".join(text.ljust(width) for text, width in zip(row, widths, strict=True)).rstrip()
              for row in [header, *rows]]
     lines.insert(1, "  ".join("-" * width for width in widths))
     return "\n".join(lines)
@@ -93,7 +93,7 @@ def grouped_table(records: list[dict], column_of, columns: list, caption: str,
     for label in {label for label, _e in rows}:
         for column in columns:
             candidates = [(cells[(label, e, column)].unsolved, cells[(label, e, column)].average, e)
-                          for l, e in rows if l == label and (label, e, column) in cells]
+                          for row_label, e in rows if row_label == label and (label, e, column) in cells]
             if len(candidates) > 1:
                 best.add((label, min(candidates)[2], column))
     sets = _ordered({r["set"] for r in records}, set_order or [])
@@ -153,10 +153,10 @@ def plot(records: list[dict], folder: Path, set_order: list[str] | None = None) 
     written = []
     labels = _ordered({r["label"] for r in records}, LABELS)
     figure, axes = plt.subplots(1, len(labels), figsize=(4.5 * len(labels), 3.8), squeeze=False)
-    for axis, label in zip(axes[0], labels):
+    for axis, label in zip(axes[0], labels, strict=True):
         for _l, encoding in [row for row in _rows(records) if row[0] == label]:
             times = sorted(r["time"] for r in records
-                           if r["label"] == label and r["encoding"] == encoding and r["status"] == "solved")
+                           if r["label"] == label and r["encoding"] == encoding and r["status"] == SOLVED)
             axis.plot(range(1, len(times) + 1), times, marker="o", markersize=3, label=encoding)
         axis.set(title=label, xlabel="solved runs", ylabel="time (s)")
         axis.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
@@ -168,13 +168,13 @@ def plot(records: list[dict], folder: Path, set_order: list[str] | None = None) 
 
     sets = _ordered({r["set"] for r in records}, set_order or [])
     figure, axes = plt.subplots(1, len(sets), figsize=(4.5 * len(sets), 3.8), squeeze=False)
-    for axis, name in zip(axes[0], sets):
+    for axis, name in zip(axes[0], sets, strict=True):
         runs = [r for r in records if r["set"] == name]
         for label, encoding in _rows(runs):
             points = defaultdict(list)
             for r in runs:
                 if (r["label"], r["encoding"]) == (label, encoding):
-                    points[r["robots"]].append(r["time"] if r["status"] == "solved" else r["time_limit"])
+                    points[r["robots"]].append(r["time"] if r["status"] == SOLVED else r["time_limit"])
             robots = sorted(points)
             axis.plot(robots, [mean(points[n]) for n in robots], marker="o", label=f"{label} {encoding}")
         axis.set(title=name, xlabel="robots", ylabel="average time (s)")

@@ -12,8 +12,13 @@ from pathlib import Path
 
 RESULTS = "results.jsonl"
 
-#: statuses of a run; only "solved" counts as solved
-STATUSES = ("solved", "timeout", "memout", "invalid", "error", "no-makespan")
+SOLVED, TIMEOUT, MEMOUT, INVALID, ERROR, NO_MAKESPAN = "solved", "timeout", "memout", "invalid", "error", "no-makespan"
+#: every status a run's record may have; only SOLVED counts as solved
+STATUSES = (SOLVED, TIMEOUT, MEMOUT, INVALID, ERROR, NO_MAKESPAN)
+#: unsolved because a limit ran out (the run's time or memory, or the makespan search's time)
+OUT_OF_LIMITS = (TIMEOUT, MEMOUT, NO_MAKESPAN)
+#: unsolved because something went wrong: the plan broke a rule, or the run failed
+FAILED = (INVALID, ERROR)
 
 
 def run_key(instance_set: str, instance: str, label: str, encoding: str) -> str:

@@ -24,22 +24,34 @@ from typing import TextIO
 
 from asprilo.checker import check
 from asprilo.domain import Domain
+from asprilo.encodings import SolveStatus
 from asprilo.errors import InputError
 from asprilo.generator import generate_batch
 from asprilo.reader import read_instance, read_plan
 from asprilo.sources import Source
 from asprilo.writer import write_text
 
-from .limits import kill_running, run_limited
-from .results import append_result, load_results, run_key
+from .limits import DONE, LimitedRun, kill_running, run_limited
+from .results import (
+    ERROR,
+    FAILED,
+    INVALID,
+    NO_MAKESPAN,
+    OUT_OF_LIMITS,
+    SOLVED,
+    TIMEOUT,
+    append_result,
+    load_results,
+    run_key,
+)
 from .suite import RunSpec, Suite, existing_files
 
 MAKESPANS = "makespans.json"
 
 
 @dataclass(frozen=True)
-class Instance:
-    """An instance file of a set, with the robot count the reports group by."""
+class SuiteInstance:
+    """An instance file of a suite's set, with the robot count the reports group by."""
 
     set: str
     path: Path
@@ -47,14 +59,14 @@ class Instance:
     robots: int
 
 
-def new_record(instance: Instance, spec: RunSpec, horizon: int | None, time_limit: float) -> dict:
+def new_record(instance: SuiteInstance, spec: RunSpec, horizon: int | None, time_limit: float) -> dict:
     """The record of a run before it runs (``no-makespan`` when there is no horizon to run at)."""
     record = {"key": run_key(instance.set, instance.name, spec.label, spec.encoding),
               "set": instance.set, "instance": instance.name, "robots": instance.robots,
               "domain": spec.domain.value, "label": spec.label, "encoding": spec.encoding,
               "assign": spec.assign, "time_limit": time_limit, "horizon": horizon}
     if horizon is None:
-        record.update(status="no-makespan", time=time_limit,
+        record.update(status=NO_MAKESPAN, time=time_limit,
                       error="the minimal makespan is unknown (its search timed out)")
     return record
 
@@ -70,26 +82,62 @@ def complete(record: dict, path: Path, status: str, wall: float, report: dict, d
     record = {**record, "time": min(wall, limit), "memory_mb": report.get("memory_mb"),
               **{key: report.get("stats", {}).get(key)
                  for key in ("ground_time", "solve_time", "rules", "atoms", "choices", "conflicts")}}
-    if status != "done":
-        return {**record, "status": status, "time": limit if status != "error" else record["time"],
-                "error": detail}
-    if report["status"] == "limit":
-        return {**record, "status": "timeout", "time": limit}
-    if report["status"] != "found" or not report.get("plan"):
-        return {**record, "status": "error",
+    if status != DONE:
+        return {**record, "status": status, "time": limit if status != ERROR else record["time"], "error": detail}
+    if report["status"] == SolveStatus.LIMIT.value:
+        return {**record, "status": TIMEOUT, "time": limit}
+    if report["status"] != SolveStatus.FOUND.value or not report.get("plan"):
+        return {**record, "status": ERROR,
                 "error": report.get("message") or f"no plan at the minimal makespan {record['horizon']}"}
-    return {**record, "time": report["time"], **check_plan(path, record["domain"], report["plan"])}
+    return {**record, "time": report["time"], **plan_verdict(path, record["domain"], report["plan"])}
 
 
-def check_plan(path: Path, domain: str, plan_text: str) -> dict:
+def plan_verdict(path: Path, domain: str, plan_text: str) -> dict:
     """Check a run's plan with the ASP checker: ``solved`` with its metrics, or ``invalid``."""
     report = check(read_instance(path), read_plan(Source("plan", plan_text)), Domain(domain))
     if report.valid:
-        return {"status": "solved", "metrics": report.metrics}
-    return {"status": "invalid", "error": "; ".join(error.atom for error in report.errors[:5])}
+        return {"status": SOLVED, "metrics": report.metrics}
+    return {"status": INVALID, "error": "; ".join(error.atom for error in report.errors[:5])}
 
 
-class Progress:
+def makespan_status(run: LimitedRun) -> str:
+    """A makespan search as a run status: solved (minimal makespan found), a time-out, or an error."""
+    if run.status != DONE:
+        return run.status
+    status = run.report.get("status")
+    if status == SolveStatus.FOUND.value and run.report.get("minimal"):
+        return SOLVED
+    return TIMEOUT if status in (SolveStatus.LIMIT.value, SolveStatus.FOUND.value) else ERROR
+
+
+def read_makespans(path: Path, stream: TextIO) -> dict[str, dict[str, int | None]]:
+    """The makespans found before (instance -> domain label -> makespan or None); a file that is
+    not a makespans file is reported on ``stream`` and its makespans are found again."""
+    if not path.exists():
+        return {}
+    try:
+        known = json.loads(path.read_text(encoding="utf-8"))
+        if not isinstance(known, dict) or not all(
+                isinstance(spans, dict) and all(v is None or type(v) is int for v in spans.values())
+                for spans in known.values()):
+            raise ValueError("not a mapping of instances to makespans by domain")
+    except (ValueError, UnicodeDecodeError) as error:
+        stream.write(f"warning: {path}: not a makespans file ({error}); finding the minimal makespans again\n")
+        return {}
+    return known
+
+
+def forget_unknown_makespans(folder: Path) -> None:
+    """Drop the makespans not found before (null), so that they are searched again."""
+    path = folder / MAKESPANS
+    known = read_makespans(path, sys.stderr)
+    if path.exists():
+        kept = {name: {label: span for label, span in spans.items() if span is not None}
+                for name, spans in known.items()}
+        write_text(path, json.dumps(kept, indent=1, sort_keys=True) + "\n")
+
+
+class BenchProgress:
     """``[done/total]`` with solved, time-outs and failures, elapsed time and an estimate."""
 
     def __init__(self, total: int, what: str, stream: TextIO):
@@ -100,9 +148,9 @@ class Progress:
 
     def update(self, status: str) -> None:
         self.done += 1
-        self.solved += status in ("solved", "found")
-        self.timeouts += status in ("timeout", "memout", "no-makespan", "limit")
-        self.failures += status in ("invalid", "error")
+        self.solved += status == SOLVED
+        self.timeouts += status in OUT_OF_LIMITS
+        self.failures += status in FAILED
         elapsed = time.perf_counter() - self.started
         left = elapsed / self.done * (self.total - self.done)
         line = (f"{self.what} [{self.done}/{self.total}] solved {self.solved}, time-outs {self.timeouts}, "
@@ -131,7 +179,7 @@ class Runner:
 
     # --- instances -----------------------------------------------------------------------
 
-    def instances(self) -> list[Instance]:
+    def instances(self) -> list[SuiteInstance]:
         """Every instance of the suite, generating what is missing."""
         found = []
         for instance_set in self.suite.sets:
@@ -153,29 +201,28 @@ class Runner:
                     name = str(path.resolve().relative_to(self.folder.resolve()))
                 except ValueError:
                     name = str(path)
-                found.append(Instance(instance_set.name, path, name, len(read_instance(path).robots)))
+                found.append(SuiteInstance(instance_set.name, path, name, len(read_instance(path).robots)))
         return found
 
     # --- minimal makespans ---------------------------------------------------------------
 
-    def makespans(self, instances: list[Instance]) -> dict[str, dict[str, int | None]]:
+    def makespans(self, instances: list[SuiteInstance]) -> dict[str, dict[str, int | None]]:
         """Minimal makespan of every instance for every domain (and assignment) the runs use."""
         path = self.folder / MAKESPANS
-        known: dict[str, dict[str, int | None]] = json.loads(path.read_text()) if path.exists() else {}
+        known = read_makespans(path, self.stream)
         todo = list(dict.fromkeys(
             (instance, spec.domain, spec.assign, spec.label) for instance in instances
             for spec in self.suite.runs
             if spec.runs_on(instance.set) and spec.label not in known.get(instance.name, {})))
         if todo:
-            progress = Progress(len(todo), "makespans", self.stream)
+            progress = BenchProgress(len(todo), "makespans", self.stream)
 
             def compute(item):
                 instance, domain, assign, label = item
-                outcome = run_limited({"kind": "makespan", "instance": str(instance.path), "domain": domain.value,
-                                       "assign": assign}, self.suite.makespan_time_limit, self.memory_limit)
-                report = outcome.report
-                minimal = report.get("horizon") if report.get("status") == "found" and report.get("minimal") else None
-                return item, minimal, outcome.status if outcome.status != "done" else report.get("status", "error")
+                search = run_limited({"kind": "makespan", "instance": str(instance.path), "domain": domain.value,
+                                      "assign": assign}, self.suite.makespan_time_limit, self.memory_limit)
+                status = makespan_status(search)
+                return item, search.report["horizon"] if status == SOLVED else None, status
 
             for (instance, _d, _a, label), minimal, status in self._parallel(compute, todo):
                 known.setdefault(instance.name, {})[label] = minimal
@@ -198,13 +245,13 @@ class Runner:
         skipped = len(planned) - len(todo)
         if skipped:
             self.stream.write(f"resuming: {skipped} runs already recorded\n")
-        progress = Progress(len(todo), "runs", self.stream)
+        progress = BenchProgress(len(todo), "runs", self.stream)
         for record in self._parallel(lambda item: self._run_one(*item, makespans), todo):
             append_result(self.folder, record)
             progress.update(record["status"])
         return load_results(self.folder)
 
-    def _run_one(self, instance: Instance, spec: RunSpec, makespans: dict) -> dict:
+    def _run_one(self, instance: SuiteInstance, spec: RunSpec, makespans: dict) -> dict:
         horizon = makespans.get(instance.name, {}).get(spec.label)
         record = new_record(instance, spec, horizon, self.time_limit)
         if horizon is None:

@@ -1,9 +1,13 @@
-"""One benchmark run for potassco's benchmark-tool, which enforces the limits itself:
+"""One benchmark run for potassco's benchmark-tool, which enforces the limits itself (runlim):
 
-    python -m asprilo.bench.single --domain m --encoding plain [--assign] --time-limit S INSTANCE
+    python -m asprilo.bench.single --domain m --encoding plain [--assign] --time-limit S
+                                   [--makespan-time-limit S] INSTANCE
 
-The horizon is the instance's minimal makespan from ``makespans.json`` beside it (written by
-``asprilo bench export-btool``).  Prints one JSON line: the run's record, as in results.jsonl.
+The horizon is the instance's minimal makespan, from ``INSTANCE.makespans.json`` beside it,
+or else searched here (at most ``--makespan-time-limit`` seconds, not counted in the run's
+time) and cached there for the runs after this one.  Prints the run's record (as in
+results.jsonl) as a JSON line before the run and again, complete, after it; a run that runlim
+stops leaves the first.
 """
 
 from __future__ import annotations
@@ -16,10 +20,31 @@ from pathlib import Path
 
 from asprilo.domain import Domain
 from asprilo.reader import read_instance
+from asprilo.writer import write_text
 
-from .runner import Instance, complete, new_record
+from .btool import makespan_cache, read_makespan_cache
+from .limits import DONE, LimitedRun
+from .results import SOLVED
+from .runner import SuiteInstance, complete, makespan_status, new_record
 from .suite import RunSpec
 from .worker import run
+
+
+def minimal_makespan(instance: Path, spec: RunSpec, time_limit: float) -> int | None:
+    """The cached minimal makespan of ``instance`` for ``spec``'s label, or search it and cache it."""
+    cache = makespan_cache(instance)
+    known = read_makespan_cache(cache)
+    if spec.label not in known:
+        print(f"{instance.name}: finding the minimal makespan for {spec.label} (at most {time_limit:g} s)",
+              file=sys.stderr, flush=True)
+        started = time.perf_counter()
+        report = run({"kind": "makespan", "instance": str(instance), "domain": spec.domain.value,
+                      "assign": spec.assign, "time_limit": time_limit})
+        search = LimitedRun(DONE, time.perf_counter() - started, report)
+        known = {**read_makespan_cache(cache),  # another run may have cached another label meanwhile
+                 spec.label: report["horizon"] if makespan_status(search) == SOLVED else None}
+        write_text(cache, json.dumps(known, sort_keys=True) + "\n")
+    return known[spec.label]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -29,20 +54,21 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--encoding", default="plain")
     parser.add_argument("--assign", action="store_true")
     parser.add_argument("--time-limit", type=float, required=True)
+    parser.add_argument("--makespan-time-limit", type=float, default=600.0)
     args = parser.parse_args(argv)
     spec = RunSpec(Domain.parse(args.domain), args.encoding, args.assign)
-    makespans = json.loads((args.instance.parent / "makespans.json").read_text())
-    horizon = makespans.get(args.instance.name, {}).get(spec.label)
+    horizon = minimal_makespan(args.instance, spec, args.makespan_time_limit)
     robots = len(read_instance(args.instance).robots)
-    record = new_record(Instance(args.instance.parent.name, args.instance, args.instance.name, robots),
+    record = new_record(SuiteInstance(args.instance.parent.name, args.instance, args.instance.name, robots),
                         spec, horizon, args.time_limit)
+    print(json.dumps(record, sort_keys=True), flush=True)
     if horizon is not None:
         started = time.perf_counter()
         report = run({"kind": "run", "instance": str(args.instance), "domain": spec.domain.value,
                       "encoding": spec.encoding, "assign": spec.assign, "horizon": horizon,
                       "time_limit": args.time_limit})
-        record = complete(record, args.instance, "done", time.perf_counter() - started, report)
-    print(json.dumps(record, sort_keys=True), flush=True)
+        record = complete(record, args.instance, DONE, time.perf_counter() - started, report)
+        print(json.dumps(record, sort_keys=True), flush=True)
     return 0
 
 

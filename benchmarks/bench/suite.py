@@ -27,10 +27,9 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from asprilo.domain import Domain
 from asprilo.errors import InputError
+from asprilo.yamlfile import YamlList, YamlMapping, line_of, load_yaml
 
 
 @dataclass(frozen=True)
@@ -83,85 +82,109 @@ class Suite:
     runs: list[RunSpec] = field(default_factory=list)
 
 
+SUITE_KEYS = ("name", "time_limit", "memory_limit", "makespan_time_limit", "instances", "runs")
+RUN_KEYS = ("domain", "encoding", "assign", "sets")
+
+
 def _listed(value: Any) -> list:
     return value if isinstance(value, list) else [value]
 
 
-def load_suite(path: str | Path) -> Suite:
-    """Read and check a suite file; any problem is an :class:`InputError` naming the file."""
-    path = Path(path)
-    if not path.is_file():
-        raise InputError("no such file" if not path.exists() else "is not a file", str(path))
-    try:
-        data = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except yaml.YAMLError as error:
-        mark = getattr(error, "problem_mark", None)
-        problem = getattr(error, "problem", None) or str(error)
-        raise InputError(f"bad YAML: {problem}", str(path), mark.line + 1 if mark else None) from None
-    if not isinstance(data, dict):
-        raise InputError("a suite is a YAML mapping with 'instances' and 'runs'", str(path))
+class _SuiteFile:
+    """Reads one suite file; every problem is an InputError naming the file, the line and the key."""
 
-    def fail(where: str, message: str) -> InputError:
-        return InputError(f"{where}: {message}", str(path))
+    def __init__(self, path: Path):
+        self.path = path
 
-    unknown = set(data) - {"name", "time_limit", "memory_limit", "makespan_time_limit", "instances", "runs"}
-    if unknown:
-        raise fail(sorted(unknown)[0], "unknown key (known: name, time_limit, memory_limit, "
-                                       "makespan_time_limit, instances, runs)")
-    suite = Suite(str(data.get("name", path.stem)), path)
-    for key in ("time_limit", "makespan_time_limit"):
-        if key in data:
-            if not isinstance(data[key], (int, float)) or data[key] <= 0:
-                raise fail(key, "must be a positive number of seconds")
-            setattr(suite, key, float(data[key]))
-    if "memory_limit" in data:
-        if data["memory_limit"] is not None and (not isinstance(data["memory_limit"], int)
-                                                 or data["memory_limit"] <= 0):
-            raise fail("memory_limit", "must be a positive number of MB (or null for none)")
-        suite.memory_limit = data["memory_limit"]
-    sets = data.get("instances")
-    if not isinstance(sets, dict) or not sets:
-        raise fail("instances", "must map set names to {batch: FILE, select: DIR} or {files: [GLOB, ...]}")
-    for name, entry in sets.items():
-        if not isinstance(entry, dict) or not ({"batch", "files"} & set(entry)):
-            raise fail(f"instances.{name}", "needs 'batch' (a gen batch file) or 'files' (globs)")
+    def fail(self, where: str, message: str, line: int | None) -> InputError:
+        return InputError(f"{where}: {message}", str(self.path), line)
+
+    def suite(self, data: Any) -> Suite:
+        if not isinstance(data, YamlMapping):
+            raise InputError("a suite is a YAML mapping with 'instances' and 'runs'", str(self.path), line_of(data, 1))
+        self.known_keys(data, "", SUITE_KEYS)
+        suite = Suite(str(data.get("name", self.path.stem)), self.path)
+        self.limits(data, suite)
+        suite.sets = self.instance_sets(data)
+        suite.runs = self.run_specs(data, {s.name for s in suite.sets})
+        return suite
+
+    def known_keys(self, data: YamlMapping, where: str, known: tuple[str, ...]) -> None:
+        unknown = [key for key in data if key not in known]
+        if unknown:
+            raise self.fail(f"{where}{unknown[0]}", f"unknown key (known: {', '.join(known)})",
+                            data.line_of(unknown[0]))
+
+    def limits(self, data: YamlMapping, suite: Suite) -> None:
+        for key in ("time_limit", "makespan_time_limit"):
+            if key in data:
+                value = data[key]
+                if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0:
+                    raise self.fail(key, "must be a positive number of seconds", data.line_of(key))
+                setattr(suite, key, float(value))
+        if "memory_limit" in data:
+            value = data["memory_limit"]
+            if value is not None and (isinstance(value, bool) or not isinstance(value, int) or value <= 0):
+                raise self.fail("memory_limit", "must be a positive number of MB (or null for none)",
+                                data.line_of("memory_limit"))
+            suite.memory_limit = value
+
+    def instance_sets(self, data: YamlMapping) -> list[InstanceSet]:
+        sets = data.get("instances")
+        if not isinstance(sets, YamlMapping) or not sets:
+            raise self.fail("instances", "must map set names to {batch: FILE, select: DIR} or {files: [GLOB, ...]}",
+                            data.line_of("instances"))
+        return [self.instance_set(str(name), entry, sets.line_of(name)) for name, entry in sets.items()]
+
+    def instance_set(self, name: str, entry: Any, line: int) -> InstanceSet:
+        where = f"instances.{name}"
+        if not isinstance(entry, YamlMapping) or not ({"batch", "files"} & set(entry)):
+            raise self.fail(where, "needs 'batch' (a gen batch file) or 'files' (globs)", line)
+        self.known_keys(entry, f"{where}.", ("batch", "select", "files", "first"))
         first = entry.get("first")
         if first is not None and (not isinstance(first, int) or isinstance(first, bool) or first < 1):
-            raise fail(f"instances.{name}.first", "must be a positive number of files per folder")
-        if "batch" in entry:
-            batch = (path.parent / str(entry["batch"])).resolve()
-            if not batch.is_file():
-                raise fail(f"instances.{name}.batch", f"no such file {batch}")
-            suite.sets.append(InstanceSet(str(name), batch, str(entry.get("select", "")), first=first))
-        else:
-            suite.sets.append(InstanceSet(str(name), files=tuple(str(f) for f in _listed(entry["files"])),
-                                          first=first))
-    runs = data.get("runs")
-    if not isinstance(runs, list) or not runs:
-        raise fail("runs", "must be a list of {domain, encoding, assign} mappings")
-    for number, entry in enumerate(runs):
-        where = f"runs[{number}]"
-        if not isinstance(entry, dict) or "domain" not in entry:
-            raise fail(where, "needs at least 'domain'")
+            raise self.fail(f"{where}.first", "must be a positive number of files per folder", entry.line_of("first"))
+        if "batch" not in entry:
+            return InstanceSet(name, files=tuple(str(f) for f in _listed(entry["files"])), first=first)
+        batch = (self.path.parent / str(entry["batch"])).resolve()
+        if not batch.is_file():
+            raise self.fail(f"{where}.batch", f"no such file {batch}", entry.line_of("batch"))
+        return InstanceSet(name, batch, str(entry.get("select", "")), first=first)
+
+    def run_specs(self, data: YamlMapping, set_names: set[str]) -> list[RunSpec]:
+        runs = data.get("runs")
+        if not isinstance(runs, YamlList) or not runs:
+            raise self.fail("runs", "must be a list of {domain, encoding, assign} mappings", data.line_of("runs"))
+        specs: list[RunSpec] = []
+        for number, (entry, line) in enumerate(zip(runs, runs.item_lines, strict=True)):
+            specs += self.run_entry(f"runs[{number}]", entry, line, set_names)
+        return specs
+
+    def run_entry(self, where: str, entry: Any, line: int, set_names: set[str]) -> list[RunSpec]:
+        if not isinstance(entry, YamlMapping) or "domain" not in entry:
+            raise self.fail(where, "needs at least 'domain'", line)
+        self.known_keys(entry, f"{where}.", RUN_KEYS)
         try:
             domains = [Domain.parse(d) for d in _listed(entry["domain"])]
         except InputError as error:
-            raise fail(f"{where}.domain", error.message) from None
+            raise self.fail(f"{where}.domain", error.message, entry.line_of("domain")) from None
         encodings = [str(e) for e in _listed(entry.get("encoding", "plain"))]
         assigns = _listed(entry.get("assign", False))
         if not all(isinstance(a, bool) for a in assigns):
-            raise fail(f"{where}.assign", "must be true, false or a list of them")
+            raise self.fail(f"{where}.assign", "must be true, false or a list of them", entry.line_of("assign"))
         sets = None
         if "sets" in entry:
             sets = tuple(str(name) for name in _listed(entry["sets"]))
-            unknown_sets = [name for name in sets if name not in {s.name for s in suite.sets}]
-            if unknown_sets:
-                raise fail(f"{where}.sets", f"no instance set '{unknown_sets[0]}'")
-        unknown_keys = set(entry) - {"domain", "encoding", "assign", "sets"}
-        if unknown_keys:
-            raise fail(f"{where}.{sorted(unknown_keys)[0]}", "unknown key (known: domain, encoding, assign, sets)")
-        suite.runs += [RunSpec(d, e, a, sets) for d, e, a in itertools.product(domains, encodings, assigns)]
-    return suite
+            unknown = [name for name in sets if name not in set_names]
+            if unknown:
+                raise self.fail(f"{where}.sets", f"no instance set '{unknown[0]}'", entry.line_of("sets"))
+        return [RunSpec(d, e, a, sets) for d, e, a in itertools.product(domains, encodings, assigns)]
+
+
+def load_suite(path: str | Path) -> Suite:
+    """Read and check a suite file; any problem is an :class:`InputError` naming the file and line."""
+    path = Path(path)
+    return _SuiteFile(path).suite(load_yaml(path))
 
 
 def existing_files(suite: Suite, instance_set: InstanceSet) -> list[Path]:
