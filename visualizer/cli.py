@@ -23,6 +23,8 @@ import traceback
 from asprilo.arguments import domain_argument
 from asprilo.errors import InputError
 
+from .display import INSTALL, window_problem
+
 
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("files", metavar="FILE", nargs="*", help="INSTANCE [PLAN ...]")
@@ -51,6 +53,11 @@ def run(args: argparse.Namespace) -> int:
     _check_options(args)
     if args.export:
         os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")  # never needs a screen
+    else:
+        problem = window_problem()  # before Qt starts: it would abort without saying why
+        if problem is not None:
+            raise InputError(problem)
+    _load_qt()
     from .loading import command_line_inputs, load_scenario
     instance, plans = command_line_inputs(args.files)
     scenario = load_scenario(instance, plans, args.domain) if instance else None
@@ -59,6 +66,14 @@ def run(args: argparse.Namespace) -> int:
             raise InputError("nothing to export: give an INSTANCE file or pipe facts into viz")
         return _export(args, scenario)
     return _show(args, scenario)
+
+
+def _load_qt() -> None:
+    """Import Qt, or say which system library it lacks."""
+    try:
+        import PyQt5.QtWidgets  # noqa: F401
+    except ImportError as error:
+        raise InputError(f"Qt cannot be loaded ({error}); on Debian or Ubuntu: {INSTALL}") from None
 
 
 def _check_options(args: argparse.Namespace) -> None:
