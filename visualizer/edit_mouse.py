@@ -24,7 +24,7 @@ from .state import ViewerState
 from .view import WarehouseView
 
 
-class Editor(Protocol):
+class EditingHost(Protocol):
     """What the mouse needs of the editor."""
 
     state: ViewerState
@@ -55,7 +55,7 @@ _STROKE_WORDS = {"storage": "storage nodes", "highway": "highways", "missing": "
 class MouseEditing(QObject):
     """Filters the view's mouse events and turns those of the edit tools into edits."""
 
-    def __init__(self, editor: Editor, parent: QObject | None = None):
+    def __init__(self, editor: EditingHost, parent: QObject | None = None):
         super().__init__(parent)
         self.editor = editor
         self.view = editor.view
@@ -198,7 +198,7 @@ class _Drag:
 class _Stroke:
     """Highway or wall painted over cells with the mouse button held: one undoable step."""
 
-    def __init__(self, editor: Editor, tool: str, cell: Cell):
+    def __init__(self, editor: EditingHost, tool: str, cell: Cell):
         self.editor = editor
         kind = edits.floor_kind(editor.document.instance, cell)
         if tool == "highway":

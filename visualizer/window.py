@@ -10,7 +10,17 @@ what only a window can: its title, dialogs, dropped files, closing.
 from __future__ import annotations
 
 from PyQt5.QtCore import QSettings, Qt
-from PyQt5.QtWidgets import QApplication, QInputDialog, QMainWindow, QMenu, QMessageBox, QToolBar, QVBoxLayout, QWidget
+from PyQt5.QtWidgets import (
+    QAction,
+    QApplication,
+    QInputDialog,
+    QMainWindow,
+    QMenu,
+    QMessageBox,
+    QToolBar,
+    QVBoxLayout,
+    QWidget,
+)
 
 from .atoms_pane import AtomsPane
 from .banner import SessionBanner
@@ -137,7 +147,7 @@ class MainWindow(QMainWindow):
 
     # --- building the window ---------------------------------------------------------------
 
-    def _make_actions(self):
+    def _make_actions(self) -> dict[str, QAction]:
         player, view, files, exports = self.player, self.view, self.files, self.exports
         actions = make_actions(self, ACTIONS, {
             "open": files.ask_open, "open_plan": files.ask_open_plan, "reload": files.reload,
