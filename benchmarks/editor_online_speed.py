@@ -22,6 +22,7 @@ import statistics
 import sys
 import threading
 import time
+from itertools import pairwise
 from pathlib import Path
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
@@ -50,19 +51,19 @@ def edit_latency(app, window, repeat: int) -> dict[str, list[float]]:
     times: dict[str, list[float]] = {"add shelf": [], "move robot": [], "toggle highway": [], "undo": []}
     for i in range(repeat):
         cell = free[(7 * i) % len(free)]
-        for kind, edit in (("add shelf", lambda: editor.add("shelf", cell)),
-                           ("move robot", lambda: editor.move("robot", robot, cell)),
-                           ("toggle highway", lambda: editor.set_floor(cell, "highway")),
-                           ("undo", editor.document.stack.undo)):
+        for kind, edit in (("add shelf", lambda cell=cell: editor.add("shelf", cell)),
+                           ("move robot", lambda cell=cell: editor.move("robot", robot, cell)),
+                           ("toggle highway", lambda cell=cell: editor.set_floor(cell, "highway")),
+                           ("undo", editor.document.history.undo)):
             started = time.perf_counter()
             edit()
             app.processEvents()
             times[kind].append(time.perf_counter() - started)
             if kind != "undo":
-                editor.document.stack.undo()
+                editor.document.history.undo()
                 app.processEvents()
         editor.add("shelf", cell)  # for the timed undo of the next round
-    editor.document.stack.setClean()
+    editor.document.history.clear()  # nothing unsaved: closing asks nothing
     return times
 
 
@@ -73,17 +74,17 @@ def solve_responsiveness(app, window, seconds: float) -> tuple[float, float]:
     timer = QTimer()
     timer.timeout.connect(lambda: ticks.append(time.perf_counter()))
     timer.start(10)
-    window.tools.solve()
+    window.jobs.solve()
     started = time.perf_counter()
     while time.perf_counter() - started < seconds:
         app.processEvents(QEventLoop.AllEvents, 5)
     cancelled = time.perf_counter()
-    window.tools.cancel()
-    while window.tools.job is not None:
+    window.jobs.cancel()
+    while window.jobs.job is not None:
         app.processEvents(QEventLoop.AllEvents, 5)
     idle = time.perf_counter() - cancelled
     timer.stop()
-    return max(b - a for a, b in zip(ticks, ticks[1:])), idle
+    return max(b - a for a, b in pairwise(ticks)), idle
 
 
 def online_steps() -> tuple[list[float], list[float], int]:

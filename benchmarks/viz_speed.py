@@ -36,15 +36,7 @@ from asprilo.writer import write_instance, write_plan  # noqa: E402
 
 def build_instance(size: int, robots: int, shelves: int, rng: random.Random) -> Instance:
     """A structured floor: 3-cell high storage rows between highways, a few pillars, stations on top."""
-    instance = Instance()
-    for y in range(1, size + 1):
-        for x in range(1, size + 1):
-            if (x % 17, y % 13) == (8, 6):
-                continue  # a pillar
-            ident = len(instance.nodes) + 1
-            instance.nodes[ident] = (x, y)
-            if y <= 2 or y % 4 == 0 or x % 12 in (0, 1):
-                instance.highways[ident] = (x, y)
+    instance = _floor(size)
     for ident, x in enumerate(range(6, size, 20), start=1):
         instance.stations[ident] = PickingStation(ident, (x, 1))
     storage = sorted(instance.storage_cells)
@@ -63,11 +55,26 @@ def build_instance(size: int, robots: int, shelves: int, rng: random.Random) -> 
     # a fifth of the robots start under a shelf and carry it
     movers = list(instance.robots.values())[: robots // 5]
     spare = storage[shelves:]
-    for robot, cell in zip(movers, spare):
+    for robot, cell in zip(movers, spare, strict=False):  # as many as there are spare cells
         ident = len(instance.shelves) + 1
         robot.at = cell
         instance.shelves[ident] = Shelf(ident, cell)
         robot.carries = ident
+    return instance
+
+
+def _floor(size: int) -> Instance:
+    """``size`` x ``size`` nodes but a few pillars; highways on the top rows, every 4th row
+    and two columns of every twelve."""
+    instance = Instance()
+    for y in range(1, size + 1):
+        for x in range(1, size + 1):
+            if (x % 17, y % 13) == (8, 6):
+                continue  # a pillar
+            ident = len(instance.nodes) + 1
+            instance.nodes[ident] = (x, y)
+            if y <= 2 or y % 4 == 0 or x % 12 in (0, 1):
+                instance.highways[ident] = (x, y)
     return instance
 
 

@@ -85,16 +85,16 @@ def test_mouse_edits_give_exactly_these_facts_and_undo_takes_them_back(window, q
         "init(object(order,1),value(pickingStation,1)).",
     ]
     assert read_instance(tmp_path / "edited.lp") == window.editor.document.instance
-    stack = window.editor.document.stack
-    assert stack.count() == 7 and stack.undoText() == "add order 1"
-    while stack.canUndo():
+    history = window.editor.document.history
+    assert history.count == 7 and history.undo_text == "add order 1"
+    while history.can_undo:
         window.editor.commands["undo"].trigger()
     window.editor.save_as(tmp_path / "undone.lp")
     assert body(tmp_path / "undone.lp") == [f"init(object(node,{(y - 1) * 4 + x}),value(at,({x},{y})))."
                                             for y in (1, 2, 3) for x in (1, 2, 3, 4)]
-    assert not window.scene.robots and not window.scene.shelves and not window.scene.stations
+    assert not window.stage.scene.robots and not window.stage.scene.shelves and not window.stage.scene.stations
     window.editor.commands["redo"].trigger()
-    assert window.scene.floor.kinds.tolist() == [[1, 2, 1, 1], [1, 1, 1, 1], [1, 1, 1, 1]]
+    assert window.stage.scene.floor.kinds.tolist() == [[1, 2, 1, 1], [1, 1, 1, 1], [1, 1, 1, 1]]
 
 
 def test_refused_edits_say_why_and_change_nothing(window, qtbot):
@@ -108,7 +108,7 @@ def test_refused_edits_say_why_and_change_nothing(window, qtbot):
     assert window.editor.last_message == "robot 1 already stands on (1,1): two robots may not share a node"
     click(qtbot, window, "floor", (1, 1))
     assert window.editor.last_message == "robot 1 stands on (1,1): remove it first"
-    assert window.editor.document.stack.count() == 2 and list(window.scene.robots) == [1]
+    assert window.editor.document.history.count == 2 and list(window.stage.scene.robots) == [1]
 
 
 def test_painting_highways_is_one_undo_step(window, qtbot):
@@ -117,10 +117,10 @@ def test_painting_highways_is_one_undo_step(window, qtbot):
     drag(qtbot, window, (1, 1), (5, 1))
     assert sorted(window.editor.document.instance.highways.values()) == [(1, 1), (3, 1), (5, 1)]
     drag(qtbot, window, (2, 1), (2, 1))
-    assert window.editor.document.stack.count() == 2
-    assert window.editor.document.stack.undoText() == "make highways"
-    window.editor.document.stack.undo()
-    window.editor.document.stack.undo()
+    assert window.editor.document.history.count == 2
+    assert window.editor.document.history.undo_text == "make highways"
+    window.editor.document.history.undo()
+    window.editor.document.history.undo()
     assert not window.editor.document.instance.highways
 
 
@@ -133,13 +133,13 @@ def test_drag_and_drop_moves_objects_and_refuses_bad_drops(window, qtbot):
     drag(qtbot, window, (1, 1), (2, 2))
     instance = window.editor.document.instance
     assert instance.robots[1].at == (2, 2) and instance.shelves[1].at == (2, 2)  # the carried shelf came along
-    assert window.scene.robots[1].pos() == style.centre((2, 2))
+    assert window.stage.scene.robots[1].pos() == style.centre((2, 2))
     drag(qtbot, window, (2, 2), (3, 2))
     assert window.editor.last_message == "shelf 2 rests on (3,2): a robot carrying shelf 1 cannot go under it"
-    assert instance.robots[1].at == (2, 2) and window.scene.robots[1].pos() == style.centre((2, 2))
+    assert instance.robots[1].at == (2, 2) and window.stage.scene.robots[1].pos() == style.centre((2, 2))
     drag(qtbot, window, (4, 1), (1, 1))
-    assert instance.stations[1].at == (1, 1) and window.scene.stations[1].pos() == style.centre((1, 1))
-    assert window.editor.document.stack.undoText() == "move picking station 1 to (1,1)"
+    assert instance.stations[1].at == (1, 1) and window.stage.scene.stations[1].pos() == style.centre((1, 1))
+    assert window.editor.document.history.undo_text == "move picking station 1 to (1,1)"
 
 
 def test_right_click_menu_edits_what_stands_on_a_cell(window, qtbot):
@@ -153,7 +153,7 @@ def test_right_click_menu_edits_what_stands_on_a_cell(window, qtbot):
                      "Add picking station here", "Add destination here", "Make highway", "Remove node (wall)"]
     next(a for a in menu.actions() if a.text() == "Robot 1 starts carrying shelf 1").trigger()
     assert window.editor.document.instance.robots[1].carries == 1
-    assert window.track.state(0).carries == {1: 1} and window.scene.shelves[1].carried
+    assert window.track.state(0).carries == {1: 1} and window.stage.scene.shelves[1].carried
     menu = window.editor.context_menu((3, 3))
     next(a for a in menu.actions() if a.text() == "Remove node (wall)").trigger()
     menu = window.editor.context_menu((3, 3))
@@ -186,7 +186,7 @@ def test_order_table_edits_and_flags_products_nowhere_in_stock(window, qtbot):
     assert orders.remove_lines()
     assert window.editor.document.instance.orders[1].lines == {}
     assert model.index(0, 0).data(Qt.ToolTipRole) == "order 1 names no picking station\norder 1 has no lines yet"
-    window.editor.document.stack.undo()  # the two lines removed at once come back at once
+    window.editor.document.history.undo()  # the two lines removed at once come back at once
     assert window.editor.document.instance.orders[1].lines == {1: 1, 7: 3}
 
 
@@ -194,10 +194,10 @@ def test_loaded_invalid_instance_is_flagged_in_place(window, qtbot, write):
     path = write("bad.lp", format_instance(read_instance(SMALL_A)).replace(
         "init(object(shelf,1),value(at,(3,3))).", "init(object(shelf,1),value(at,(1,1)))."))
     assert window.open_files([str(path)])
-    assert window.scene.shelves[1].flagged
+    assert window.stage.scene.shelves[1].flagged
     assert "instance: shelf 1 rests on the highway node (1,1)" in [r[2] for r in window.panels["violations"].texts()]
     window.editor.move("shelf", 1, (3, 3))
-    assert not window.scene.shelves[1].flagged
+    assert not window.stage.scene.shelves[1].flagged
 
 
 def test_edits_keep_the_plan_and_replay_it(window, qtbot):
@@ -218,7 +218,7 @@ def test_resize_and_template(window, qtbot, tmp_path):
     window.open_files([str(SMALL_A)])
     assert str(window.editor.document.path) == str(SMALL_A)
     assert window.editor.resize(6, 4)
-    assert window.editor.document.instance.size == (6, 4) and window.scene.floor.size == (6, 4)
+    assert window.editor.document.instance.size == (6, 4) and window.stage.scene.floor.size == (6, 4)
     assert window.editor.save_template(tmp_path / "template.lp")
     saved = read_instance(tmp_path / "template.lp")
     assert not saved.products and not saved.orders
@@ -272,7 +272,7 @@ def test_saving_mid_animation_writes_the_initial_state(window, qtbot, tmp_path):
     text = (tmp_path / "saved.lp").read_text()
     assert text.startswith("%" * 60 + "\n% asprilo viz ") and "occurs(" not in text
     assert window.windowTitle() == "saved.lp + outcome.txt — asprilo viz"  # the plan still comes from there
-    assert window.reload() and len(window.scenario.plan) == len(read_plan(OUTCOME))
+    assert window.files.reload() and len(window.scenario.plan) == len(read_plan(OUTCOME))
 
 
 def test_the_pointer_selects_robots_while_a_plan_plays(window, qtbot):
@@ -282,4 +282,4 @@ def test_the_pointer_selects_robots_while_a_plan_plays(window, qtbot):
     window.editor.palette.choose("pointer")
     qtbot.mouseClick(window.view.viewport(), Qt.LeftButton, pos=point(window, cell))
     assert window.selected == [2] and window.player.time == 5  # no rewind, nothing moved
-    assert window.editor.document.stack.count() == 0
+    assert window.editor.document.history.count == 0

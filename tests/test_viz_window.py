@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from itertools import pairwise
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
@@ -25,6 +26,7 @@ def window(qtbot, tmp_path_factory):
     settings = QSettings(str(tmp_path_factory.mktemp("settings") / "viz.ini"), QSettings.IniFormat)
     window = MainWindow(settings)
     qtbot.addWidget(window)
+    window.resize(1366, 768)  # a laptop's screen (the offscreen one is 800x600)
     window.show()
     qtbot.waitExposed(window)
     return window
@@ -32,7 +34,7 @@ def window(qtbot, tmp_path_factory):
 
 def robot_cells(window) -> dict[int, tuple[float, float]]:
     return {r: (item.pos().x() / style.CELL + 0.5, item.pos().y() / style.CELL + 0.5)
-            for r, item in window.scene.robots.items()}
+            for r, item in window.stage.scene.robots.items()}
 
 
 def test_empty_window_then_open(window):
@@ -42,8 +44,8 @@ def test_empty_window_then_open(window):
     assert window.track.horizon == 29
     assert window.transport.slider.maximum() == 29
     assert window.transport.label.text() == "initial state (step 0 of 29)"
-    assert "domain A" in window.status.text() and "horizon 29" in window.status.text()
-    assert "valid plan" in window.problems.text()
+    assert "domain A" in window.status_line.summary.text() and "horizon 29" in window.status_line.summary.text()
+    assert "valid plan" in window.status_line.verdict.text()
 
 
 def test_keyboard_playback(window, qtbot):
@@ -82,7 +84,7 @@ def test_play_to_the_end_and_loop(window, qtbot):
     assert player.loop
     seen.clear()
     qtbot.keyClick(window, Qt.Key_Space)                   # from the end: starts over
-    qtbot.waitUntil(lambda: any(b < a for a, b in zip(seen, seen[1:], strict=False)), timeout=5000)
+    qtbot.waitUntil(lambda: any(b < a for a, b in pairwise(seen)), timeout=5000)
     assert player.playing                                  # wrapped around, still playing
     qtbot.keyClick(window, Qt.Key_Space)
     assert not player.playing
@@ -107,14 +109,14 @@ def test_violations_are_marked_and_clicking_one_jumps_there(window):
     panel = window.panels["violations"]
     panel.table.clicked.emit(panel.proxy.index(1, 0))          # deliver/shelfAmount at step 23
     assert window.player.step == 23
-    assert window.animator.highlighted.check == "shelfAmount"
+    assert window.stage.animator.highlighted.check == "shelfAmount"
     assert window.selected == [1]
-    assert window.scene.robots[1].flagged and window.scene.shelves[2].flagged
-    assert "3 rule violations, 2 at step 23" in window.problems.text()
+    assert window.stage.scene.robots[1].flagged and window.stage.scene.shelves[2].flagged
+    assert "3 rule violations, 2 at step 23" in window.status_line.verdict.text()
     window.go_to(5)
-    assert window.scene.shelves[2].flagged                     # highlighted until cleared
+    assert window.stage.scene.shelves[2].flagged                     # highlighted until cleared
     window.clear_selection()
-    assert not window.scene.shelves[2].flagged and window.selected == []
+    assert not window.stage.scene.shelves[2].flagged and window.selected == []
 
 
 def test_plan_panel_click_jumps_to_the_action(window):
@@ -128,28 +130,28 @@ def test_plan_panel_click_jumps_to_the_action(window):
 def test_clicking_robots_selects_them_and_shows_paths(window, qtbot):
     window.open_files([str(OUTCOME)])
     view = window.view
-    spot = view.mapFromScene(window.scene.robots[2].pos())
+    spot = view.mapFromScene(window.stage.scene.robots[2].pos())
     qtbot.mouseClick(view.viewport(), Qt.LeftButton, Qt.NoModifier, spot)
     assert window.selected == [2]
-    assert window.scene.robots[2].ring.isVisible()
-    assert sorted(window.trails._items) == [2]
+    assert window.stage.scene.robots[2].ring.isVisible()
+    assert sorted(window.stage.trails._items) == [2]
     rows = window.panels["robots"].table.selectionModel().selectedRows()
     assert [window.panels["robots"].source_row(i.row()) for i in rows] == [2]
-    spot3 = view.mapFromScene(window.scene.robots[3].pos())
+    spot3 = view.mapFromScene(window.stage.scene.robots[3].pos())
     qtbot.mouseClick(view.viewport(), Qt.LeftButton, Qt.ControlModifier, spot3)
     assert window.selected == [2, 3]
     qtbot.keyClick(window, Qt.Key_T)                            # paths off
-    assert not window.trails._items
+    assert not window.stage.trails._items
     qtbot.keyClick(window, Qt.Key_T)
     qtbot.mouseClick(view.viewport(), Qt.LeftButton, Qt.NoModifier, QPoint(2, 2))  # empty spot
-    assert window.selected == [] and not window.trails._items
+    assert window.selected == [] and not window.stage.trails._items
 
 
 def test_hover_describes_what_is_under_the_mouse(window):
     window.open_files([str(OUTCOME)])
     window.go_to(8)
     view = window.view
-    spot = view.mapFromScene(window.scene.robots[1].pos())
+    spot = view.mapFromScene(window.stage.scene.robots[1].pos())
     objects = view.objects_at(spot)
     assert objects == [("robot", 1), ("shelf", 2)]
     text = view.describe(view.mapToScene(spot), objects)
@@ -165,10 +167,10 @@ def test_zoom_and_level_of_detail(window, qtbot):
     for _ in range(30):
         view.zoom_out()
     assert view.pixels_per_cell == pytest.approx(1.0)
-    assert not window.scene.fine and not window.scene.robots[1].label.isVisible()
+    assert not window.stage.scene.fine and not window.stage.scene.robots[1].label.isVisible()
     qtbot.keyClick(window, Qt.Key_0, Qt.ControlModifier)
     assert view.pixels_per_cell == pytest.approx(before)
-    assert window.scene.fine and window.scene.robots[1].label.isVisible()
+    assert window.stage.scene.fine and window.stage.scene.robots[1].label.isVisible()
 
 
 def user_actions(window) -> list[QAction]:
@@ -203,7 +205,7 @@ def test_bad_file_shows_a_dialog_and_keeps_what_was_open(window, tmp_path):
 def test_plan_needs_an_instance(window, tmp_path):
     plan = tmp_path / "plan.lp"
     plan.write_text("occurs(object(robot,1),action(move,(1,0)),1).\n")
-    assert not window.open_plan_files([str(plan)])
+    assert not window.files.open_plan_files([str(plan)])
     assert window.last_error == "Open an instance first: a plan needs its warehouse."
 
 
@@ -248,13 +250,13 @@ def test_recent_files_live_in_settings(window, qtbot, tmp_path):
     window.open_files([str(SMALL_A)])
     window.open_files([str(SMALL_A)], [str(OUTCOME)])
     window.open_files([str(SMALL_A)])
-    assert window.recent() == [{"instance": [str(SMALL_A)], "plans": []},
+    assert window.files.recent() == [{"instance": [str(SMALL_A)], "plans": []},
                                {"instance": [str(SMALL_A)], "plans": [str(OUTCOME)]}]
     window.close()
     again = MainWindow(window.settings)
     qtbot.addWidget(again)
-    again._fill_recent()
-    entries = again.recent_menu.actions()
+    again.files.fill_recent()
+    entries = again.files.recent_menu.actions()
     assert [a.text() for a in entries] == [SMALL_A.name, f"{SMALL_A.name} + outcome.txt"]
     entries[1].trigger()
     assert again.track.horizon == 29
@@ -264,10 +266,10 @@ def test_export_from_the_window(window, tmp_path):
     window.open_files([str(OUTCOME)])
     window.go_to(12)
     window.select_robots([1])
-    assert window.export_picture(str(tmp_path / "now.png"))
+    assert window.exports.picture(str(tmp_path / "now.png"))
     assert Image.open(tmp_path / "now.png").size == (552, 312)
-    assert window.export_animation(str(tmp_path / "all.gif"), 2)
+    assert window.exports.animation(str(tmp_path / "all.gif"), 2)
     assert Image.open(tmp_path / "all.gif").n_frames == 59
     assert window.player.time == 12                       # the view is back where it was
-    assert not window.export_picture(str(tmp_path / "now.tiff"))
+    assert not window.exports.picture(str(tmp_path / "now.tiff"))
     assert "cannot export '.tiff'" in window.last_error

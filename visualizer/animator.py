@@ -3,7 +3,8 @@
 A frame costs one array interpolation and a ``setPos`` per moving item: the scene is
 never rebuilt.  Pickups, putdowns and deliveries show as badges while they happen;
 objects that take part in a rule violation (or robots off the floor) are marked red in
-the states where that happens, so an impossible state is never drawn silently.
+the states where that happens, so an impossible state is never drawn silently.  Goals are
+framed as the state nearest to the time shown has them.
 """
 
 from __future__ import annotations
@@ -14,7 +15,9 @@ from asprilo.model import Action, Robot, Shelf
 from asprilo.simulate import Violation
 
 from . import style
-from .items import Badge, CellMark, RobotItem, ShelfItem
+from .goal_marks import GoalMarks
+from .items import RobotItem, ShelfItem
+from .marks import Badge, CellMark
 from .scene import WarehouseScene
 from .style import CELL
 from .track import Track
@@ -46,6 +49,8 @@ class Animator:
         self._badge_step: int | None = None
         self._badges: list[tuple[Badge, RobotItem]] = []
         self.highlighted: Violation | None = None
+        self.goals = GoalMarks(scene, track)
+        self._goal_step: int | None = None
         self.time = 0.0
         self._nearest = 0  # the state nearest to the time shown
 
@@ -61,7 +66,14 @@ class Animator:
         if self._show_carriers(carriers) or (carriers[moved] < 0).any():
             self.scene.refresh_shelf_layer()  # a shelf was picked up, put down or moved while resting
         self._show_marks(self._nearest)
+        if self._nearest != self._goal_step:
+            self._goal_step = self._nearest
+            self.goals.show(self._nearest)
         self._show_badges(step if fraction > 0 else None, fraction)
+
+    def show_goals(self, shown: bool) -> None:
+        """Mark the goals of the state shown, or none."""
+        self.goals.set_shown(shown, self._nearest)
 
     def highlight(self, violation: Violation | None) -> None:
         """Keep the objects of ``violation`` marked whatever the time (``None``: stop)."""
@@ -79,6 +91,7 @@ class Animator:
         for badge, _robot in self._badges:
             self.scene.removeItem(badge)
         self._flagged, self._cell_marks, self._badges = [], [], []
+        self.goals.detach()
 
     # --- the parts of a frame ------------------------------------------------------------
 
@@ -147,7 +160,7 @@ def _move(items: list, cells: np.ndarray, shown: np.ndarray) -> np.ndarray:
     if not len(changed):
         return changed
     points = ((cells[changed] - 0.5) * CELL).tolist()
-    for index, (x, y) in zip(changed.tolist(), points):
+    for index, (x, y) in zip(changed.tolist(), points, strict=True):
         items[index].setPos(x, y)
     shown[changed] = cells[changed]
     return changed

@@ -18,9 +18,12 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import traceback
 
 from asprilo.arguments import domain_argument
 from asprilo.errors import InputError
+
+from .display import INSTALL, window_problem
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -39,7 +42,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
                        help="pixels per cell (default 48, less for big warehouses)")
     online = parser.add_argument_group("online link (see asprilo serve)")
     online.add_argument("--solver", type=int, metavar="PORT",
-                        help="connect to a solver: it plans step by step for the INSTANCE, or for the simulator's world")
+                        help="connect to a solver: it plans step by step for the INSTANCE, "
+                             "or for the simulator's world")
     online.add_argument("--simulator", type=int, metavar="PORT",
                         help="connect to a simulator as well: it says what the world is and when orders arrive")
     online.add_argument("--host", default="127.0.0.1", help="where solver and simulator run (default 127.0.0.1)")
@@ -49,6 +53,11 @@ def run(args: argparse.Namespace) -> int:
     _check_options(args)
     if args.export:
         os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")  # never needs a screen
+    else:
+        problem = window_problem()  # before Qt starts: it would abort without saying why
+        if problem is not None:
+            raise InputError(problem)
+    _load_qt()
     from .loading import command_line_inputs, load_scenario
     instance, plans = command_line_inputs(args.files)
     scenario = load_scenario(instance, plans, args.domain) if instance else None
@@ -57,6 +66,14 @@ def run(args: argparse.Namespace) -> int:
             raise InputError("nothing to export: give an INSTANCE file or pipe facts into viz")
         return _export(args, scenario)
     return _show(args, scenario)
+
+
+def _load_qt() -> None:
+    """Import Qt, or say which system library it lacks."""
+    try:
+        import PyQt5.QtWidgets  # noqa: F401
+    except ImportError as error:
+        raise InputError(f"Qt cannot be loaded ({error}); on Debian or Ubuntu: {INSTALL}") from None
 
 
 def _check_options(args: argparse.Namespace) -> None:
@@ -91,9 +108,10 @@ def _show(args: argparse.Namespace, scenario) -> int:
     from .window import MainWindow
     app = application()
     window = MainWindow()
+    sys.excepthook = report_exceptions_to(window)
     if scenario is not None:
         window.show_scenario(scenario)
-        window.remember(scenario)
+        window.files.remember(scenario)
         if args.step:
             if args.step > window.track.horizon:
                 raise InputError(f"--step {args.step} lies beyond the plan, whose last step is "
@@ -103,3 +121,13 @@ def _show(args: argparse.Namespace, scenario) -> int:
     if args.solver is not None:
         window.live.connect_to(args.host, args.solver, args.simulator)
     return app.exec_()
+
+
+def report_exceptions_to(window):
+    """An exception hook that keeps the window alive: the traceback goes to standard error,
+    a dialog says what broke (without a hook of its own PyQt would abort the viewer)."""
+    def report(kind, value, trace) -> None:
+        traceback.print_exception(kind, value, trace, file=sys.stderr)
+        window.state.report_error(f"Something went wrong inside the viewer ({kind.__name__}: {value}). "
+                                  "It goes on; the details are on standard error.")
+    return report

@@ -1,4 +1,5 @@
-"""The editor's dialogs: grid size, the products on a shelf, the generator's counts, the online link.
+"""The viewer's dialogs: grid size, the products on a shelf, the generator's counts, the online
+link, and the question before unsaved edits are dropped.
 
 Each dialog is a plain QDialog with ``values()``; callers ``open()`` or ``exec_()`` it.
 """
@@ -15,6 +16,7 @@ from PyQt5.QtWidgets import (
     QHeaderView,
     QLabel,
     QLineEdit,
+    QMessageBox,
     QPushButton,
     QSpinBox,
     QTableWidget,
@@ -22,6 +24,8 @@ from PyQt5.QtWidgets import (
     QVBoxLayout,
     QWidget,
 )
+
+from .document import INSTANCE, PLAN, Document
 
 MAX_GRID = 500
 MAX_COUNT = 100_000
@@ -36,6 +40,17 @@ def spin(value: int, low: int, high: int, special: str | None = None) -> QSpinBo
     if special is not None:
         box.setSpecialValueText(special)
     return box
+
+
+def confirm_discard(parent: QWidget, document: Document) -> bool:
+    """Whether unsaved edits may go (asks when there are any)."""
+    if not document.modified:
+        return True
+    parts = [name for name, part in (("instance", INSTANCE), ("plan", PLAN)) if document.unsaved(part)]
+    subject = "The instance and the plan have" if len(parts) == 2 else f"The {parts[0]} has"
+    answer = QMessageBox.question(parent, "asprilo viz", f"{subject} unsaved edits. Discard them?",
+                                  QMessageBox.Discard | QMessageBox.Cancel, QMessageBox.Cancel)
+    return answer == QMessageBox.Discard
 
 
 def _buttons(dialog: QDialog) -> QDialogButtonBox:

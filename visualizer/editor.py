@@ -1,97 +1,86 @@
-"""The layout editor inside the viewer's window: tools, mouse, right-click menu, undo, saving.
+"""The layout editor inside the viewer's window: edit tools, the right-click menu, undo and
+redo, new instances, resizing, saving.
 
 Edits always change the instance's initial state (the window shows step 0 after each);
 a loaded plan stays and is replayed on the edited instance, so its violations update at
 once.  Edits that would break a rule of SPEC.md §1 are refused with the reason in the
 status bar and a tooltip; problems of a loaded instance are marked red like violations.
+The mouse's part (clicks, drags, strokes) is in ``edit_mouse.py``.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
+from contextlib import AbstractContextManager
 from pathlib import Path
-from typing import TYPE_CHECKING
 
-from PyQt5.QtCore import QEvent, QObject, QPoint, Qt
-from PyQt5.QtGui import QColor, QKeySequence, QPen
-from PyQt5.QtWidgets import QAction, QDockWidget, QFileDialog, QGraphicsRectItem, QMenu, QMessageBox, QToolTip
+from PyQt5.QtCore import QObject, QSettings, Qt
+from PyQt5.QtWidgets import QDockWidget, QFileDialog, QMainWindow, QMenu
 
-from asprilo.model import Cell, Destination, Instance, PickingStation, Robot, Shelf
-from asprilo.sources import Source
+from asprilo.model import Cell, Instance, Robot
 
-from . import edits, style
-from .dialogs import SizeDialog, StockDialog
-from .edit_commands import Document
-from .edits import NAMES, TABLES, Edit, EditRefused
+from . import edits
+from .commands import Table, make_actions
+from .dialogs import SizeDialog, StockDialog, confirm_discard
+from .document import Change
+from .drafts import DraftOrders
+from .edit_mouse import MouseEditing
+from .edits import NAMES, Edit, EditRefused
+from .files import remember_folder, start_folder
 from .loading import Scenario
 from .order_editor import OrderEditor
-from .tools import OBJECT_TOOLS, ToolPalette
-
-if TYPE_CHECKING:
-    from .window import MainWindow
+from .palette import OBJECT_TOOLS, EditPalette
+from .panels import Panels
+from .stage import Stage
+from .state import ViewerState
 
 INSTANCE_FILTER = "ASP facts (*.lp);;All files (*)"
+PLAN_FILTER = "ASP facts (*.lp);;All files (*)"
 DEFAULT_SIZE = (10, 6)
-_MAKERS = {"robot": Robot, "shelf": Shelf, "station": PickingStation, "destination": Destination}
 
-#: name -> (menu text, shortcut)
-EDIT_ACTIONS: dict[str, tuple[str, str]] = {
-    "new": ("&New instance…", "Ctrl+N"),
-    "save": ("&Save instance", "Ctrl+S"),
-    "save_as": ("Save instance &as…", "Ctrl+Shift+S"),
-    "save_template": ("Save as &template (for gen -T)…", ""),
-    "resize": ("&Resize grid…", "Ctrl+Shift+R"),
+EDIT_ACTIONS: Table = {
+    "new": ("&New instance…", ("Ctrl+N",)),
+    "save": ("&Save instance", ("Ctrl+S",)),
+    "save_as": ("Save instance &as…", ("Ctrl+Shift+S",)),
+    "save_template": ("Save as &template (for gen -T)…", ()),
+    "save_plan": ("Save &plan as…", ("Ctrl+Alt+S",)),
+    "resize": ("&Resize grid…", ("Ctrl+Shift+R",)),
+    "undo": ("&Undo", ("Ctrl+Z",)),
+    "redo": ("&Redo", ("Ctrl+Shift+Z", "Ctrl+Y")),
 }
+_SCENARIO_COMMANDS = ("save", "save_as", "save_template", "save_plan")
 
 
 class Editor(QObject):
-    """Edits the window's instance through a :class:`Document` (undo stack included)."""
+    """Edits the state's document; refuses edits the rules forbid, saying why."""
 
-    def __init__(self, window: MainWindow):
+    def __init__(self, state: ViewerState, stage: Stage, window: QMainWindow, settings: QSettings):
         super().__init__(window)
-        self.window = window
-        self.view = window.view
-        self.document = Document(self)
-        self.document.changed.connect(self._changed)
-        self.document.modified_changed.connect(window.show_title)
+        self.state, self.stage, self.window, self.settings = state, stage, window, settings
+        self.document = state.document
+        self.view = stage.view
         self.last_message: str | None = None  # the last refusal (tests and status bar)
-        self.locked: str | None = None  # why edits are refused for now (an online session)
-        self.palette = ToolPalette(window)
+        self.palette = EditPalette(window)
         self.palette.tool_changed.connect(self._tool_changed)
-        self.orders = OrderEditor(self.document, self.perform)
-        self.commands = self._make_actions()
-        self._drag: _Drag | None = None
-        self._stroke: _Stroke | None = None
-        self.view.viewport().installEventFilter(self)
+        self.document_orders = _DocumentOrders(self)
+        self.drafts: DraftOrders | None = None  # orders written during an online session
+        self.orders = OrderEditor(self.document_orders)
+        self.orders.send_clicked.connect(self.send_drafts)
+        self.orders.discard_clicked.connect(self.discard_drafts)
+        self.commands = make_actions(window, EDIT_ACTIONS, {
+            "new": self.ask_new, "save": self.save, "save_as": self.ask_save_as,
+            "save_template": self.ask_save_template, "save_plan": self.ask_save_plan, "resize": self.ask_resize,
+            "undo": self.document.history.undo, "redo": self.document.history.redo})
+        self.mouse = MouseEditing(self, self)
+        self.document.history.changed.connect(self._show_locks)
+        state.shown.connect(lambda _keep: self._follow())
+        state.track_changed.connect(self._changed)
+        state.locks_changed.connect(self._show_locks)
+        self._follow()
 
-    def _make_actions(self) -> dict[str, QAction]:
-        slots = {"new": self.ask_new, "save": self.save, "save_as": self.ask_save_as,
-                 "save_template": self.ask_save_template, "resize": self.ask_resize}
-        actions = {}
-        for name, (text, key) in EDIT_ACTIONS.items():
-            action = QAction(text, self.window)
-            if key:
-                action.setShortcut(QKeySequence(key))
-            action.triggered.connect(lambda _checked=False, slot=slots[name]: slot())
-            self.window.addAction(action)
-            actions[name] = action
-        actions["undo"] = self.document.stack.createUndoAction(self.window, "&Undo")
-        actions["undo"].setShortcut(QKeySequence.Undo)
-        actions["redo"] = self.document.stack.createRedoAction(self.window, "&Redo")
-        actions["redo"].setShortcuts([QKeySequence("Ctrl+Shift+Z"), QKeySequence("Ctrl+Y")])
-        for name in ("undo", "redo"):
-            self.window.addAction(actions[name])
-        return actions
-
-    def install(self, menus: dict[str, QMenu], before: QAction) -> QDockWidget:
-        """Put the editor's actions into the window's menus and its tools and docks in place."""
-        file = menus["file"]
-        file.insertAction(file.actions()[0], self.commands["new"])
-        for name in ("save", "save_as", "save_template"):
-            file.insertAction(before, self.commands[name])
-        file.insertSeparator(before)
-        edit = QMenu("&Edit", self.window)
-        self.window.menuBar().insertMenu(menus["view"].menuAction(), edit)
+    def install(self, menus: dict[str, QMenu], panels: Panels) -> QDockWidget:
+        """Fill the Edit menu, put the palette on the left and the order editor beside the inventory."""
+        edit = menus["edit"]
         edit.addAction(self.commands["undo"])
         edit.addAction(self.commands["redo"])
         edit.addSeparator()
@@ -99,51 +88,89 @@ class Editor(QObject):
         for action in self.palette.group.actions():
             tools.addAction(action)
         edit.addAction(self.commands["resize"])
-        menus["edit"] = edit
         self.window.addToolBar(Qt.LeftToolBarArea, self.palette)
-        dock = QDockWidget("Order editor", self.window)
-        dock.setObjectName("dock_order_editor")
-        dock.setWidget(self.orders)
+        dock = panels.add_dock("order_editor", "Order editor", self.orders, panels.docks["inventory"])
         edit.addAction(dock.toggleViewAction())
         return dock
 
-    # --- following the window ------------------------------------------------------------------
+    # --- following the state ------------------------------------------------------------------
 
-    def follow(self, scenario: Scenario | None) -> None:
-        """A scenario was opened (or the window emptied): edit its instance from now on."""
-        self.document.reset(scenario.instance if scenario else Instance(), _own_file(scenario))
-        for name in ("save", "save_as", "save_template"):
-            self.commands[name].setEnabled(scenario is not None)
-        self.lock(self.locked)
+    def _follow(self) -> None:
+        """Another scenario is shown (or none): edit its instance from now on."""
+        for name in _SCENARIO_COMMANDS:
+            self.commands[name].setEnabled(self.document.scenario is not None)
+        self._show_locks()
         self._refresh_orders()
 
-    def lock(self, reason: str | None) -> None:
-        """Refuse edits, saying ``reason``, until called with ``None``."""
-        self.locked = reason
-        editable = reason is None and self.window.scenario is not None
+    def _changed(self, change: Change) -> None:
+        if self.drafts is not None:
+            self.drafts.sync()  # the session's world grew
+        self._refresh_orders()
+        if change.edit is not None:
+            self.state.say(change.edit.text, 4000)
+
+    def _show_locks(self) -> None:
+        """Enable what may be edited now."""
+        history = self.document.history
+        editable = self.state.layout_lock() is None and self.document.scenario is not None
+        live = self._follow_session()
         self.palette.setEnabled(editable)
         self.commands["resize"].setEnabled(editable)
-        self.orders.setEnabled(editable)
-        # (the stack re-enables these as it changes; it cannot change while locked)
-        self.commands["undo"].setEnabled(editable and self.document.stack.canUndo())
-        self.commands["redo"].setEnabled(editable and self.document.stack.canRedo())
+        self.orders.setEnabled(editable or (live and self.state.order_lock() is None))
+        self.commands["undo"].setEnabled(editable and history.can_undo)
+        self.commands["redo"].setEnabled(editable and history.can_redo)
+        self.commands["undo"].setStatusTip(f"Undo {history.undo_text}" if history.can_undo else "")
+        self.commands["redo"].setStatusTip(f"Redo {history.redo_text}" if history.can_redo else "")
 
-    def confirm_discard(self) -> bool:
-        """Whether unsaved edits may go (asks when there are any)."""
-        if not self.document.modified:
-            return True
-        answer = QMessageBox.question(self.window, "asprilo viz", "The instance has unsaved edits. Discard them?",
-                                      QMessageBox.Discard | QMessageBox.Cancel, QMessageBox.Cancel)
-        return answer == QMessageBox.Discard
+    def _refresh_orders(self) -> None:
+        track = self.state.track
+        self.orders.refresh(track.violations if track is not None and self.drafts is None else [])
+
+    # --- orders during an online session -----------------------------------------------------------
+
+    def _follow_session(self) -> bool:
+        """Orders written during a session are drafts until sent; whether one runs."""
+        live = self.state.session.running and self.document.scenario is not None
+        if live and (self.drafts is None or self.drafts.world is not self.document.instance):
+            self.drafts = DraftOrders(self.document.instance, self.refuse)
+            self.drafts.changed.connect(self.orders.refresh)
+            self.orders.set_book(self.drafts, live=True)
+        elif not live and self.drafts is not None:
+            self.drafts = None
+            self.orders.set_book(self.document_orders, live=False)
+            self._refresh_orders()
+        return live
+
+    def send_drafts(self) -> bool:
+        """Send the orders written during the session to the solver."""
+        if self.drafts is None:
+            return False
+        problems = self.drafts.problems()
+        if not self.drafts.drafts or problems:
+            self.refuse(problems[0] if problems else "no orders to send: add one first")
+            return False
+        count = len(self.drafts.drafts)
+        self.state.session.send(self.drafts.take())
+        self.state.say(f"sent {count} order{'s' if count != 1 else ''} to the solver", 8000)
+        return True
+
+    def discard_drafts(self) -> None:
+        if self.drafts is not None:
+            self.drafts.discard()
+
+    def _tool_changed(self, tool: str) -> None:
+        self.mouse.tool_changed(tool)
+        self.state.say(self.palette.group.checkedAction().statusTip(), 4000)
 
     # --- edits -------------------------------------------------------------------------------
 
     def perform(self, make: Callable[[], Edit]) -> bool:
-        """Make an edit of the instance and push it on the undo stack, or say why not."""
-        if self.window.scenario is None:
+        """Make an edit of the instance and put it in the history, or say why not."""
+        if self.document.scenario is None:
             return False
-        if self.locked is not None:
-            self.refuse(self.locked)
+        locked = self.state.layout_lock()
+        if locked is not None:
+            self.refuse(locked)
             return False
         try:
             edit = make()
@@ -156,7 +183,7 @@ class Editor(QObject):
     def refuse(self, reason: str) -> None:
         """Say why an edit was not made (the status bar; a tooltip at the mouse for mouse edits)."""
         self.last_message = reason
-        self.window.statusBar().showMessage(f"Not done: {reason}", 8000)
+        self.state.say(f"Not done: {reason}", 8000)
 
     def add(self, kind: str, cell: Cell) -> bool:
         return self.perform(lambda: edits.add_object(self.document.instance, kind, cell))
@@ -188,113 +215,7 @@ class Editor(QObject):
 
     def new_instance(self, width: int, height: int) -> None:
         """Start a new instance: a full grid of storage nodes, nothing on it."""
-        self.window.show_scenario(Scenario(edits.grid(width, height)))
-
-    def _changed(self, edit: Edit) -> None:
-        """The document changed (an edit done, undone or redone): update scene and states."""
-        scene, instance = self.window.scene, self.document.instance
-        if {"nodes", "highways"} & edit.tables:
-            scene.set_floor(instance.nodes.values(), instance.highways.values())
-        for kind, table in TABLES.items():
-            keys = {change.key for change in edit.changes if change.table == table}
-            items = getattr(scene, table)
-            for key in sorted(keys):
-                if key in items:
-                    scene.remove(kind, key)
-                thing = getattr(instance, table).get(key)
-                if thing is not None:
-                    getattr(scene, f"add_{kind}")(_MAKERS[kind](thing.id, thing.at))
-        self.window.show_changes(0.0)
-        self._refresh_orders()
-        self.window.statusBar().showMessage(edit.text, 4000)
-
-    def _refresh_orders(self) -> None:
-        track = self.window.track
-        self.orders.refresh(track.violations if track is not None else [])
-
-    # --- the mouse ---------------------------------------------------------------------------------
-
-    def _tool_changed(self, tool: str) -> None:
-        pointer = tool == "pointer"
-        self.view.setDragMode(self.view.ScrollHandDrag if pointer else self.view.NoDrag)
-        self.view.viewport().setCursor(Qt.ArrowCursor if pointer else Qt.CrossCursor)
-        self.window.statusBar().showMessage(self.palette.group.checkedAction().statusTip(), 4000)
-
-    def eventFilter(self, watched, event) -> bool:
-        kind = event.type()
-        if self.window.scenario is None or self.locked is not None or kind not in _MOUSE_EVENTS:
-            return False  # the viewer's own mouse: pan, select, hover
-        if kind == QEvent.ContextMenu:
-            self.context_menu(self.cell_at(event.pos())).popup(event.globalPos())
-            return True
-        if kind == QEvent.MouseButtonDblClick and event.button() == Qt.LeftButton:
-            return self._double_click(event)
-        if kind == QEvent.MouseButtonPress and event.button() == Qt.LeftButton:
-            return self._press(event)
-        if kind == QEvent.MouseMove and (self._drag or self._stroke):
-            self._move_to(event)
-            return True
-        if kind == QEvent.MouseButtonRelease and event.button() == Qt.LeftButton and (self._drag or self._stroke):
-            self._release(event)
-            return True
-        return False
-
-    def cell_at(self, position: QPoint) -> Cell:
-        return style.cell_at(self.view.mapToScene(position))
-
-    def _press(self, event) -> bool:
-        cell, tool = self.cell_at(event.pos()), self.palette.tool
-        if tool == "pointer":
-            target = self._draggable(cell)
-            if target is None or self.window.player.time != 0:
-                return False  # pan and select as in the viewer (objects are moved in the initial state)
-            self._drag = _Drag(self, *target, cell, event.pos())
-            return True
-        if tool in OBJECT_TOOLS:
-            if not self.add(tool, cell):
-                self._tip(event)
-        elif tool == "erase":
-            here = edits.objects_at(self.document.instance, cell)
-            if here:
-                self.remove(*here[0])
-            else:
-                self.refuse(f"nothing to remove on {edits.cell_text(cell)}")
-                self._tip(event)
-        else:
-            self._stroke = _Stroke(self, tool, cell)
-            if self._stroke.target is None:
-                self._stroke = None
-        return True
-
-    def _tip(self, event) -> None:
-        if self.last_message:
-            QToolTip.showText(event.globalPos(), self.last_message, self.view.viewport())
-
-    def _double_click(self, event) -> bool:
-        here = edits.objects_at(self.document.instance, self.cell_at(event.pos()))
-        shelves = [ident for kind, ident in here if kind == "shelf"]
-        if self.palette.tool != "pointer" or not shelves:
-            return False
-        self.ask_stock(shelves[0])
-        return True
-
-    def _move_to(self, event) -> None:
-        if self._drag is not None:
-            self._drag.follow(event.pos())
-        elif self._stroke is not None:
-            self._stroke.paint(self.cell_at(event.pos()))
-
-    def _release(self, event) -> None:
-        if self._drag is not None:
-            drag, self._drag = self._drag, None
-            drag.drop(event)
-        elif self._stroke is not None:
-            stroke, self._stroke = self._stroke, None
-            stroke.finish()
-
-    def _draggable(self, cell: Cell) -> tuple[str, int] | None:
-        here = edits.objects_at(self.document.instance, cell)
-        return here[0] if here else None
+        self.document.open(Scenario(edits.grid(width, height)))
 
     # --- the right-click menu -------------------------------------------------------------------------
 
@@ -303,8 +224,8 @@ class Editor(QObject):
         instance = self.document.instance
         menu = QMenu(self.view)
         menu.setAttribute(Qt.WA_DeleteOnClose)
-        title = menu.addAction(f"Cell {edits.cell_text(cell)}: {_floor_words(edits.floor_kind(instance, cell))}")
-        title.setEnabled(False)
+        floor = edits.floor_kind(instance, cell)
+        menu.addAction(f"Cell {edits.cell_text(cell)}: {_FLOOR_WORDS[floor]}").setEnabled(False)
         here = edits.objects_at(instance, cell)
         for kind, ident in here:
             menu.addSeparator()
@@ -317,7 +238,6 @@ class Editor(QObject):
         for kind in OBJECT_TOOLS:
             menu.addAction(f"Add {NAMES[kind]} here", lambda k=kind: self.add(k, cell))
         menu.addSeparator()
-        floor = edits.floor_kind(instance, cell)
         for kind, text in (("storage", "Make storage node"), ("highway", "Make highway"),
                            ("missing", "Remove node (wall)")):
             if kind != floor:
@@ -337,11 +257,10 @@ class Editor(QObject):
     # --- dialogs and files -------------------------------------------------------------------------
 
     def ask_new(self) -> None:
-        if not self.confirm_discard():
+        if not confirm_discard(self.window, self.document):
             return
-        width, height = self.document.instance.size if self.window.scenario else DEFAULT_SIZE
-        dialog = SizeDialog("New instance", width or DEFAULT_SIZE[0], height or DEFAULT_SIZE[1],
-                            parent=self.window)
+        width, height = self.document.instance.size if self.document.scenario else DEFAULT_SIZE
+        dialog = SizeDialog("New instance", width or DEFAULT_SIZE[0], height or DEFAULT_SIZE[1], parent=self.window)
         if dialog.exec_():
             self.new_instance(*dialog.values())
 
@@ -364,151 +283,65 @@ class Editor(QObject):
         return self.save_as(self.document.path)
 
     def ask_save_as(self) -> bool:
-        path = self._ask_path("Save instance", self.document.instance.file_name(1))
+        path = self._ask_path("Save instance", self.document.instance.file_name(1), INSTANCE_FILTER)
         return bool(path) and self.save_as(path)
 
     def ask_save_template(self) -> bool:
-        path = self._ask_path("Save as template for gen -T", "template.lp")
+        path = self._ask_path("Save as template for gen -T", "template.lp", INSTANCE_FILTER)
         return bool(path) and self.save_template(path)
 
-    def _ask_path(self, title: str, name: str) -> str:
-        folder = Path(self.window._start_folder())
-        path, _ = QFileDialog.getSaveFileName(self.window, title, str(folder / name), INSTANCE_FILTER)
+    def ask_save_plan(self) -> bool:
+        path = self._ask_path("Save plan", "plan.lp", PLAN_FILTER)
+        return bool(path) and self.save_plan(path)
+
+    def _ask_path(self, title: str, name: str, filters: str) -> str:
+        folder = Path(start_folder(self.settings))
+        path, _ = QFileDialog.getSaveFileName(self.window, title, str(folder / name), filters)
         if path:
-            self.window.settings.setValue("last_folder", str(Path(path).parent))
+            remember_folder(self.settings, path)
         return path
 
     def save_as(self, path: str | Path) -> bool:
         """Save the instance's initial state in the canonical format; the window now shows that file."""
-        try:
-            self.document.save(path)
-        except OSError as error:
-            self.window.report_error(f"{path}: cannot write the instance ({error.strerror or error})")
-            return False
-        scenario = self.window.scenario
-        if scenario is not None:
-            if len(scenario.plan) and not scenario.plan_sources:
-                scenario.plan_sources = scenario.instance_sources  # the plan still comes from there
-            scenario.instance_sources = [Source(str(path), self.document.text())]
-            self.window.remember(scenario)
-        self.window.show_title()
-        self.window.statusBar().showMessage(f"saved {path}", 5000)
-        return True
+        return self._write(lambda: self.document.save(path), path, "the instance", f"saved {path}")
 
     def save_template(self, path: str | Path) -> bool:
+        return self._write(lambda: self.document.save_template(path), path, "the template",
+                           f"saved template {path} (for gen -T)")
+
+    def save_plan(self, path: str | Path) -> bool:
+        """Save the plan shown (one ``occurs/3`` fact per line)."""
+        return self._write(lambda: self.document.save_plan(path), path, "the plan", f"saved plan {path}")
+
+    def _write(self, write: Callable[[], None], path: str | Path, what: str, done: str) -> bool:
         try:
-            self.document.save_template(path)
+            write()
         except OSError as error:
-            self.window.report_error(f"{path}: cannot write the template ({error.strerror or error})")
+            self.state.report_error(f"{path}: cannot write {what} ({error.strerror or error})")
             return False
-        self.window.statusBar().showMessage(f"saved template {path} (for gen -T)", 5000)
+        self.state.say(done)
         return True
 
 
-_MOUSE_EVENTS = (QEvent.MouseButtonPress, QEvent.MouseMove, QEvent.MouseButtonRelease,
-                 QEvent.MouseButtonDblClick, QEvent.ContextMenu)
+class _DocumentOrders:
+    """The document's orders for the order editor: edits go through the editor (locks,
+    refusals) into the history."""
 
-
-def _floor_words(kind: str) -> str:
-    return {"storage": "storage node", "highway": "highway", "missing": "no node (wall)"}[kind]
-
-
-def _own_file(scenario: Scenario | None) -> str | None:
-    """The file Save writes to: the scenario's one instance file, unless it also holds the plan."""
-    if scenario is None:
-        return None
-    instances, plans = scenario.files
-    if len(scenario.instance_sources) != 1 or len(instances) != 1:
-        return None
-    if len(scenario.plan) and not scenario.plan_sources:
-        return None  # the plan came from the instance file: saving the instance would lose it
-    return instances[0]
-
-
-class _Drag:
-    """An object dragged with the pointer tool: it follows the mouse; dropped, it moves there."""
-
-    def __init__(self, editor: Editor, kind: str, ident: int, cell: Cell, start: QPoint):
-        self.editor, self.kind, self.ident, self.origin, self.start = editor, kind, ident, cell, start
-        scene, instance = editor.window.scene, editor.document.instance
-        self.items = [getattr(scene, TABLES[kind])[ident]]
-        if kind == "robot" and instance.robots[ident].carries in scene.shelves:
-            self.items.append(scene.shelves[instance.robots[ident].carries])
-        self.target = QGraphicsRectItem(style.cell_rect(cell).adjusted(3, 3, -3, -3))
-        self.target.setZValue(20)
-        self.target.setVisible(False)
-        scene.addItem(self.target)
-        self.moved = False
-
-    def follow(self, position: QPoint) -> None:
-        if not self.moved and (position - self.start).manhattanLength() <= 4:
-            return
-        self.moved = True
-        point = self.editor.view.mapToScene(position)
-        for item in self.items:
-            item.setPos(point)
-        cell = style.cell_at(point)
-        try:
-            edits.move_object(self.editor.document.instance, self.kind, self.ident, cell)
-            colour, reason = style.DELIVERY, None
-        except EditRefused as refusal:
-            colour, reason = style.VIOLATION, str(refusal)
-        self.target.setRect(style.cell_rect(cell).adjusted(3, 3, -3, -3))
-        self.target.setPen(QPen(colour, 0.06 * style.CELL))
-        fill = QColor(colour)
-        fill.setAlpha(50)
-        self.target.setBrush(fill)
-        self.target.setVisible(True)
-        self.editor.window.statusBar().showMessage(reason or f"drop {NAMES[self.kind]} {self.ident} on "
-                                                   f"{edits.cell_text(cell)}", 3000)
-
-    def drop(self, event) -> None:
-        self.editor.window.scene.removeItem(self.target)
-        if not self.moved:  # a click: select as the viewer does
-            self.editor.view.clicked.emit(self.editor.view.objects_at(event.pos()), event.modifiers())
-            return
-        cell = self.editor.cell_at(event.pos())
-        if not self.editor.move(self.kind, self.ident, cell):
-            for item in self.items:  # refused or not moved: back to where it stands
-                item.setPos(style.centre(self.origin))
-            self.editor._tip(event)
-
-
-_STROKE_WORDS = {"storage": "storage nodes", "highway": "highways", "missing": "walls"}
-
-
-class _Stroke:
-    """Highway or wall painted over cells with the mouse button held: one undoable step."""
-
-    def __init__(self, editor: Editor, tool: str, cell: Cell):
+    def __init__(self, editor: Editor):
         self.editor = editor
-        kind = edits.floor_kind(editor.document.instance, cell)
-        if tool == "highway":
-            if kind == "missing":
-                editor.refuse(f"{edits.cell_text(cell)} is not a node: restore it first (Wall tool)")
-                self.target = None
-                return
-            self.target = "storage" if kind == "highway" else "highway"
-        else:
-            self.target = "storage" if kind == "missing" else "missing"
-        self.cells: set[Cell] = set()
-        self.open = False
-        self.paint(cell)
 
-    def paint(self, cell: Cell) -> None:
-        if cell in self.cells:
-            return
-        self.cells.add(cell)
-        try:
-            edit = edits.set_floor(self.editor.document.instance, cell, self.target)
-        except EditRefused as refusal:
-            self.editor.refuse(str(refusal))
-            return
-        if edit.changes and not self.open:
-            self.editor.document.stack.beginMacro(f"make {_STROKE_WORDS[self.target]}")
-            self.open = True
-        self.editor.document.perform(edit)
+    @property
+    def instance(self) -> Instance:
+        return self.editor.document.instance
 
-    def finish(self) -> None:
-        if self.open:
-            self.editor.document.stack.endMacro()
+    def perform(self, make: Callable[[], Edit]) -> bool:
+        return self.editor.perform(make)
+
+    def group(self, text: str) -> AbstractContextManager:
+        return self.editor.document.history.group(text)
+
+    def shows(self, order: int) -> bool:
+        return True
+
+
+_FLOOR_WORDS = {"storage": "storage node", "highway": "highway", "missing": "no node (wall)"}

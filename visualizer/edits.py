@@ -3,8 +3,8 @@
 Every edit function looks at an :class:`Instance` and either returns an :class:`Edit` (what
 it says in the undo history, and the table entries it changes with their old and new
 values) or raises :class:`EditRefused` with the reason, e.g. *(3,4) is a highway: shelves
-may not rest there*.  Nothing here touches Qt: :func:`apply` performs an edit, the undo
-stack (``edit_commands.py``) calls it forwards and backwards.
+may not rest there*.  Nothing here touches Qt: :func:`apply` performs an edit, the document
+(``document.py``) calls it forwards and backwards for its undo history.
 
 The rules follow SPEC.md §1: objects stand on nodes; at most one robot, one shelf and one
 picking station per node; shelves rest only on storage nodes (neither highway nor picking
@@ -280,22 +280,9 @@ def set_floor(instance: Instance, cell: Cell, kind: str, width: int | None = Non
         raise ValueError(f"unknown floor kind {kind!r}")
     if cell[0] < 1 or cell[1] < 1:
         raise EditRefused(f"{cell_text(cell)} lies outside the grid (X and Y start at 1)")
-    now = floor_kind(instance, cell)
-    if now == kind:
+    if floor_kind(instance, cell) == kind:
         return Edit(f"{cell_text(cell)} is already {_floor_words(kind)}")
-    here = objects_at(instance, cell)
-    if kind == "missing" and here:
-        names = ", ".join(f"{NAMES[k]} {i}" for k, i in here)
-        raise EditRefused(f"{names} stand{'s' if len(here) == 1 else ''} on {cell_text(cell)}: "
-                          "remove it first")
-    if kind == "highway":
-        resting = [i for k, i in here if k == "shelf" and carrier_of(instance, i) is None]
-        if resting:
-            raise EditRefused(f"shelf {resting[0]} rests on {cell_text(cell)}: a highway must stay free of shelves")
-        station = next((i for k, i in here if k == "station"), None)
-        if station is not None:
-            raise EditRefused(f"picking station {station} is on {cell_text(cell)}: "
-                              "picking stations are never on highways")
+    _check_floor(instance, cell, kind)
     width = width or max(instance.size[0], cell[0])
     record = _Recorder(instance)
     node = next((i for i, at in instance.nodes.items() if at == cell), None)
@@ -311,6 +298,24 @@ def set_floor(instance: Instance, cell: Cell, kind: str, width: int | None = Non
     elif highway is not None:
         record.remove("highways", highway)
     return record.edit(f"make {cell_text(cell)} {_floor_words(kind)}")
+
+
+def _check_floor(instance: Instance, cell: Cell, kind: str) -> None:
+    """Raise unless what stands on ``cell`` may stand on floor of ``kind``."""
+    here = objects_at(instance, cell)
+    if kind == "missing" and here:
+        names = ", ".join(f"{NAMES[k]} {i}" for k, i in here)
+        raise EditRefused(f"{names} stand{'s' if len(here) == 1 else ''} on {cell_text(cell)}: "
+                          "remove it first")
+    if kind != "highway":
+        return
+    resting = [i for k, i in here if k == "shelf" and carrier_of(instance, i) is None]
+    if resting:
+        raise EditRefused(f"shelf {resting[0]} rests on {cell_text(cell)}: a highway must stay free of shelves")
+    station = next((i for k, i in here if k == "station"), None)
+    if station is not None:
+        raise EditRefused(f"picking station {station} is on {cell_text(cell)}: "
+                          "picking stations are never on highways")
 
 
 def _floor_words(kind: str) -> str:
@@ -329,7 +334,6 @@ def resize(instance: Instance, width: int, height: int) -> Edit:
     objects beyond the new size go (shelves with their stock)."""
     if width < 1 or height < 1:
         raise EditRefused(f"a grid needs at least one column and one row, not {width}x{height}")
-    old_width, old_height = instance.size
 
     def inside(cell: Cell) -> bool:
         return cell[0] <= width and cell[1] <= height
@@ -343,7 +347,13 @@ def resize(instance: Instance, width: int, height: int) -> Edit:
         for ident, cell in getattr(instance, table).items():
             if not inside(cell):
                 record.remove(table, ident)
-    taken = {i for i, cell in instance.nodes.items() if inside(cell)}
+    _add_new_cells(instance, width, height, {i for i, cell in instance.nodes.items() if inside(cell)}, record)
+    return record.edit(f"resize the grid to {width}x{height}")
+
+
+def _add_new_cells(instance: Instance, width: int, height: int, taken: set[int], record: _Recorder) -> None:
+    """Storage nodes on the cells a grid grown to ``width`` x ``height`` gains."""
+    old_width, old_height = instance.size
     for y in range(1, height + 1):
         for x in range(1, width + 1):
             if x > old_width or y > old_height:
@@ -351,7 +361,6 @@ def resize(instance: Instance, width: int, height: int) -> Edit:
                 ident = wanted if wanted not in taken else max(taken, default=0) + 1
                 taken.add(ident)
                 record.set("nodes", ident, (x, y))
-    return record.edit(f"resize the grid to {width}x{height}")
 
 
 # --- inventory ----------------------------------------------------------------------------------

@@ -63,13 +63,16 @@ def caption_height(cell_px: int) -> int:
 
 @contextmanager
 def _detail_for(scene: WarehouseScene, cell_px: int) -> Iterator[None]:
-    """Give the scene the look that suits ``cell_px`` while exporting, then the one it had."""
-    fine = scene.fine
+    """Give the scene the look that suits ``cell_px`` while exporting (outlines, the labels
+    that can be read), then the one it had."""
+    fine, labels, label_px = scene.fine, scene.labels_on, scene.label_cell_px
     scene.set_detail(cell_px >= style.FINE_DETAIL_PX)
+    scene.show_labels(labels, cell_px)
     try:
         yield
     finally:
         scene.set_detail(fine)
+        scene.show_labels(labels, label_px)
 
 
 def render(scene: WarehouseScene, cell_px: int, caption: str | None = None) -> QImage:

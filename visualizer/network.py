@@ -2,10 +2,16 @@
 simulator (QTcpSocket), and the session that plays the world they describe step by step.
 
 Nothing here ever waits: sockets report through Qt signals, and every answer that is
-expected has a deadline, after which the session stops with a message.
+expected has a deadline, after which the session stops with a message.  Whatever a server
+sends, the session ends with a reason rather than the window: bytes that are not UTF-8, a
+line longer than ``MAX_LINE_BYTES``, a message that is malformed or whose facts the reader
+refuses.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
 
 from PyQt5.QtCore import QObject, QTimer, pyqtSignal
 from PyQt5.QtNetwork import QAbstractSocket, QTcpSocket
@@ -16,6 +22,8 @@ from asprilo.online.protocol import DONE, END, Message, done, instance_facts, pa
 
 #: seconds to wait for a connection, for the simulator's and for the solver's answers
 CONNECT_SECONDS, SIMULATOR_SECONDS, SOLVER_SECONDS = 10.0, 30.0, 300.0
+#: the longest line a server may send (a 200x200 warehouse's world is about 2 MB)
+MAX_LINE_BYTES = 32 * 2**20
 
 
 class LineLink(QObject):
@@ -67,18 +75,30 @@ class LineLink(QObject):
 
     def _read(self) -> None:
         while self.socket.canReadLine():
-            line = bytes(self.socket.readLine()).decode("utf-8", errors="replace")
+            data = bytes(self.socket.readLine(MAX_LINE_BYTES + 2))
+            if not data.endswith(b"\n"):
+                self._refuse(f"a line longer than {_size(MAX_LINE_BYTES)}")
+                return
             self.waiting = max(0, self.waiting - 1)
             if self.waiting:
                 self.deadline.start(int(self.answer_seconds * 1000))
             else:
                 self.deadline.stop()
             try:
-                message = parse(line)
+                message = parse(data.decode("utf-8"))
+            except UnicodeDecodeError as error:
+                self._refuse(f"bytes that are not UTF-8 (0x{data[error.start]:02X} at byte {error.start + 1} "
+                             "of a line)")
+                return
             except InputError as error:
-                self.failed.emit(f"{self.where} sent a bad message: {error.message}")
+                self._refuse(f"a bad message: {error.message}")
                 return
             self.received.emit(message)
+        if self.socket.bytesAvailable() > MAX_LINE_BYTES:
+            self._refuse(f"a line longer than {_size(MAX_LINE_BYTES)}")
+
+    def _refuse(self, what: str) -> None:
+        self.failed.emit(f"{self.where} sent {what}")
 
     def _error(self, _error) -> None:
         if self.socket.error() == QAbstractSocket.RemoteHostClosedError:
@@ -93,6 +113,10 @@ class LineLink(QObject):
             self.failed.emit(f"{self.where} did not answer within {self.answer_seconds:g} s")
 
 
+def _size(count: int) -> str:
+    return f"{count / 2**20:g} MB" if count >= 2**20 else f"{count:,} bytes"
+
+
 class LiveSession(QObject):
     """Plays a world online: the simulator (or the instance given) says what the world is and
     what arrives when, the solver what the robots do, one step at a time.
@@ -100,7 +124,9 @@ class LiveSession(QObject):
     The window reports every state it has shown through :meth:`shown`; when that is the last
     state known, the session asks for the next step: ``%$done(T).`` to the simulator, whose
     answer (the facts arriving at T) goes to the solver followed by ``%$done(T).``; the
-    solver's answer holds the actions of step T+1.
+    solver's answer holds the actions of step T+1.  Facts the window sends (orders written
+    during the session, :meth:`send`) go to the solver with the next ``%$done(T).``, like
+    facts from the simulator.
     """
 
     world_changed = pyqtSignal(object, bool)   # the Instance; whether it is the first world
@@ -118,6 +144,8 @@ class LiveSession(QObject):
         self.actions: list[Action] = []
         self.frontier = 0          # the last step whose actions are known
         self.asking: int | None = None  # the step being asked about
+        self.outbox: list[str] = []  # facts from the window for the solver, sent with the next question
+        self._sending = ""  # those facts, while their question waits for the simulator
         self.ended = simulator_port is None  # nothing more will arrive
         self.running = False
         self._pending: set[LineLink] = set()  # links not connected yet
@@ -148,15 +176,27 @@ class LiveSession(QObject):
             link.close()
         self.stopped.emit(reason)
 
+    def send(self, facts: str) -> None:
+        """Tell the solver these facts (new orders) with the next question."""
+        self.outbox.append(facts)
+
     def shown(self, step: int) -> None:
-        """The window shows the state after ``step``: ask for the next one if it is the last known."""
-        if self.running and step == self.frontier and self.asking is None and not self._pending:
-            self.asking = step
-            if self.simulator is not None:
-                self.simulator.send(done(step), answered=True)
-            else:
-                self.solver.send(done(step), answered=True)
-            self.status.emit(f"asking for step {step + 1}…")
+        """The window shows the state after ``step``: ask for the next one if it is the last
+        known (when the robots waited at the last steps, the last state the plan shows)."""
+        last = max((action.step for action in self.actions), default=0)
+        if not self.running or step < min(self.frontier, last) or self.asking is not None or self._pending:
+            return
+        self.asking = self.frontier
+        self._sending, self.outbox = " ".join(self.outbox), []
+        if self._sending and not self._learn(self._sending):
+            return
+        if self._sending:
+            self.world_changed.emit(self.instance, False)
+        if self.simulator is not None:
+            self.simulator.send(done(self.asking), answered=True)
+        else:
+            self.solver.send(Message(self._sending, DONE, self.asking), answered=True)
+        self.status.emit(f"asking for step {self.asking + 1}…")
 
     # --- answers ---------------------------------------------------------------------------------
 
@@ -192,13 +232,13 @@ class LiveSession(QObject):
                 return
             self.world_changed.emit(self.instance, False)
             self.status.emit(f"step {self.asking}: new facts arrived, the solver re-plans…")
-        self.solver.send(Message(message.facts, DONE, self.asking), answered=True)
+        facts = " ".join(part for part in (message.facts, self._sending) if part)
+        self.solver.send(Message(facts, DONE, self.asking), answered=True)
 
     def _learn(self, facts: str) -> bool:
-        try:
-            world = read_world(self.facts + [facts], "<simulator>")
-        except InputError as error:
-            self.stop(f"the simulator sent facts that are no instance: {error}")
+        world = self._read(lambda: read_world(self.facts + [facts], "<simulator>"),
+                           "the simulator sent facts that are no instance")
+        if world is None:
             return False
         self.facts.append(facts)
         if self.instance is None:
@@ -210,19 +250,27 @@ class LiveSession(QObject):
     def _from_solver(self, message: Message) -> None:
         if not self.running or self.asking is None:
             return
-        try:
-            actions = read_actions(message.facts)
-        except InputError as error:
-            self.stop(f"the solver sent no actions: {error}")
+        actions = self._read(lambda: read_actions(message.facts), "the solver sent no actions")
+        if actions is None:
             return
         step, self.asking = self.asking + 1, None
         wrong = [a for a in actions if a.step != step]
         if wrong:
             self.stop(f"asked for step {step}, the solver sent an action of step {wrong[0].step}")
             return
-        if not actions and self.ended:
+        if not actions and self.ended and not self.outbox:
             self.stop(f"the solver has nothing more to do after step {step - 1}")
             return
         self.actions += actions
         self.frontier = step
         self.stepped.emit(step)
+
+    def _read(self, read: Callable[[], Any], what: str) -> Any:
+        """``read()``, or ``None`` when it fails: then the session stops, saying ``what`` and why."""
+        try:
+            return read()
+        except InputError as error:
+            self.stop(f"{what}: {error}")
+        except Exception as error:  # whatever the reader cannot cope with ends the session, not the window
+            self.stop(f"{what}: {type(error).__name__}: {error}")
+        return None

@@ -7,7 +7,7 @@ from enum import Enum
 from PyQt5.QtCore import QPointF
 
 from . import style
-from .items import TrailItem
+from .marks import TrailItem
 from .scene import WarehouseScene
 from .track import Track
 

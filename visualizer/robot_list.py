@@ -1,4 +1,5 @@
-"""The robots panel: position, carried shelf, action now and next, idle steps."""
+"""The robots panel: position, carried shelf, action now (at the step shown) and next, idle
+steps so far."""
 
 from __future__ import annotations
 
@@ -14,8 +15,9 @@ from .track import Track
 class RobotsModel(StepModel):
     """One row per robot at the step shown; robots off the floor are tinted red."""
 
-    columns = ("Robot", "Position", "Carries", "Current action", "Next action", "Idle steps")
+    columns = ("Robot", "Position", "Carries", "Action", "Next", "Idle")
     dynamic = (1,)
+    widths = {3: 120, 4: 120}  # "move right", "deliver 2 × product 5 to order 1" (cut short)
 
     def build_rows(self, track: Track) -> list[int]:
         return list(track.robot_ids)

@@ -23,10 +23,14 @@ from .items import DestinationItem, ObjectItem, RobotItem, ShelfItem, ShelfLayer
 from .style import CELL
 
 MISSING, STORAGE, HIGHWAY = 0, 1, 2
+#: id labels smaller than this many screen pixels are hidden (they could not be read)
+MIN_LABEL_PX = 7.0
+_ITEMS = {"robot": RobotItem, "shelf": ShelfItem, "station": StationItem, "destination": DestinationItem}
 
 
-class Floor:
-    """The floor's cells by kind (missing, storage, highway) over its bounding box."""
+class FloorPicture:
+    """The floor drawn as the scene's background: its cells by kind (missing, storage,
+    highway) over its bounding box, as tiles or, when cells are tiny, one pixel each."""
 
     def __init__(self, nodes: Iterable[Cell], highways: Iterable[Cell]):
         nodes, highways = _cells(nodes), _cells(highways)
@@ -79,7 +83,7 @@ class Floor:
             size = CELL - 2 * inset
             painter.setBrush(colour)
             painter.drawRects([QRectF((x0 + x) * CELL + inset, (y0 + y) * CELL + inset, size, size)
-                               for x, y in zip(xs.tolist(), ys.tolist())])
+                               for x, y in zip(xs.tolist(), ys.tolist(), strict=True)])
         painter.restore()
 
 
@@ -101,6 +105,9 @@ class WarehouseScene(QGraphicsScene):
         self.stations: dict[int, StationItem] = {}
         self.destinations: dict[int, DestinationItem] = {}
         self.fine = True
+        self.labels_on = True
+        self.label_cell_px = math.inf  # the cell size in pixels the labels are shown for
+        self._labels_shown = {"robot": True, "shelf": False, "station": True, "destination": True}
         self.shelf_layer = ShelfLayer()  # resting shelves at coarse detail
         self.shelf_layer.setVisible(False)
         self.addItem(self.shelf_layer)
@@ -118,7 +125,7 @@ class WarehouseScene(QGraphicsScene):
     # --- the floor ----------------------------------------------------------------------
 
     def set_floor(self, nodes: Iterable[Cell], highways: Iterable[Cell]) -> None:
-        self.floor = Floor(nodes, highways)
+        self.floor = FloorPicture(nodes, highways)
         self._update_rect()
         self.invalidate(self.sceneRect(), QGraphicsScene.BackgroundLayer)
 
@@ -167,16 +174,20 @@ class WarehouseScene(QGraphicsScene):
             self.removeItem(table.pop(item.ident))
         if not self.fine:
             item.set_detail(False)
+        item.set_label_shown(self._labels_shown[item.kind])
         item.setPos(style.centre(cell))
         table[item.ident] = item
         self.addItem(item)
         return item
 
+    def table(self, kind: str) -> dict[int, ObjectItem]:
+        """The items of one kind of object (robot, shelf, station, destination) by id."""
+        return {"robot": self.robots, "shelf": self.shelves, "station": self.stations,
+                "destination": self.destinations}[kind]
+
     def remove(self, kind: str, ident: int) -> None:
         """Remove the item of an object (``kind``: robot, shelf, station, destination)."""
-        table = {"robot": self.robots, "shelf": self.shelves, "station": self.stations,
-                 "destination": self.destinations}[kind]
-        self.removeItem(table.pop(ident))
+        self.removeItem(self.table(kind).pop(ident))
         if kind == "shelf":
             self.refresh_shelf_layer()
 
@@ -184,8 +195,19 @@ class WarehouseScene(QGraphicsScene):
         for table in (self.stations, self.destinations, self.shelves, self.robots):
             yield from table.values()
 
+    def show_labels(self, on: bool, cell_px: float) -> None:
+        """Show the id labels (``on``) of the kinds of objects whose labels can be read when
+        cells are ``cell_px`` screen pixels wide."""
+        self.labels_on, self.label_cell_px = on, cell_px
+        for kind, item_class in _ITEMS.items():
+            shown = on and item_class.label_size * cell_px >= MIN_LABEL_PX
+            if shown != self._labels_shown[kind]:
+                self._labels_shown[kind] = shown
+                for item in self.table(kind).values():
+                    item.set_label_shown(shown)
+
     def set_detail(self, fine: bool) -> None:
-        """Full look (outlines, labels) or the cheap one for tiny cells."""
+        """Full look (outlines) or the cheap one for tiny cells."""
         if fine == self.fine:
             return
         self.fine = fine

@@ -40,7 +40,8 @@ ROBOT_TEXT = QColor("#ffffff")
 DESTINATION = QColor("#2f6f4f")
 SELECTION = QColor("#1b1f24")
 VIOLATION = QColor("#e03131")
-DELIVERY = QColor("#2b8a3e")
+DELIVERY = QColor("#2b8a3e")        # deliveries, reached goals
+GOAL = QColor("#f76707")            # open goals (without a robot of their own)
 CAPTION = QColor("#343a40")
 
 # relative sizes (fractions of a cell)

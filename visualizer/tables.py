@@ -22,6 +22,8 @@ CURRENT = QColor("#d0ebff")    # the step shown
 CHANGED = QColor("#fff3bf")    # stock that differs from the initial one
 PROBLEM = QColor("#ffe3e3")    # violations
 FADED = QColor("#868e96")      # what lies in the past
+_TOP = QModelIndex()           # the parent of a table's rows
+MAX_COLUMN = 150               # pixels
 
 
 class RowsModel(QAbstractTableModel):
@@ -30,10 +32,10 @@ class RowsModel(QAbstractTableModel):
     columns: tuple[str, ...] = ()
     rows: list[Any]
 
-    def rowCount(self, parent: QModelIndex = QModelIndex()) -> int:
+    def rowCount(self, parent: QModelIndex = _TOP) -> int:
         return 0 if parent.isValid() else len(self.rows)
 
-    def columnCount(self, parent: QModelIndex = QModelIndex()) -> int:
+    def columnCount(self, parent: QModelIndex = _TOP) -> int:
         return 0 if parent.isValid() else len(self.columns)
 
     def headerData(self, section: int, orientation, role=Qt.DisplayRole):
@@ -47,6 +49,8 @@ class StepModel(RowsModel):
 
     #: columns whose contents depend on the step
     dynamic: tuple[int, ...] = ()
+    #: column -> width in pixels, for columns whose texts change with the step
+    widths: dict[int, int] = {}
 
     def __init__(self, parent=None):
         super().__init__(parent)
@@ -112,7 +116,7 @@ class StepModel(RowsModel):
             font.setBold(True)
             return font
         if role == Qt.ToolTipRole:
-            return self.tooltip(row, index.column())
+            return self.tooltip(row, index.column()) or self.text(row, index.column()) or None
         if role == Qt.TextAlignmentRole and isinstance(self.value(row, index.column()), int):
             return int(Qt.AlignRight | Qt.AlignVCenter)
         return None
@@ -159,7 +163,16 @@ class TablePanel(QWidget):
 
     def set_track(self, track: Track | None) -> None:
         self.model.set_track(track)
-        self.table.resizeColumnsToContents()
+        self.fit_columns()
+
+    def fit_columns(self) -> None:
+        """Columns as wide as their contents and title (not the sort mark), at most
+        ``MAX_COLUMN`` pixels: longer texts are cut short, the tooltip shows them whole."""
+        header, metrics = self.table.horizontalHeader(), self.table.horizontalHeader().fontMetrics()
+        fixed = self.model.widths
+        for column, title in enumerate(self.model.columns):
+            width = max(self.table.sizeHintForColumn(column), metrics.horizontalAdvance(title) + 14)
+            header.resizeSection(column, fixed.get(column, min(width, MAX_COLUMN)))
 
     def show_step(self, step: int) -> None:
         self.model.show_step(step)

@@ -1,4 +1,4 @@
-"""Generate, Solve and Check from the window, each in a worker thread.
+"""Generate, Solve and Check from the window (the Run menu), each a job in a worker thread.
 
 The window never freezes: a job runs in a :class:`Job` (a QThread); the status bar shows
 what it does (the horizons the solver tries) with a Cancel button.  Editing is locked
@@ -13,25 +13,31 @@ import copy
 import threading
 import time
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import clingo
 from PyQt5.QtCore import QObject, QSettings, QThread, pyqtSignal
-from PyQt5.QtGui import QKeySequence
-from PyQt5.QtWidgets import QAction, QActionGroup, QHBoxLayout, QLabel, QMenu, QProgressBar, QToolButton, QWidget
+from PyQt5.QtWidgets import QActionGroup, QHBoxLayout, QLabel, QMainWindow, QMenu, QProgressBar, QToolButton, QWidget
 
-from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
 from asprilo.reader import value_of
 from asprilo.simulate import Violation
 
+from . import edits
+from .commands import Table, make_actions
 from .dialogs import GenerateDialog
-
-if TYPE_CHECKING:
-    from .window import MainWindow
+from .player import Player
+from .state import ViewerState
 
 #: seconds the solver and the generator may take from the window
 SOLVE_SECONDS, GENERATE_SECONDS = 300.0, 120.0
+
+JOB_ACTIONS: Table = {
+    "generate": ("&Generate (fill this layout)…", ("Ctrl+Shift+G",)),
+    "solve": ("&Solve", ("F9",)),
+    "check": ("&Check with the ASP checker", ("F7",)),
+    "cancel": ("C&ancel", ("Ctrl+.",)),
+}
 
 
 class Job(QThread):
@@ -80,33 +86,26 @@ class JobBar(QWidget):
         self.hide()
 
 
-class GuiTools(QObject):
-    """The Tools menu: Generate…, Solve, Check, Cancel."""
+class JobRunner(QObject):
+    """The Run menu: Generate…, Solve, Check, Cancel, each a job in the background."""
 
-    def __init__(self, window: MainWindow):
+    def __init__(self, state: ViewerState, player: Player, window: QMainWindow, settings: QSettings):
         super().__init__(window)
-        self.window = window
+        self.state, self.player, self.window, self.settings = state, player, window, settings
         self.job: Job | None = None
         self.last_outcome: Any = None  # the last solve's outcome, the last check's report
         self.bar = JobBar(window)
         self.bar.cancel.clicked.connect(self.cancel)
         window.statusBar().addPermanentWidget(self.bar)
-        self.commands: dict[str, QAction] = {}
-        for name, text, key, slot in (("generate", "&Generate (fill this layout)…", "Ctrl+Shift+G", self.ask_generate),
-                                      ("solve", "&Solve", "F9", self.solve),
-                                      ("check", "&Check with the ASP checker", "F7", self.check),
-                                      ("cancel", "C&ancel", "Ctrl+.", self.cancel)):
-            action = QAction(text, window)
-            action.setShortcut(QKeySequence(key))
-            action.triggered.connect(lambda _checked=False, slot=slot: slot())
-            window.addAction(action)
-            self.commands[name] = action
+        self.commands = make_actions(window, JOB_ACTIONS, {"generate": self.ask_generate, "solve": self.solve,
+                                                           "check": self.check, "cancel": self.cancel})
         self.encodings = QActionGroup(self)
+        self.encoding_menu: QMenu | None = None
+        state.shown.connect(lambda _keep: self.update_actions())
+        state.locks_changed.connect(self.update_actions)
         self.update_actions()
 
-    def install(self, menus: dict[str, QMenu]) -> None:
-        menu = QMenu("&Tools", self.window)
-        self.window.menuBar().insertMenu(menus["online"].menuAction(), menu)
+    def install(self, menu: QMenu) -> None:
         menu.addAction(self.commands["generate"])
         menu.addSeparator()
         menu.addAction(self.commands["solve"])
@@ -115,28 +114,19 @@ class GuiTools(QObject):
         menu.addAction(self.commands["check"])
         menu.addSeparator()
         menu.addAction(self.commands["cancel"])
-        menus["tools"] = menu
-
-    @property
-    def settings(self) -> QSettings:
-        return self.window.settings
 
     def update_actions(self) -> None:
         idle = self.job is None
-        shown = self.window.scenario is not None and self.window.live.session is None
+        shown = self.state.document.scenario is not None and not self.state.session.running
         for name in ("generate", "solve", "check"):
             self.commands[name].setEnabled(idle and shown)
         self.commands["cancel"].setEnabled(not idle)
-
-    def _domain(self) -> Domain:
-        scenario = self.window.scenario
-        return scenario.domain or detect_domain(scenario.instance, scenario.plan if len(scenario.plan) else None)
 
     def _fill_encodings(self) -> None:
         from asprilo.encodings import encoding_names
         self.encoding_menu.clear()
         chosen = str(self.settings.value("tools/encoding", "plain"))
-        names = encoding_names(self._domain()) if self.window.scenario is not None else ["plain"]
+        names = encoding_names(self.state.document.domain) if self.state.document.scenario is not None else ["plain"]
         for name in names:
             action = self.encoding_menu.addAction(name)
             action.setCheckable(True)
@@ -148,18 +138,17 @@ class GuiTools(QObject):
 
     def start(self, title: str, work: Callable[[Job], Any], done: Callable[[Job, Any], None]) -> Job | None:
         """Run ``work`` in the background; ``done(job, result)`` in the window's thread afterwards."""
-        if self.job is not None or self.window.scenario is None:
+        if self.job is not None or self.state.document.scenario is None:
             return None
         job = Job(title, work, self)
         job.progress.connect(lambda text: self.bar.label.setText(f"{title}: {text}"))
         job.succeeded.connect(lambda result: self._finished(job) and done(job, result))
-        job.failed.connect(lambda message: self._finished(job) and self.window.report_error(message))
+        job.failed.connect(lambda message: self._finished(job) and self.state.report_error(message))
         self.job = job
         self.bar.label.setText(f"{title}…")
         self.bar.show()
-        self.window.editor.lock(f"{title.lower()} is running: wait or cancel it (Ctrl+.) to edit")
-        self.window.player.pause()
-        self.update_actions()
+        self.player.pause()
+        self.state.begin_job(title)
         job.start()
         return job
 
@@ -168,14 +157,16 @@ class GuiTools(QObject):
         job.wait()
         job.deleteLater()
         if self.job is job:
-            self.job = None
-            self.bar.hide()
-            self.window.editor.lock(None)
-            self.update_actions()
+            self._idle()
         if job.cancel.is_set():
-            self.window.statusBar().showMessage(f"{job.title} cancelled", 5000)
+            self.state.say(f"{job.title} cancelled")
             return False
         return True
+
+    def _idle(self) -> None:
+        self.job = None
+        self.bar.hide()
+        self.state.end_job()
 
     def cancel(self) -> None:
         """Stop the running job (the solver at once; a generation's result is dropped)."""
@@ -184,18 +175,15 @@ class GuiTools(QObject):
             return
         job.cancel.set()
         if job.title == "Generate":  # the generator cannot be interrupted: let it run out unseen
-            self.job = None
-            self.bar.hide()
-            self.window.editor.lock(None)
-            self.update_actions()
-            self.window.statusBar().showMessage("Generate cancelled", 5000)
+            self._idle()
+            self.state.say("Generate cancelled")
 
     # --- generate ----------------------------------------------------------------------------------
 
     def ask_generate(self) -> None:
-        if self.window.scenario is None:
+        if self.state.document.scenario is None:
             return
-        counts = self.window.editor.document.instance.counts()
+        counts = self.state.document.instance.counts()
         dialog = GenerateDialog(counts, int(self.settings.value("tools/seed", 1)), self.window)
         if dialog.exec_():
             values = dialog.values()
@@ -204,7 +192,8 @@ class GuiTools(QObject):
 
     def generate(self, options: dict, seed: int) -> Job | None:
         """Fill the instance shown with the generator (totals in ``options``), as one undoable edit."""
-        template = copy.deepcopy(self.window.editor.document.instance)
+        document = self.state.document
+        template = copy.deepcopy(document.instance)
 
         def work(job: Job):
             from asprilo.generator import populate
@@ -212,11 +201,10 @@ class GuiTools(QObject):
 
         def done(job: Job, generated) -> None:
             self.last_outcome = generated
-            self.window.editor.replace(generated.instance, f"generate (seed {seed})")
+            document.perform(edits.replace_all(document.instance, generated.instance, f"generate (seed {seed})"))
             counts = generated.instance.counts()
-            self.window.statusBar().showMessage(
-                f"generated in {job.seconds:.1f} s: {counts['robots']} robots, {counts['shelves']} shelves, "
-                f"{counts['orders']} orders (Undo takes it back)", 8000)
+            self.state.say(f"generated in {job.seconds:.1f} s: {counts['robots']} robots, {counts['shelves']} "
+                           f"shelves, {counts['orders']} orders (Undo takes it back)", 8000)
 
         return self.start("Generate", work, done)
 
@@ -224,10 +212,10 @@ class GuiTools(QObject):
 
     def solve(self, encoding: str | None = None, time_limit: float = SOLVE_SECONDS) -> Job | None:
         """Find a plan of minimal makespan for the instance shown; play it when found."""
-        if self.window.scenario is None:
+        document = self.state.document
+        if document.scenario is None:
             return None
-        instance = copy.deepcopy(self.window.editor.document.instance)
-        domain = self._domain()
+        instance, domain = copy.deepcopy(document.instance), document.domain
         encoding = encoding or str(self.settings.value("tools/encoding", "plain"))
 
         def work(job: Job):
@@ -240,16 +228,14 @@ class GuiTools(QObject):
             self.last_outcome = outcome
             if not outcome.found:
                 why = f" ({outcome.message})" if outcome.message else ""
-                self.window.report_error(f"No plan: {outcome.status.value}{why}.")
+                self.state.report_error(f"No plan: {outcome.status.value}{why}.")
                 return
-            scenario = self.window.scenario
-            scenario.plan, scenario.plan_sources = outcome.plan, []
-            self.window.show_changes(0.0)
+            document.replace_plan(outcome.plan, f"solve ({encoding}, makespan {outcome.horizon})", time=0.0,
+                                  sources=[])
             minimal = "minimal " if outcome.minimal else ""
-            self.window.statusBar().showMessage(
-                f"plan found in {job.seconds:.1f} s: {minimal}makespan {outcome.horizon}, "
-                f"{len(outcome.plan)} actions ({domain.label}, {encoding})", 10000)
-            self.window.player.play()
+            self.state.say(f"plan found in {job.seconds:.1f} s: {minimal}makespan {outcome.horizon}, "
+                           f"{len(outcome.plan)} actions ({domain.label}, {encoding})", 10000)
+            self.player.play()
 
         return self.start("Solve", work, done)
 
@@ -257,10 +243,10 @@ class GuiTools(QObject):
 
     def check(self) -> Job | None:
         """Run the ASP checker on instance and plan; its diagnostics go to the violations panel."""
-        scenario = self.window.scenario
-        if scenario is None:
+        document = self.state.document
+        if document.scenario is None:
             return None
-        instance, plan, domain = copy.deepcopy(scenario.instance), scenario.plan, self._domain()
+        instance, plan, domain = copy.deepcopy(document.instance), document.plan, document.domain
 
         def work(job: Job):
             from asprilo.checker import check
@@ -274,17 +260,13 @@ class GuiTools(QObject):
 
     def show_report(self, report) -> None:
         """The checker's ``err/3`` diagnostics in the violations panel, said as the viewer says them."""
-        track = self.window.track
+        track = self.state.track
         violations = [explain(track.timeline, error.atom) for error in report.errors]
-        panel = self.window.panels["violations"]
-        panel.model.set_rows(violations)
-        panel.table.resizeColumnsToContents()
-        self.window.docks["violations"].setWindowTitle(f"Violations — ASP checker ({len(violations)})")
-        self.window.docks["violations"].raise_()
+        self.state.show_checker_report(violations)
         replay = {v.atom for v in track.timeline.violations}  # the goal included, also without a plan
         agree = "agrees with" if replay == {v.atom for v in violations} else "differs from"
         verdict = "valid plan" if report.valid else f"{len(violations)} violation{'s' if len(violations) != 1 else ''}"
-        self.window.statusBar().showMessage(f"ASP checker: {verdict}; it {agree} the viewer's replay", 10000)
+        self.state.say(f"ASP checker: {verdict}; it {agree} the viewer's replay", 10000)
 
 
 def explain(timeline, atom: str) -> Violation:

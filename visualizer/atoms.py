@@ -1,0 +1,75 @@
+"""The instance and the plan as ASP atoms, one fact per line, without Qt: the text the atoms
+pane shows, what each line is about (to find an object's facts, an action's step), and
+the plan read back from edited text."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from asprilo.model import Instance, Plan
+from asprilo.reader import read_plan, require_known_robots
+from asprilo.sources import Source
+from asprilo.writer import format_instance, format_plan
+
+PLAN_SOURCE = "<plan atoms>"
+_INIT = re.compile(r"^init\(object\((\w+),(-?\d+)\),value\((\w+),\(?(-?\d+)")
+_ASSIGN = re.compile(r"^assign\(robot\((-?\d+)\),(\w+)\((-?\d+)\)\)")
+_OCCURS = re.compile(r"^occurs\(object\(robot,(-?\d+)\),action\(.*\),(-?\d+)\)\.\s*(%.*)?$")
+_KINDS = {"pickingStation": "station"}
+#: attribute -> the kind of object its value names (``robot carries S``, ``order pickingStation P``, ...)
+_NAMED = {"carries": "shelf", "on": "shelf", "pickingStation": "station", "line": "product"}
+
+
+@dataclass(frozen=True)
+class AtomLine:
+    """One line of text and what it is about."""
+
+    text: str
+    subjects: frozenset[tuple[str, int]] = field(default_factory=frozenset)
+    step: int | None = None  # the step of an ``occurs/3`` fact
+
+
+def about(text: str) -> AtomLine:
+    """What a line of facts is about: the objects it names, the step of an action."""
+    line = text.strip()
+    match = _INIT.match(line)
+    if match:
+        kind, ident, attribute, value = match.groups()
+        subjects = {(_KINDS.get(kind, kind), int(ident))}
+        if attribute in _NAMED:
+            subjects.add((_NAMED[attribute], int(value)))
+        return AtomLine(text, frozenset(subjects))
+    match = _ASSIGN.match(line)
+    if match:
+        robot, kind, goal = match.groups()
+        return AtomLine(text, frozenset({("robot", int(robot)), (kind, int(goal))}))
+    match = _OCCURS.match(line)
+    if match:
+        return AtomLine(text, frozenset({("robot", int(match.group(1)))}), int(match.group(2)))
+    return AtomLine(text)
+
+
+def instance_lines(instance: Instance) -> list[AtomLine]:
+    """The instance's facts in the canonical order, grouped under comments."""
+    text = format_instance(instance, [])
+    body = text[text.index("#program base."):]
+    return [about(line) for line in body.splitlines()]
+
+
+def plan_lines(plan: Plan) -> list[AtomLine]:
+    """The plan's ``occurs/3`` facts, by step and robot."""
+    return [about(line) for line in format_plan(plan).splitlines()]
+
+
+def read_plan_text(text: str, instance: Instance) -> Plan:
+    """The plan that edited text holds; bad text raises ``InputError`` naming the line."""
+    source = Source(PLAN_SOURCE, text)
+    plan = read_plan(source)
+    require_known_robots(plan, instance, [source])
+    return plan
+
+
+def lines_about(lines: list[AtomLine], subject: tuple[str, int]) -> list[int]:
+    """The numbers of the lines that name ``subject``."""
+    return [number for number, line in enumerate(lines) if subject in line.subjects]
