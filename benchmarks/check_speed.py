@@ -50,7 +50,7 @@ def prioritized_m_plan(instance: Instance, limit: int = 300) -> Plan:
     goals = goal_cells(instance)
     costs = floor.distances([r.at for r in robots], goals)
     rows, columns = linear_sum_assignment(np.where(np.isfinite(costs), costs, 10**6))
-    target = {robots[r].id: goals[c] for r, c in zip(rows, columns)}
+    target = {robots[r].id: goals[c] for r, c in zip(rows, columns, strict=True)}
     order = sorted(target, key=lambda robot: -costs[robots.index(instance.robots[robot]), goals.index(target[robot])])
     taken: set[tuple] = set()          # (cell, t)
     crossed: set[tuple] = set()        # (from, to, t)
@@ -61,7 +61,7 @@ def prioritized_m_plan(instance: Instance, limit: int = 300) -> Plan:
         start, goal = instance.robots[robot].at, target[robot]
         waiting.discard(start)
         path = _route(floor.index, start, goal, taken, crossed, parked, waiting, limit)
-        for t, (a, b) in enumerate(zip(path, path[1:]), start=1):
+        for t, (a, b) in enumerate(zip(path, path[1:], strict=False), start=1):
             taken.add((b, t))
             crossed.add((b, a, t))
             if a != b:
@@ -153,8 +153,9 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{name:14s} building ...", end="\r", file=sys.stderr, flush=True)
         instance, plan = build()
         repeat = args.repeat if len(plan) < 100_000 else min(args.repeat, 3)
-        seconds, report = median_time(lambda: check(instance, plan), repeat)
-        simulated, _ = median_time(lambda: simulate(instance, plan, report.domain), repeat)
+        seconds, report = median_time(lambda instance=instance, plan=plan: check(instance, plan), repeat)
+        simulated, _ = median_time(lambda instance=instance, plan=plan, domain=report.domain:
+                                   simulate(instance, plan, domain), repeat)
         print(f"{name:14s} {len(instance.robots):6d} {report.horizon:5d} {len(plan):7d} {len(report.errors):6d} "
               f"{seconds:8.2f} {target:6.1f} {report.statistics['ground_time']:8.2f} {simulated:10.2f}", flush=True)
     command = [sys.executable, "-m", "asprilo.cli", "check", str(small / "x11_y6_n66_r3_s12_ps2_pr5_u50_o3_N001.lp"),

@@ -34,7 +34,7 @@ def scenario(folder: Path) -> Path:
     free = grid.free_cells()
     rng = random.Random(1)
     starts, goals = rng.sample(free, AGENTS), rng.sample(free, AGENTS)
-    tasks = [Task(s, g, 0, 0.0, MAP.name, grid.width, grid.height) for s, g in zip(starts, goals)]
+    tasks = [Task(s, g, 0, 0.0, MAP.name, grid.width, grid.height) for s, g in zip(starts, goals, strict=True)]
     path = folder / "warehouse-random.scen"
     path.write_text(format_scenario(tasks))
     (folder / MAP.name).write_bytes(MAP.read_bytes())

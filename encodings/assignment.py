@@ -52,7 +52,7 @@ def distance_facts(instance: Instance, domain: Domain, floor: Floor | None = Non
     facts = []
     for sources, targets in pairs:
         table = floor.distances(sources, targets)
-        for (i, j) in zip(*np.nonzero(np.isfinite(table))):
+        for (i, j) in zip(*np.nonzero(np.isfinite(table)), strict=True):
             facts.append(f"distance({_cell(sources[i])},{_cell(targets[j])},{int(table[i, j])})")
     return facts
 

@@ -60,7 +60,7 @@ class TimeExpandedNetwork:
     def __init__(self, floor: Floor, starts: list[Cell], goals: list[Cell], horizon: int):
         self.floor, self.starts, self.goals, self.horizon = floor, starts, goals, horizon
         cells = len(floor.cells)
-        edges = np.array([(i, j) for i, j in zip(*floor.graph.nonzero()) if i < j], dtype=np.int64)
+        edges = np.array([(i, j) for i, j in zip(*floor.graph.nonzero(), strict=True) if i < j], dtype=np.int64)
         edges = edges.reshape(-1, 2)
         self.layer = 2 * cells + 2 * len(edges)  # in-nodes, out-nodes, gadget a, gadget b
         layers = horizon + 1
@@ -123,7 +123,7 @@ class TimeExpandedNetwork:
         flow.eliminate_zeros()
         successor: dict[int, int] = {}
         rows = np.repeat(np.arange(self.size), np.diff(flow.indptr))
-        for tail, head, amount in zip(rows, flow.indices, flow.data):
+        for tail, head, amount in zip(rows, flow.indices, flow.data, strict=True):
             if amount > 0 and tail not in (self.source, self.idle):
                 successor[int(tail)] = int(head)
         cells = len(self.floor.cells)

@@ -41,7 +41,7 @@ class World:
 
     def options(self, state, i):
         """Every action robot ``i`` may try: ('wait',), ('move', d), ('pickup',), ('putdown',), ('deliver', ...)."""
-        positions, loads, resting, need, left = state
+        positions, loads, resting, _, _ = state
         at, load = positions[i], loads[i]
         yield ("wait",)
         for d in MOVES:
@@ -50,8 +50,12 @@ class World:
             yield ("pickup",)
         if load is not None and at in self.storage:
             yield ("putdown",)
-        if load is None:
-            return
+        if load is not None:
+            yield from self.deliveries(state, at, load)
+
+    def deliveries(self, state, at, load):
+        """The deliveries a robot carrying shelf ``load`` on ``at`` may make."""
+        need, left = state[3], state[4]
         open_here = [k for k, (o, p) in enumerate(self.lines) if need[k] and self.station_of[o] == at
                      and p in self.holds[load]]
         if self.domain == "a":
