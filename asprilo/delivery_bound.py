@@ -155,20 +155,45 @@ def schedulable(facts: Deliveries) -> bool:
 
 def schedule_bound(facts: Deliveries, start: float) -> float:
     """The first horizon from ``start`` on that the scheduling relaxation does not refute."""
-    import clingo
-
     text = _schedule_facts(facts)
     horizon = int(start)
     for _ in range(SCHEDULE_STEPS):
-        control = clingo.Control(["--warn=none", f"-c horizon={horizon}",
-                                  f"--solve-limit={SCHEDULE_CONFLICTS}"])
-        control.load(str(_PROGRAM))
-        control.add("base", [], text)
-        control.ground([("base", [])])
-        if not control.solve().unsatisfiable:
+        if _relaxed_schedule(text, horizon) != "unsat":
             return float(horizon)
         horizon += 1
     return float(horizon)
+
+
+def _relaxed_schedule(text: str, horizon: int) -> list | str:
+    """A model of the relaxation at ``horizon`` (its deliver/3 atoms), or "unsat" / "unknown"."""
+    import clingo
+
+    control = clingo.Control(["--warn=none", f"-c horizon={horizon}", f"--solve-limit={SCHEDULE_CONFLICTS}"])
+    control.load(str(_PROGRAM))
+    control.add("base", [], text)
+    control.ground([("base", [])])
+    found: list = []
+    result = control.solve(on_model=lambda model: found.extend(model.symbols(shown=True)))
+    if result.unsatisfiable:
+        return "unsat"
+    return found if result.satisfiable else "unknown"
+
+
+def delivery_schedule(instance: Instance, domain: Domain, floor, horizon: int) -> list[tuple[int, int, int]]:
+    """``(order, product, step)`` of every line in a schedule of the relaxation at ``horizon``:
+    a guess of when each line is delivered, for search heuristics (empty when the relaxation
+    does not apply or has no schedule)."""
+    facts = Deliveries(instance, domain, floor)
+    if not facts.lines or not schedulable(facts):
+        return []
+    model = _relaxed_schedule(_schedule_facts(facts), horizon)
+    if isinstance(model, str):
+        return []
+    steps = []
+    for atom in model:
+        line, _robot, step = (argument.number for argument in atom.arguments)
+        steps.append((facts.lines[line].order, facts.lines[line].product, step))
+    return sorted(steps)
 
 
 def _schedule_facts(facts: Deliveries) -> str:

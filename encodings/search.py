@@ -26,6 +26,7 @@ import clingo
 
 from asprilo.bounds import Floor, makespan_bound
 from asprilo.checker import Report, check
+from asprilo.delivery_bound import delivery_schedule
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
 from asprilo.isolation import run_isolated
@@ -44,8 +45,11 @@ ASSIGNMENT_SHARE = 0.2
 ASSIGNMENT_SECONDS = 10.0
 #: after a plan along an assignment, how long to look for shorter plans without it
 TIGHTEN_SECONDS = 10.0
-#: the clasp configuration of the A/B/C searches (measured best on the paper's instances)
-ABC_OPTIONS = ("--configuration=trendy",)
+#: the A/B/C searches use the domain heuristics of abc/hints.lp (while use_hints is true)
+ABC_OPTIONS = ("--heuristic=Domain",)
+#: with hints, a horizon is searched in turns with and without them, each turn twice as long
+#: as the turn before last, starting with this many seconds; learned clauses are kept
+FIRST_TURN = 1.0
 
 
 class SolveStatus(str, Enum):
@@ -442,14 +446,21 @@ class _Search:
         lines = sum(len(order.lines) for order in self.instance.orders.values())
         return first + len(self.instance.cells) + len(self.instance.robots) + 2 * lines
 
-    def _program(self, solver: Solver, horizon: int | None) -> None:
+    def _program(self, solver: Solver, horizon: int | None) -> bool:
+        """Load the encoding and the instance; whether the program has search hints."""
         solver.add(self.facts)
+        hinted = False
         if self.follow_assignment:
             solver.add(self.outcome.assignment.text())
         elif horizon is not None and not self.domain.delivers:
             hints = unusable_goals(self.instance, horizon, self.floor)
             solver.add("".join(f"ruled_out({r},({x},{y})).\n" for r, (x, y) in hints))
+        if horizon is not None and self.domain.delivers:
+            schedule = delivery_schedule(self.instance, self.domain, self.floor, horizon)
+            solver.add("".join(f"hint_serve({o},{p},{t}).\n" for o, p, t in schedule))
+            hinted = bool(schedule)
         solver.load(self.encoding.program)
+        return hinted
 
     def _record(self, attempt: Attempt) -> None:
         self.outcome.horizons_tried.append(attempt)
@@ -481,12 +492,28 @@ class _Search:
             return True
         return False
 
-    def _solve(self, solver: Solver, horizon: int, limit: float | None = None) -> Result:
+    def _solve(self, solver: Solver, horizon: int, limit: float | None = None, hinted: bool = False) -> Result:
         remaining = self.watch.remaining()
         if limit is not None:
             remaining = limit if remaining is None else min(limit, remaining)
         self.watch.phase("solving", horizon)
-        return solver.solve(time_limit=remaining)
+        if not hinted:
+            return solver.solve(time_limit=remaining)
+        return self._solve_in_turns(solver, remaining)
+
+    def _solve_in_turns(self, solver: Solver, limit: float | None) -> Result:
+        """Search with and without hints in turns on one grounding (turns of 1, 1, 2, 2, 4, ... s)."""
+        end = None if limit is None else time.perf_counter() + limit
+        turn, hints = FIRST_TURN, True
+        while True:
+            left = None if end is None else end - time.perf_counter()
+            solver.assign_external("use_hints", hints)
+            result = solver.solve(time_limit=turn if left is None else min(turn, max(left, 0.0)))
+            if result.status is not Status.UNKNOWN or self.watch.cancelled or (left is not None and left <= turn):
+                return result
+            if not hints:
+                turn *= 2
+            hints = not hints
 
     def _solve_at(self, horizon: int, limit: float | None = None) -> Result:
         """Ground and solve the encoding for exactly this horizon, in a fresh solver."""
@@ -500,10 +527,11 @@ class _Search:
             solver.assign_external(f"query({horizon})", True)
         else:
             solver = Solver(self.encoding.theory, self.options, constants={"horizon": horizon})
-            self._program(solver, horizon)
+            hinted = self._program(solver, horizon)
             self.watch.attach(solver)
             self.watch.phase("grounding", horizon)
             solver.ground()
+            return self._solve(solver, horizon, limit, hinted)
         return self._solve(solver, horizon, limit)
 
     def _single_shot(self, first: int, last: int) -> None:
