@@ -4,6 +4,7 @@ options of every command that reads data (``--allow-rules``, ``--limit NAME=N``)
 from __future__ import annotations
 
 import argparse
+import math
 
 from .domain import Domain
 from .errors import InputError
@@ -27,6 +28,28 @@ def port_argument(text: str) -> int:
     if not 0 <= port <= 65535:
         raise argparse.ArgumentTypeError(f"a port is 0..65535, got {port}")
     return port
+
+
+def seconds_argument(text: str) -> float:
+    """Time limits: a positive, finite number of seconds."""
+    try:
+        seconds = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number of seconds: {text!r}") from None
+    if not math.isfinite(seconds) or seconds <= 0:
+        raise argparse.ArgumentTypeError(f"must be a positive number of seconds, got {text}")
+    return seconds
+
+
+def megabytes_argument(text: str) -> int:
+    """Memory limits: a positive whole number of megabytes."""
+    try:
+        megabytes = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number of megabytes: {text!r}") from None
+    if megabytes <= 0:
+        raise argparse.ArgumentTypeError(f"must be a positive number of megabytes, got {megabytes}")
+    return megabytes
 
 
 def _limit_argument(text: str) -> str:

@@ -88,6 +88,30 @@ def _symbol(value: clingo.Symbol | int | str) -> clingo.Symbol:
 _LOCATION = re.compile(r"^(.*?):(\d+):\d+(?:-\d+(?::\d+)?)?: (?:error|info|warning): (.*)", re.S)
 
 
+_INCLUDE = re.compile(r'^[ \t]*#include[ \t]*"([^"]+)"[ \t]*\.[ \t]*$', re.M)
+
+
+def included_text(path: Path, seen: set[Path] | None = None) -> str | None:
+    """The program of ``path`` with its ``#include "file".`` directives replaced by those
+    files (each once, paths relative to the including file), or ``None`` when it has none."""
+    text = path.read_text(encoding="utf-8")
+    if seen is None:
+        if not _INCLUDE.search(text):
+            return None
+        seen = set()
+    seen.add(path.resolve())
+
+    def insert(match: re.Match) -> str:
+        target = (path.parent / match.group(1)).resolve()
+        if target in seen:
+            return ""
+        if not target.is_file():
+            raise InputError(f"#include of a missing file {match.group(1)!r}", str(path))
+        return included_text(target, seen) or ""
+
+    return _INCLUDE.sub(insert, text)
+
+
 class Solver:
     """A clingo ``Control`` with a theory (``"clingcon"``, ``"dl"`` or none) and statistics.
 
@@ -123,20 +147,28 @@ class Solver:
     # --- programs ------------------------------------------------------------------------
 
     def load(self, path: str | Path) -> None:
-        """Load a program file (all of its ``#program`` parts)."""
+        """Load a program file (all of its ``#program`` parts).
+
+        ``#include "file".`` is resolved here, next to the including file: clingo itself
+        looks in the working directory first, where a user's own ``core.lp`` would win.
+        """
         path = Path(path)
         if not path.is_file():
             raise InputError("no such file" if not path.exists() else "is not a file", str(path))
-        self.messages.clear()
-        try:
-            if self.theory is None:
-                self.control.load(str(path))
-            else:
-                with clingo.ast.ProgramBuilder(self.control) as builder:
-                    clingo.ast.parse_files([str(path)], lambda s: self.theory.rewrite_ast(s, builder.add),
-                                           logger=self._log)
-        except RuntimeError:
-            raise self._error(str(path)) from None
+        text = included_text(path)
+        if text is None:  # no includes: let clingo read the file and name it in messages
+            self.messages.clear()
+            try:
+                if self.theory is None:
+                    self.control.load(str(path))
+                else:
+                    with clingo.ast.ProgramBuilder(self.control) as builder:
+                        clingo.ast.parse_files([str(path)], lambda s: self.theory.rewrite_ast(s, builder.add),
+                                               logger=self._log)
+            except RuntimeError:
+                raise self._error(str(path)) from None
+            return
+        self.add(text, name=str(path))
 
     def add(self, text: str, part: str = "base", parameters: Sequence[str] = (),
             name: str = "<string>") -> None:

@@ -19,13 +19,19 @@ from __future__ import annotations
 import argparse
 import json
 import sys
+import threading
+import time
+from typing import TextIO
 
-from asprilo.arguments import domain_argument
+from asprilo.arguments import domain_argument, megabytes_argument, seconds_argument
 from asprilo.errors import InputError
 from asprilo.writer import format_action, format_plan, refuse_overwriting, write_text
 
 from .registry import ENCODINGS
-from .search import Attempt, Outcome, solve
+from .search import Attempt, Outcome, Phase, solve
+
+#: seconds ``asprilo solve`` may take unless told otherwise
+DEFAULT_TIME_LIMIT = 300.0
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -36,7 +42,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--horizon", type=int, metavar="H", help="solve at this makespan only")
     parser.add_argument("--assign", action="store_true",
                         help="compute a task assignment first and plan along it")
-    parser.add_argument("--time-limit", type=float, metavar="S", help="stop after S seconds")
+    parser.add_argument("--time-limit", type=seconds_argument, default=DEFAULT_TIME_LIMIT, metavar="S",
+                        help=f"stop after S seconds, grounding included (default {DEFAULT_TIME_LIMIT:g})")
+    parser.add_argument("--memory-limit", type=megabytes_argument, metavar="MB",
+                        help="stop when the solver needs more than MB megabytes (default: no limit)")
     parser.add_argument("--method", choices=("asp", "flow"), default="asp",
                         help="asp: an encoding (default); flow: exact max-flow solver for M/Md")
     parser.add_argument("-o", "--output", metavar="PLAN", help="write the plan to this file")
@@ -53,10 +62,13 @@ def run(args: argparse.Namespace) -> int:
     if args.instance is None:
         raise InputError("no instance given (asprilo solve INSTANCE)")
     refuse_overwriting(args.output, [args.instance])
-    if args.time_limit is not None and args.time_limit <= 0:
-        raise InputError(f"--time-limit must be positive, got {args.time_limit:g}")
-    outcome = solve(args.instance, args.domain, args.encoding, args.horizon, args.assign,
-                    args.time_limit, args.method, on_progress=_progress)
+    progress = SearchProgress(sys.stderr)
+    try:
+        outcome = solve(args.instance, args.domain, args.encoding, args.horizon, args.assign,
+                        args.time_limit, args.method, on_progress=progress.attempt, on_phase=progress.phase,
+                        isolate=True, memory_limit=args.memory_limit)
+    finally:
+        progress.close()
     if outcome.plan is not None and outcome.found and args.output:
         write_text(args.output, format_plan(outcome.plan))
     _summary(outcome)
@@ -67,10 +79,55 @@ def run(args: argparse.Namespace) -> int:
     return 0 if outcome.found else 1
 
 
-def _progress(attempt: Attempt) -> None:
-    note = f" {attempt.note}" if attempt.note else ""
-    print(f"horizon {attempt.horizon}{note}: {attempt.result} ({attempt.seconds:.2f} s)",
-          file=sys.stderr, flush=True)
+class SearchProgress:
+    """Says what the search does: a line per horizon tried, and while it works the phase
+    (grounding or solving), the horizon and the seconds so far -- on a terminal as one line
+    redrawn in place, otherwise as a line when each phase begins."""
+
+    def __init__(self, stream: TextIO):
+        self.stream, self.live = stream, stream.isatty()
+        self.started = time.perf_counter()
+        self.current: Phase | None = None
+        self.since = self.started
+        self.done = threading.Event()
+        if self.live:
+            threading.Thread(target=self._tick, daemon=True).start()
+
+    def phase(self, phase: Phase) -> None:
+        if phase.name not in ("grounding", "solving", "assigning"):
+            return
+        self.current, self.since = phase, time.perf_counter()
+        if not self.live:
+            self._say(f"{self._label(phase)}: {phase.name} (elapsed {self.since - self.started:.1f} s)")
+
+    def attempt(self, attempt: Attempt) -> None:
+        note = f" {attempt.note}" if attempt.note else ""
+        self.current = None
+        self._say(f"horizon {attempt.horizon}{note}: {attempt.result} ({attempt.seconds:.2f} s)")
+
+    def close(self) -> None:
+        self.done.set()
+        if self.live:
+            self.stream.write("\r\033[K")
+            self.stream.flush()
+
+    @staticmethod
+    def _label(phase: Phase) -> str:
+        return "task assignment" if phase.name == "assigning" else f"horizon {phase.horizon}"
+
+    def _say(self, line: str) -> None:
+        prefix = "\r\033[K" if self.live else ""
+        self.stream.write(f"{prefix}{line}\n")
+        self.stream.flush()
+
+    def _tick(self) -> None:
+        while not self.done.wait(0.5):
+            phase = self.current
+            if phase is not None:
+                now = time.perf_counter()
+                self.stream.write(f"\r\033[K{self._label(phase)}: {phase.name} {now - self.since:.0f} s "
+                                  f"(elapsed {now - self.started:.0f} s)")
+                self.stream.flush()
 
 
 def _summary(outcome: Outcome) -> None:
@@ -88,6 +145,9 @@ def _summary(outcome: Outcome) -> None:
         lines.append({"none": "no plan exists", "limit": "no plan within the limits",
                       "cancelled": "cancelled", "invalid": "no valid plan"}[outcome.status.value]
                      + (f": {outcome.message}" if outcome.message else ""))
+        if outcome.refuted and outcome.status.value == "limit":
+            lines.append(f"refuted horizons {_spans(outcome.refuted)}: no plan is shorter than "
+                         f"{outcome.proven_bound:g}")
     if outcome.method == "flow":
         lines.append(f"max-flow {stats['solve_time']:.2f} s")
     else:
@@ -108,8 +168,21 @@ def report(outcome: Outcome) -> dict:
         "minimal": outcome.minimal,
         "lower_bound": outcome.lower_bound if outcome.lower_bound != float("inf") else None,
         "horizons_tried": [attempt.__dict__ for attempt in outcome.horizons_tried],
+        "refuted": outcome.refuted,
+        "proven_bound": outcome.proven_bound if outcome.proven_bound != float("inf") else None,
         "stats": outcome.stats,
         "assignment": outcome.assignment.facts if outcome.assignment is not None else None,
         "plan": [format_action(action) for action in outcome.plan.actions] if outcome.found else None,
         "message": outcome.message,
     }
+
+
+def _spans(horizons: list[int]) -> str:
+    """``[3, 4, 5, 8]`` -> ``"3-5, 8"``."""
+    spans: list[list[int]] = []
+    for horizon in horizons:
+        if spans and horizon == spans[-1][1] + 1:
+            spans[-1][1] = horizon
+        else:
+            spans.append([horizon, horizon])
+    return ", ".join(str(a) if a == b else f"{a}-{b}" for a, b in spans)

@@ -214,8 +214,8 @@ def _solve_isolated(instance: Instance, domain: Domain, program: Encoding | None
     outcome = Outcome(SolveStatus.CANCELLED if cancel is not None and cancel.is_set() else SolveStatus.LIMIT,
                       domain, method, program.name if program else "flow")
     outcome.horizons_tried = [m for m in child.messages if isinstance(m, Attempt)]
-    outcome.lower_bound = next((m.horizon for m in child.messages if isinstance(m, Phase)
-                                and m.name == "bound"), 0)
+    outcome.lower_bound = makespan_bound(instance, domain)
+    outcome.stats = {key: value for key, value in Statistics().as_dict().items() if key != "models"}
     outcome.message = {"timeout": f"stopped at the time limit ({time_limit:g} s)" if time_limit else "stopped",
                        "memout": f"stopped at the memory limit ({memory_limit} MB)",
                        "crashed": f"the solver process died ({child.detail})"}[child.status]
@@ -371,7 +371,6 @@ class _Search:
     def run(self) -> Outcome:
         outcome = self.outcome
         outcome.lower_bound = bound = makespan_bound(self.instance, self.domain, self.floor)
-        self.watch.phase("bound", int(bound) if bound != float("inf") else 0)
         if bound == float("inf") and self.horizon is None:
             outcome.status, outcome.minimal = SolveStatus.NONE, True
             outcome.message = "some goal or order line can never be reached"
