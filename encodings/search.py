@@ -367,6 +367,7 @@ class _Search:
         self.max_horizon = max_horizon
         self.follow_assignment = False
         self.options = ABC_OPTIONS if domain.delivers else ()
+        self._distances: str | None = None
 
     def run(self) -> Outcome:
         outcome = self.outcome
@@ -454,12 +455,27 @@ class _Search:
         elif horizon is not None and not self.domain.delivers:
             hints = unusable_goals(self.instance, horizon, self.floor)
             solver.add("".join(f"ruled_out({r},({x},{y})).\n" for r, (x, y) in hints))
+        if self.domain.delivers:
+            solver.add(self._station_distances())
         if horizon is not None and self.domain.delivers:
             schedule = delivery_schedule(self.instance, self.domain, self.floor, horizon)
             solver.add("".join(f"hint_serve({o},{p},{t}).\n" for o, p, t in schedule))
             hinted = bool(schedule)
         solver.load(self.encoding.program)
         return hinted
+
+    def _station_distances(self) -> str:
+        """``to_station/3`` facts (abc/distance.lp would compute them layer by layer)."""
+        if self._distances is None:
+            stations = sorted({station.at for station in self.instance.stations.values()})
+            table = self.floor.distances(stations, self.floor.cells)
+            facts = ["distances_given."]
+            for row, (px, py) in enumerate(stations):
+                for column, (x, y) in enumerate(self.floor.cells):
+                    if table[row, column] != float("inf"):
+                        facts.append(f"to_station(({px},{py}),({x},{y}),{int(table[row, column])}).")
+            self._distances = "\n".join(facts)
+        return self._distances
 
     def _record(self, attempt: Attempt) -> None:
         self.outcome.horizons_tried.append(attempt)

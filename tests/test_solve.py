@@ -29,12 +29,26 @@ def test_outcome_of_a_search():
     assert outcome.stats["rules"] > 0 and outcome.stats["atoms"] > 0
 
 
-def test_time_limit():
+#: a corridor P S S R: the robot can never bring shelf 2 past shelf 1 (it can only carry
+#: shelf 1 onto the station, where no shelf may be put down), so every horizon is refuted
+#: and a search without an end climbs until its time limit
+CORRIDOR = """
+init(object(grid,1),value(xsize,4)). init(object(grid,1),value(ysize,1)).
+init(object(pickingStation,1),value(at,(1,1))). init(object(robot,1),value(at,(4,1))).
+init(object(shelf,1),value(at,(2,1))). init(object(shelf,2),value(at,(3,1))).
+init(object(product,1),value(on,(2,1))).
+init(object(order,1),value(line,(1,1))). init(object(order,1),value(pickingStation,1)).
+"""
+
+
+@pytest.mark.parametrize("isolate", [False, True])
+def test_the_time_limit_ends_a_search_that_has_no_end(write, isolate):
     started = time.perf_counter()
-    outcome = solve(SMALL_A, Domain.A, time_limit=1.5)
+    outcome = solve(write("corridor.lp", CORRIDOR), Domain.B, time_limit=1.5, max_horizon=10**6, isolate=isolate)
     assert outcome.status is SolveStatus.LIMIT and outcome.plan is None
-    assert outcome.horizons_tried[-1].result == "unknown"
-    assert time.perf_counter() - started < 6
+    assert outcome.refuted and outcome.refuted == list(range(int(outcome.lower_bound), outcome.refuted[-1] + 1))
+    assert outcome.proven_bound == outcome.refuted[-1] + 1
+    assert time.perf_counter() - started < 1.5 + 10  # the limit and a generous start-up, however slow
 
 
 def test_cancel_from_another_thread():
