@@ -1,0 +1,72 @@
+"""Random small A/B/C warehouses for the soundness tests, and a minimal-makespan search that
+runs an encoding with extra constants (to switch one pruning technique off)."""
+
+from __future__ import annotations
+
+import random
+
+from asprilo.checker import check
+from asprilo.domain import Domain
+from asprilo.encodings import find_encoding
+from asprilo.encodings.search import name_robots
+from asprilo.model import Instance, Order, PickingStation, Product, Robot, Shelf
+from asprilo.reader import plan_from_atoms
+from asprilo.solver import Solver
+from asprilo.writer import format_instance
+
+
+def random_warehouse(seed: int, width: int = 4, height: int = 3, robots: int = 2, shelves: int = 3,
+                     lines: int = 2, units: bool = False) -> Instance:
+    """A full grid with one picking station in the top row, a highway row under it, robots and
+    shelves on distinct other cells, one product per shelf (some products on two shelves) and
+    ``lines`` order lines over them (A: with small quantities when ``units``)."""
+    rng = random.Random(seed)
+    instance = Instance()
+    cells = [(x, y) for y in range(1, height + 1) for x in range(1, width + 1)]
+    for ident, cell in enumerate(cells, 1):
+        instance.nodes[ident] = cell
+        if cell[1] == 2 and rng.random() < 0.5:
+            instance.highways[ident] = cell
+    station = (rng.randint(1, width), 1)
+    instance.stations[1] = PickingStation(1, station)
+    free = [c for c in cells if c != station]
+    rng.shuffle(free)
+    storage = [c for c in free if c not in instance.highways.values()]
+    for ident in range(1, shelves + 1):
+        cell = storage.pop()
+        free.remove(cell)
+        instance.shelves[ident] = Shelf(ident, cell)
+    for ident in range(1, robots + 1):
+        instance.robots[ident] = Robot(ident, free.pop())
+    for ident in range(1, shelves + 1):
+        stock = {ident: rng.randint(1, 2) if units else None}
+        if ident > 1 and rng.random() < 0.3:
+            stock[rng.randint(1, ident - 1)] = rng.randint(1, 2) if units else None
+        instance.products[ident] = Product(ident, stock)
+    wanted = rng.sample(sorted(instance.products), min(lines, shelves))
+    for number, product in enumerate(wanted, 1):
+        available = sum(u or 1 for u in instance.products[product].stock.values())
+        amount = rng.randint(1, available) if units else None
+        instance.orders[number] = Order(number, {product: amount}, 1)
+    return instance
+
+
+def minimal_makespan(instance: Instance, domain: Domain, constants: dict[str, int] | None = None,
+                     program=None, start: int = 0, limit: int = 40) -> int | None:
+    """The first horizon from ``start`` at which the encoding (the reference ``plain`` one, or
+    ``program``) has a plan; each plan is checked.  ``None``: none up to ``limit``."""
+    encoding = find_encoding(domain, "plain")
+    facts = format_instance(instance, [])
+    for horizon in range(start, limit + 1):
+        solver = Solver(options=["--warn=none"], constants={"horizon": horizon, **(constants or {})})
+        solver.add(facts)
+        solver.load(program or encoding.program)
+        solver.ground()
+        result = solver.solve()
+        if result.satisfiable:
+            plan = name_robots(encoding, facts, result.symbols) if program is None else \
+                plan_from_atoms(result.symbols)  # the oracle shows occurs/3 itself
+            report = check(instance, plan, domain)
+            assert report.valid, [error.message for error in report.errors]
+            return horizon
+    return None
