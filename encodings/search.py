@@ -103,6 +103,7 @@ class Outcome:
     horizons_tried: list[Attempt] = field(default_factory=list)
     stats: dict[str, Any] = field(default_factory=dict)
     assignment: Assignment | None = None
+    minimal_along_assignment: bool = False  # no shorter plan follows the assignment
     check: Report | None = None  # the ASP checker's verdict on the plan
     message: str = ""
 
@@ -135,14 +136,15 @@ def solve(instance: Instance | str | Path, domain: Domain | str | None = None, e
           method: str = "asp", on_progress: Progress | None = None,
           cancel: threading.Event | None = None, max_horizon: int | None = None,
           on_phase: PhaseListener | None = None, isolate: bool = False,
-          memory_limit: int | None = None) -> Outcome:
+          memory_limit: int | None = None, tighten: bool = True) -> Outcome:
     """Find a plan for ``instance`` (an :class:`Instance` or a path).
 
     ``domain``: a|b|c|m|md or a :class:`Domain` (default: detected).  ``encoding``: a name
     from :data:`ENCODINGS` (``method="asp"``).  ``horizon``: solve at this makespan only;
     without it, search the minimal makespan upwards from a lower bound, up to
     ``max_horizon``.  ``assign``: compute a task assignment first and make the planner
-    follow it.  ``method="flow"``: the exact max-flow solver of M/Md.  ``on_progress`` is
+    follow it; then (unless ``tighten`` is false) try shorter plans without it for a while.
+    ``method="flow"``: the exact max-flow solver of M/Md.  ``on_progress`` is
     called after every horizon, ``on_phase`` when grounding or solving starts; setting
     ``cancel`` stops the search from another thread.  ``isolate``: search in a child
     process, so that ``time_limit`` and ``memory_limit`` (MB) hold while clingo grounds.
@@ -152,11 +154,22 @@ def solve(instance: Instance | str | Path, domain: Domain | str | None = None, e
     domain = detect_domain(instance) if domain is None else Domain.parse(domain)
     _check_request(instance, domain, horizon, assign, method)
     program = find_encoding(domain, encoding) if method == "asp" else None
+    request = _Request(horizon, assign, tighten, time_limit, max_horizon)
     if isolate:
-        return _solve_isolated(instance, domain, program, horizon, assign, time_limit, method,
-                               on_progress, on_phase, cancel, max_horizon, memory_limit)
-    return _solve_here(instance, domain, program, horizon, assign, time_limit, method,
-                       on_progress, on_phase, cancel, max_horizon)
+        return _solve_isolated(instance, domain, program, request, method, on_progress, on_phase, cancel,
+                               memory_limit)
+    return _solve_here(instance, domain, program, request, method, on_progress, on_phase, cancel)
+
+
+@dataclass(frozen=True)
+class _Request:
+    """What the caller asked :func:`solve` for, besides instance, domain and method."""
+
+    horizon: int | None
+    assign: bool
+    tighten: bool
+    time_limit: float | None
+    max_horizon: int | None
 
 
 def _check_request(instance: Instance, domain: Domain, horizon: int | None, assign: bool, method: str) -> None:
@@ -173,16 +186,15 @@ def _check_request(instance: Instance, domain: Domain, horizon: int | None, assi
         raise InputError("the instance assigns goals to robots already; leave out --assign")
 
 
-def _solve_here(instance: Instance, domain: Domain, program: Encoding | None, horizon: int | None,
-                assign: bool, time_limit: float | None, method: str, on_progress: Progress | None,
-                on_phase: PhaseListener | None, cancel: threading.Event | None,
-                max_horizon: int | None) -> Outcome:
-    watch = _Watch(time_limit, cancel, on_progress, on_phase)
+def _solve_here(instance: Instance, domain: Domain, program: Encoding | None, request: _Request, method: str,
+                on_progress: Progress | None, on_phase: PhaseListener | None,
+                cancel: threading.Event | None) -> Outcome:
+    watch = _Watch(request.time_limit, cancel, on_progress, on_phase)
     try:
         if method == "flow":
-            outcome = _solve_flow(instance, domain, horizon, watch)
+            outcome = _solve_flow(instance, domain, request.horizon, watch)
         else:
-            outcome = _Search(instance, domain, program, horizon, assign, watch, max_horizon).run()
+            outcome = _Search(instance, domain, program, request, watch).run()
     finally:
         watch.close()
     outcome.stats = watch.totals()
@@ -195,18 +207,17 @@ def _solve_here(instance: Instance, domain: Domain, program: Encoding | None, ho
     return outcome
 
 
-def _solve_isolated(instance: Instance, domain: Domain, program: Encoding | None, horizon: int | None,
-                    assign: bool, time_limit: float | None, method: str, on_progress: Progress | None,
-                    on_phase: PhaseListener | None, cancel: threading.Event | None,
-                    max_horizon: int | None, memory_limit: int | None) -> Outcome:
+def _solve_isolated(instance: Instance, domain: Domain, program: Encoding | None, request: _Request,
+                    method: str, on_progress: Progress | None, on_phase: PhaseListener | None,
+                    cancel: threading.Event | None, memory_limit: int | None) -> Outcome:
     def forward(message: Attempt | Phase) -> None:
         if isinstance(message, Attempt) and on_progress is not None:
             on_progress(message)
         elif isinstance(message, Phase) and on_phase is not None:
             on_phase(message)
 
-    child = run_isolated(_search_in_child, (instance, domain, program, horizon, assign, time_limit,
-                                            method, max_horizon),
+    time_limit = request.time_limit
+    child = run_isolated(_search_in_child, (instance, domain, program, request, method),
                          time_limit=None if time_limit is None else time_limit + 0.5,
                          memory_mb=memory_limit, on_message=forward, cancel=cancel)
     if child.done:
@@ -224,10 +235,8 @@ def _solve_isolated(instance: Instance, domain: Domain, program: Encoding | None
     return outcome
 
 
-def _search_in_child(instance, domain, program, horizon, assign, time_limit, method, max_horizon,
-                     report) -> Outcome:
-    return _solve_here(instance, domain, program, horizon, assign, time_limit, method,
-                       report, report, None, max_horizon)
+def _search_in_child(instance, domain, program, request, method, report) -> Outcome:
+    return _solve_here(instance, domain, program, request, method, report, report, None)
 
 
 # --- time, cancellation, statistics ------------------------------------------------------
@@ -357,14 +366,14 @@ def name_robots(encoding: Encoding, facts: str, symbols: list[clingo.Symbol]) ->
 class _Search:
     """The horizon search of one encoding on one instance."""
 
-    def __init__(self, instance: Instance, domain: Domain, encoding: Encoding, horizon: int | None,
-                 assign: bool, watch: _Watch, max_horizon: int | None):
+    def __init__(self, instance: Instance, domain: Domain, encoding: Encoding, request: _Request, watch: _Watch):
         self.instance, self.domain, self.encoding = instance, domain, encoding
-        self.horizon, self.assign, self.watch = horizon, assign, watch
+        self.horizon, self.assign, self.watch = request.horizon, request.assign, watch
+        self.tighten = request.tighten
         self.floor = Floor(instance.cells)
         self.facts = format_instance(instance, [])
         self.outcome = Outcome(SolveStatus.LIMIT, domain, "asp", encoding.name)
-        self.max_horizon = max_horizon
+        self.max_horizon = request.max_horizon
         self.follow_assignment = False
         self.options = ABC_OPTIONS if domain.delivers else ()
         self._distances: str | None = None
@@ -385,10 +394,10 @@ class _Search:
             self._single_shot(first, last)
         if outcome.plan is not None:
             outcome.horizon = outcome.plan.horizon
-            proven = (self.horizon is None and not self.assign
-                      and all(a.result == "unsat" for a in outcome.horizons_tried[:-1]))
-            outcome.minimal = proven or outcome.horizon <= bound
-            if self.assign and self.horizon is None and not outcome.minimal:
+            searched_up = self.horizon is None and all(a.result == "unsat" for a in outcome.horizons_tried[:-1])
+            outcome.minimal = outcome.horizon <= bound or (searched_up and not self.assign)
+            outcome.minimal_along_assignment = self.assign and (searched_up or outcome.minimal)
+            if self.assign and self.tighten and self.horizon is None and not outcome.minimal:
                 self._tighten()
         return outcome
 

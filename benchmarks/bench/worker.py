@@ -3,8 +3,9 @@
 It limits its own address space, reads the instance, runs the solver and prints one JSON
 line: what the solver found, its statistics, the plan, and its own peak memory.  Jobs:
 
-- ``{"kind": "makespan", ...}``: the minimal makespan of an instance in a domain (with or
-  without task assignment): the flow solver for M/Md, else an incremental search;
+- ``{"kind": "makespan", ...}``: the minimal makespan of an instance in a domain: the flow
+  solver for M/Md, else the horizon search; with task assignment, the shortest plan along
+  the assignment (the horizon the assigned runs are given);
 - ``{"kind": "run", ...}``: one benchmark run at a given horizon.
 """
 
@@ -34,9 +35,10 @@ def run(job: dict) -> dict:
     started = time.perf_counter()
     if job["kind"] == "makespan":
         flow = job["domain"] in ("m", "md") and not job.get("assign")
+        # with a task assignment, the horizon of the runs is the shortest plan along it
         outcome = solve(job["instance"], domain=job["domain"], encoding=job.get("encoding", "plain"),
                         assign=job.get("assign", False), time_limit=job["time_limit"],
-                        method="flow" if flow else "asp")
+                        method="flow" if flow else "asp", tighten=False)
     else:
         outcome = solve(job["instance"], domain=job["domain"], encoding=job["encoding"],
                         horizon=job["horizon"], assign=job.get("assign", False),
@@ -46,7 +48,7 @@ def run(job: dict) -> dict:
         "status": outcome.status.value,
         "time": seconds,
         "horizon": outcome.horizon,
-        "minimal": outcome.minimal,
+        "minimal": outcome.minimal_along_assignment if job.get("assign") else outcome.minimal,
         "plan": format_plan(outcome.plan) if outcome.plan is not None else None,
         "stats": outcome.stats,
         "memory_mb": _peak_mb(),
