@@ -8,16 +8,21 @@ is admissible: no valid plan does better.
 
 from __future__ import annotations
 
+from collections import deque
 from collections.abc import Iterable, Sequence
+from functools import cached_property
 
 import numpy as np
-from scipy.sparse import csr_matrix
-from scipy.sparse.csgraph import shortest_path
 
 from .domain import Domain
 from .model import DIRECTIONS, Cell, Instance
 
 INFINITE = float("inf")
+
+
+#: breadth-first searches in Python up to this many source cells x nodes, SciPy beyond
+#: (SciPy is faster on big floors but takes longer to import than a small search needs)
+_PYTHON_SEARCH = 100_000
 
 
 class Floor:
@@ -26,6 +31,11 @@ class Floor:
     def __init__(self, cells: Iterable[Cell]):
         self.cells: list[Cell] = sorted(set(cells))
         self.index = {cell: i for i, cell in enumerate(self.cells)}
+
+    @cached_property
+    def graph(self):
+        """The adjacency matrix (scipy.sparse)."""
+        from scipy.sparse import csr_matrix
         rows, columns = [], []
         for (x, y), i in self.index.items():
             for dx, dy in DIRECTIONS:
@@ -34,7 +44,7 @@ class Floor:
                     rows.append(i)
                     columns.append(j)
         size = len(self.cells)
-        self.graph = csr_matrix((np.ones(len(rows)), (rows, columns)), shape=(size, size))
+        return csr_matrix((np.ones(len(rows)), (rows, columns)), shape=(size, size))
 
     def distances(self, sources: Sequence[Cell], targets: Sequence[Cell]) -> np.ndarray:
         """``len(sources) x len(targets)`` shortest-path lengths (``inf``: unreachable).
@@ -45,12 +55,30 @@ class Floor:
         known = [k for k, cell in enumerate(sources) if cell in self.index]
         if not known or not targets:
             return result
-        rows = shortest_path(self.graph, method="D", unweighted=True,
-                             indices=[self.index[sources[k]] for k in known])
         columns = [self.index.get(cell, -1) for cell in targets]
-        for k, row in zip(known, np.atleast_2d(rows), strict=True):
+        rows = self._from_cells([self.index[sources[k]] for k in known])
+        for k, row in zip(known, rows, strict=True):
             result[k] = [row[c] if c >= 0 else INFINITE for c in columns]
         return result
+
+    def _from_cells(self, starts: list[int]) -> np.ndarray:
+        """Distances from each start vertex to every vertex."""
+        if len(starts) * len(self.cells) > _PYTHON_SEARCH:
+            from scipy.sparse.csgraph import shortest_path
+            return np.atleast_2d(shortest_path(self.graph, method="D", unweighted=True, indices=starts))
+        rows = np.full((len(starts), len(self.cells)), INFINITE)
+        for row, start in zip(rows, starts, strict=True):
+            row[start] = 0
+            queue = deque([start])
+            while queue:
+                vertex = queue.popleft()
+                x, y = self.cells[vertex]
+                for dx, dy in DIRECTIONS:
+                    neighbour = self.index.get((x + dx, y + dy))
+                    if neighbour is not None and row[neighbour] == INFINITE:
+                        row[neighbour] = row[vertex] + 1
+                        queue.append(neighbour)
+        return rows
 
 
 def bottleneck_assignment(costs: np.ndarray) -> float:
@@ -78,9 +106,27 @@ def bottleneck_assignment(costs: np.ndarray) -> float:
 
 def _matches_all(allowed: np.ndarray) -> bool:
     """Whether every row can get its own allowed column (an assignment of cost 0 exists)."""
-    from scipy.optimize import linear_sum_assignment  # imported when needed: it is slow to import
-    rows, columns = linear_sum_assignment(~allowed)
-    return bool(allowed[rows, columns].all())
+    if allowed.size > _PYTHON_SEARCH // 40:
+        from scipy.optimize import linear_sum_assignment  # slow to import: only for big problems
+        rows, columns = linear_sum_assignment(~allowed)
+        return bool(allowed[rows, columns].all())
+    return _augmenting_paths([list(np.flatnonzero(row)) for row in allowed], allowed.shape[1])
+
+
+def _augmenting_paths(choices: list[list[int]], columns: int) -> bool:
+    """Whether every row gets its own column among its ``choices`` (Kuhn's augmenting paths)."""
+    owner = [-1] * columns
+
+    def place(row: int, seen: set[int]) -> bool:
+        for column in choices[row]:
+            if column not in seen:
+                seen.add(column)
+                if owner[column] < 0 or place(owner[column], seen):
+                    owner[column] = row
+                    return True
+        return False
+
+    return all(place(row, set()) for row in range(len(choices)))
 
 
 def min_cost_assignment(costs: np.ndarray) -> float:
@@ -92,10 +138,61 @@ def min_cost_assignment(costs: np.ndarray) -> float:
         return INFINITE
     finite = costs[np.isfinite(costs)]
     penalty = (finite.max() if finite.size else 0) * (goals + 1) + 1
-    from scipy.optimize import linear_sum_assignment
-    rows, columns = linear_sum_assignment(np.where(np.isfinite(costs), costs, penalty))
+    padded = np.where(np.isfinite(costs), costs, penalty)
+    if costs.size > _PYTHON_SEARCH // 40:
+        from scipy.optimize import linear_sum_assignment  # slow to import: only for big problems
+        rows, columns = linear_sum_assignment(padded)
+    else:
+        rows, columns = np.arange(goals), np.array(_hungarian(padded.tolist()))
     total = costs[rows, columns]
     return float(total.sum()) if np.isfinite(total).all() else INFINITE
+
+
+def _hungarian(costs: list[list[float]]) -> list[int]:
+    """The column of each row in an assignment of least total cost (rows <= columns): the
+    Hungarian method with row and column potentials, one shortest augmenting path per row."""
+    rows, columns = len(costs), len(costs[0])
+    potentials = ([0.0] * (rows + 1), [0.0] * (columns + 1))  # of rows, of columns
+    owner = [0] * (columns + 1)  # owner[j]: the row (1-based) that column j serves; 0: none
+    for row in range(1, rows + 1):
+        owner[0] = row
+        previous, column = _augmenting_path(costs, potentials, owner)
+        while column:  # walk the path back, shifting each column to the row before it
+            owner[column] = owner[previous[column]]
+            column = previous[column]
+    assigned = [0] * rows
+    for j in range(1, columns + 1):
+        if owner[j]:
+            assigned[owner[j] - 1] = j - 1
+    return assigned
+
+
+def _augmenting_path(costs, potentials, owner) -> tuple[list[int], int]:
+    """Grow a shortest alternating path from the row in ``owner[0]`` to a free column, shifting
+    the potentials; returns each column's predecessor on the path and the free column."""
+    row_potential, column_potential = potentials
+    columns = len(owner) - 1
+    slack, previous, used = [INFINITE] * (columns + 1), [0] * (columns + 1), [False] * (columns + 1)
+    column = 0
+    while owner[column]:
+        used[column] = True
+        current, delta, nearest = owner[column], INFINITE, 0
+        for j in range(1, columns + 1):
+            if used[j]:
+                continue
+            reduced = costs[current - 1][j - 1] - row_potential[current] - column_potential[j]
+            if reduced < slack[j]:
+                slack[j], previous[j] = reduced, column
+            if slack[j] < delta:
+                delta, nearest = slack[j], j
+        for j in range(columns + 1):
+            if used[j]:
+                row_potential[owner[j]] += delta
+                column_potential[j] -= delta
+            else:
+                slack[j] -= delta
+        column = nearest
+    return previous, column
 
 
 def goal_cells(instance: Instance) -> list[Cell]:
@@ -111,8 +208,9 @@ def goal_cells(instance: Instance) -> list[Cell]:
     return sorted(cells)
 
 
-def mapf_bounds(instance: Instance, floor: Floor | None = None) -> tuple[float, float]:
-    """``(makespan bound, sum-of-costs bound)`` of an M/Md instance by robot-to-goal assignment.
+def mapf_bounds(instance: Instance, floor: Floor | None = None, total: bool = True) -> tuple[float, float]:
+    """``(makespan bound, sum-of-costs bound)`` of an M/Md instance by robot-to-goal assignment
+    (with ``total=False`` the second is not computed: 0).
 
     Robots with a labelled goal (``instance.assignment``) count their own distance to it;
     the other robots are matched to the remaining goals.
@@ -123,12 +221,12 @@ def mapf_bounds(instance: Instance, floor: Floor | None = None) -> tuple[float, 
     goals = [cell for cell in goal_cells(instance) if cell not in taken]
     starts = [robot.at for ident, robot in sorted(instance.robots.items()) if ident not in assigned]
     costs = floor.distances(goals, starts)
-    makespan, total = bottleneck_assignment(costs), min_cost_assignment(costs)
+    makespan, cost = bottleneck_assignment(costs), min_cost_assignment(costs) if total else 0.0
     if assigned:
         robots = sorted(assigned)
         own = floor.distances([assigned[r] for r in robots], [instance.robots[r].at for r in robots]).diagonal()
-        makespan, total = max(makespan, float(own.max())), total + float(own.sum())
-    return makespan, total
+        makespan, cost = max(makespan, float(own.max())), cost + float(own.sum())
+    return makespan, cost
 
 
 def makespan_bound(instance: Instance, domain: Domain, floor: Floor | None = None) -> float:
@@ -140,6 +238,6 @@ def makespan_bound(instance: Instance, domain: Domain, floor: Floor | None = Non
     """
     floor = floor or Floor(instance.cells)
     if not domain.delivers:
-        return mapf_bounds(instance, floor)[0]
+        return mapf_bounds(instance, floor, total=False)[0]
     from .delivery_bound import delivery_bound
     return delivery_bound(instance, domain, floor)

@@ -14,7 +14,6 @@ import re
 
 import clingo
 import clingo.ast
-import numpy as np
 
 from .errors import InputError
 from .limits import Limits
@@ -46,9 +45,10 @@ _QUOTED = re.compile(r'%\*.*?\*%|%[^\n]*|"(?:[^"\\\n]|\\.)*"', re.S)
 _FORBIDDEN = re.compile(r"[^\t\n\r\x20-\x7e]")
 _DIRECTIVE = re.compile(r"#\s*(include|script)\b")
 _LONG_NUMBER = re.compile(r"\b\d{10,}\b")
-_OPEN, _CLOSE = np.zeros(128, dtype=np.int8), np.zeros(128, dtype=np.int8)
-_OPEN[[ord(c) for c in "([{"]] = 1
-_CLOSE[[ord(c) for c in ")]}"]] = 1
+_BRACKET = re.compile(r"[()\[\]{}]")
+_BRACKETS = {ord(c): None for c in map(chr, range(128)) if c not in "()[]{}"}
+#: texts longer than this are measured with numpy (a vectorised running sum)
+_VECTORISE = 200_000
 
 
 def screen(text: str, name: str, limits: Limits) -> None:
@@ -86,14 +86,32 @@ def _shortened(digits: str) -> str:
 
 
 def _check_depth(code: str, limits: Limits, fail) -> None:
-    if not code:
-        return
-    characters = np.frombuffer(code.encode("ascii"), dtype=np.uint8)
-    depth = np.cumsum(_OPEN[characters] - _CLOSE[characters], dtype=np.int64)
-    deepest = int(depth.argmax())
-    if depth[deepest] > limits.depth:
-        offset = int(np.argmax(depth > limits.depth))
+    """Refuse brackets nested deeper than the limit (clingo recurses into terms)."""
+    offset = _too_deep(code, limits.depth)
+    if offset is not None:
         raise fail(limits.exceeded("depth", "terms nested more deeply").message, offset)
+
+
+def _too_deep(code: str, limit: int) -> int | None:
+    """The offset where brackets first nest deeper than ``limit`` (``None``: never)."""
+    if len(code) > _VECTORISE:
+        import numpy as np
+        characters = np.frombuffer(code.encode("ascii"), dtype=np.uint8)
+        opens = np.isin(characters, np.frombuffer(b"([{", dtype=np.uint8))
+        closes = np.isin(characters, np.frombuffer(b")]}", dtype=np.uint8))
+        deep = np.cumsum(opens.astype(np.int64) - closes) > limit
+        return int(np.argmax(deep)) if deep.any() else None
+    if len(code.translate(_BRACKETS)) <= limit:
+        return None  # not even that many brackets in all
+    depth = 0
+    for bracket in _BRACKET.finditer(code):
+        if bracket.group(0) in "([{":
+            depth += 1
+            if depth > limit:
+                return bracket.start()
+        else:
+            depth -= 1
+    return None
 
 
 # --- statements --------------------------------------------------------------------------

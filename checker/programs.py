@@ -15,7 +15,6 @@ from pathlib import Path
 
 import clingo
 import clingo.ast
-import numpy as np
 
 from asprilo.domain import Domain
 from asprilo.facts import format_action
@@ -28,6 +27,7 @@ HERE = Path(__file__).resolve().parent
 #: move directions as packed.lp numbers them (0: no move)
 _PACKED = {(1, 0): 1, (-1, 0): 2, (0, 1): 3, (0, -1): 4}
 _DIGITS = 13  # moves per packed integer: 5**13 - 1 < 2**31
+PACK_FROM = 2_000
 
 
 def program(domain: Domain) -> Path:
@@ -40,13 +40,17 @@ def instance_facts(instance: Instance) -> str:
     return "\n".join(all_facts(instance))
 
 
-def plan_facts(instance: Instance, plan: Plan, packed: bool = True) -> str:
+def plan_facts(instance: Instance, plan: Plan, packed: bool | None = None) -> str:
     """The plan as facts: ``packedMoves/3`` for the well-formed moves of robots of the
     instance at steps >= 1 that are the robot's only action at their step, ``occurs/3``
-    for all other actions (for all actions with ``packed=False``)."""
+    for all other actions (for all actions with ``packed=False``; by default moves are
+    packed from ``PACK_FROM`` actions on, where parsing time begins to count)."""
     actions = plan.actions
+    if packed is None:
+        packed = len(actions) >= PACK_FROM
     if not packed or not actions:
         return "\n".join(format_action(action) + "." for action in actions)
+    import numpy as np
     robots = sorted(instance.robots)
     row = {robot: i for i, robot in enumerate(robots)}
     rows = np.array([row.get(a.robot, -1) if a.kind == "robot" else -1 for a in actions], dtype=np.int64)
@@ -92,6 +96,6 @@ def run_checker(facts: str, domain: Domain) -> tuple[list[clingo.Symbol], Statis
 
 
 def err_atoms(instance: Instance, plan: Plan, domain: Domain,
-              packed: bool = True) -> tuple[list[clingo.Symbol], Statistics]:
+              packed: bool | None = None) -> tuple[list[clingo.Symbol], Statistics]:
     """The ``err/3`` atoms of ``plan`` on ``instance`` in ``domain``."""
     return run_checker(instance_facts(instance) + "\n" + plan_facts(instance, plan, packed), domain)

@@ -11,8 +11,6 @@ from itertools import permutations
 
 import clingo
 import numpy as np
-from scipy.sparse import csr_matrix
-from scipy.sparse.csgraph import connected_components, maximum_bipartite_matching
 
 from asprilo.bounds import Floor, goal_cells
 from asprilo.model import Cell, Instance
@@ -28,6 +26,9 @@ def unusable_goals(instance: Instance, horizon: int, floor: Floor | None = None)
     matching.  An edge lies on some perfect matching exactly when it is matched or lies
     on an alternating cycle (Dulmage-Mendelsohn); every other pair can be ruled out.
     """
+    from scipy.sparse import csr_matrix  # slow to import: only where the hints are wanted
+    from scipy.sparse.csgraph import connected_components, maximum_bipartite_matching
+
     floor = floor or Floor(instance.cells)
     robots = sorted(instance.robots)
     goals = goal_cells(instance)

@@ -24,8 +24,6 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.sparse import csr_matrix
-from scipy.sparse.csgraph import maximum_flow
 
 from asprilo.bounds import Floor, goal_cells, mapf_bounds
 from asprilo.model import Action, Cell, Instance, Plan
@@ -104,6 +102,7 @@ class TimeExpandedNetwork:
         tail, head = np.concatenate(tails), np.concatenate(heads)
         capacity = np.concatenate(capacities).astype(np.int32)
         self.arcs = len(tail)
+        from scipy.sparse import csr_matrix  # slow to import: only when max-flow runs
         self.graph = csr_matrix((capacity, (tail, head)), shape=(self.size, self.size))
 
     def inlet(self, vertex):
@@ -116,6 +115,7 @@ class TimeExpandedNetwork:
 
     def route(self) -> dict[int, list[Cell]] | None:
         """Each start's cells at steps 0..H, or ``None`` when not every robot gets through."""
+        from scipy.sparse.csgraph import maximum_flow
         result = maximum_flow(self.graph, self.source, self.sink)
         if result.flow_value < len(self.starts):
             return None

@@ -45,6 +45,8 @@ ASSIGNMENT_SHARE = 0.2
 ASSIGNMENT_SECONDS = 10.0
 #: after a plan along an assignment, how long to look for shorter plans without it
 TIGHTEN_SECONDS = 10.0
+#: M/Md instances with this many robots get ruled_out/2 hints (they ground big programs faster)
+HINTED_ROBOTS = 20
 #: the A/B/C searches use the domain heuristics of abc/hints.lp (while use_hints is true)
 ABC_OPTIONS = ("--heuristic=Domain",)
 #: with hints, a horizon is searched in turns with and without them, each turn twice as long
@@ -461,7 +463,7 @@ class _Search:
         hinted = False
         if self.follow_assignment:
             solver.add(self.outcome.assignment.text())
-        elif horizon is not None and not self.domain.delivers:
+        elif horizon is not None and not self.domain.delivers and len(self.instance.robots) >= HINTED_ROBOTS:
             hints = unusable_goals(self.instance, horizon, self.floor)
             solver.add("".join(f"ruled_out({r},({x},{y})).\n" for r, (x, y) in hints))
         if self.domain.delivers:

@@ -124,3 +124,28 @@ def test_the_delivery_bound_never_exceeds_a_minimal_makespan(name, domain, minim
     """Minimal makespans found by brute force over all joint moves (tests/test_brute_force.py)."""
     bound = makespan_bound(read_instance(EXAMPLES / f"encodings-repo/{name}.lp"), domain)
     assert 0 < bound <= minimal
+
+
+def test_the_python_and_the_scipy_searches_give_the_same_distances(monkeypatch):
+    import asprilo.bounds as bounds
+    instance = read_instance(EXAMPLES / "paper-m/2x3x5/x19_y9_n171_r19_s60_ps3_pr60_u60_o19_N001.lp")
+    cells = sorted(instance.cells)
+    floor = Floor(instance.cells - {(10, 5), (11, 5), (10, 6)})  # some walls
+    sources = cells[::7] + [(0, 0)]
+    by_python = floor.distances(sources, cells)
+    monkeypatch.setattr(bounds, "_PYTHON_SEARCH", 0)
+    by_scipy = Floor(instance.cells - {(10, 5), (11, 5), (10, 6)}).distances(sources, cells)
+    assert np.array_equal(by_python, by_scipy) and np.isinf(by_python[-1]).all()
+
+
+def test_the_python_and_the_scipy_matchings_agree(monkeypatch):
+    import asprilo.bounds as bounds
+    rng = np.random.default_rng(5)
+    costs = [rng.integers(0, 9, size=(n, n + 2)).astype(float) for n in range(1, 9)]
+    costs.append(np.array([[1, math.inf], [2, math.inf]]))  # two goals, one usable robot
+    by_python = [(bottleneck_assignment(c), min_cost_assignment(c)) for c in costs]
+    monkeypatch.setattr(bounds, "_PYTHON_SEARCH", 0)
+    assert [(bottleneck_assignment(c), min_cost_assignment(c)) for c in costs] == by_python
+    assert by_python[-1] == (math.inf, math.inf)
+    # by hand: goal 0 <- robot 1 (1), goal 1 <- robot 0 (2): 3, better than 1 + 5 or 4 + 2
+    assert min_cost_assignment(np.array([[4.0, 1.0], [2.0, 5.0]])) == 3

@@ -53,7 +53,7 @@ def test_the_b_plan_puts_shelves_down_on_highways_three_times():
 def test_packed_and_plain_facts_give_the_same_atoms(small_a):
     from asprilo.checker.programs import err_atoms
     wrong = read_plan(WRONG_OUTCOME)
-    packed = sorted(map(str, err_atoms(small_a, wrong, Domain.A)[0]))
+    packed = sorted(map(str, err_atoms(small_a, wrong, Domain.A, packed=True)[0]))
     plain = sorted(map(str, err_atoms(small_a, wrong, Domain.A, packed=False)[0]))
     assert packed == plain and len(packed) == 3
 
