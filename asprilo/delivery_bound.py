@@ -63,10 +63,14 @@ class Line:
 
 
 class Deliveries:
-    """What the bounds of one instance share: lines, shelf positions, robot distances."""
+    """What the bounds of one instance share: lines, shelf positions, robot distances.
 
-    def __init__(self, instance: Instance, domain: Domain, floor):
+    ``carriers`` (shelf -> robot, from a task assignment) restricts who may bring a shelf.
+    """
+
+    def __init__(self, instance: Instance, domain: Domain, floor, carriers: dict[int, int] | None = None):
         self.instance, self.domain, self.floor = instance, domain, floor
+        self.carriers = carriers or {}
         carried = {r.carries: r.at for r in instance.robots.values() if r.carries is not None}
         self.carried = carried
         self.shelves = {s.id: s.at for s in instance.shelves.values()} | carried
@@ -179,11 +183,21 @@ def _relaxed_schedule(text: str, horizon: int) -> list | str:
     return found if result.satisfiable else "unknown"
 
 
-def delivery_schedule(instance: Instance, domain: Domain, floor, horizon: int) -> list[tuple[int, int, int]]:
+def assigned_bound(instance: Instance, domain: Domain, floor, carriers: dict[int, int], start: float) -> float:
+    """A makespan bound of the plans in which each shelf in ``carriers`` is brought by its robot
+    (a task assignment): the scheduling relaxation with those robots, from ``start`` on."""
+    facts = Deliveries(instance, domain, floor, carriers)
+    if not facts.lines or not schedulable(facts):
+        return start
+    return schedule_bound(facts, start)
+
+
+def delivery_schedule(instance: Instance, domain: Domain, floor, horizon: int,
+                      carriers: dict[int, int] | None = None) -> list[tuple[int, int, int]]:
     """``(order, product, step)`` of every line in a schedule of the relaxation at ``horizon``:
     a guess of when each line is delivered, for search heuristics (empty when the relaxation
-    does not apply or has no schedule)."""
-    facts = Deliveries(instance, domain, floor)
+    does not apply or has no schedule).  ``carriers``: shelf -> robot, as for :class:`Deliveries`."""
+    facts = Deliveries(instance, domain, floor, carriers)
     if not facts.lines or not schedulable(facts):
         return []
     model = _relaxed_schedule(_schedule_facts(facts), horizon)
@@ -202,7 +216,8 @@ def _schedule_facts(facts: Deliveries) -> str:
     for index, line in enumerate(facts.lines):
         out.append(f"line({index}). station_of({index},{stations[line.station]}).")
         for position, robot in enumerate(facts.robots):
-            release = min(_robot_release(facts, robot, position, shelf, line.station) for shelf in line.holders)
+            shelves = [s for s in line.holders if facts.carriers.get(s, robot) == robot]
+            release = min((_robot_release(facts, robot, position, s, line.station) for s in shelves), default=INFINITE)
             if math.isfinite(release):
                 out.append(f"release({index},{robot},{int(release)}).")
     out.append(f"gap({int(min(_cycle(facts), 10**6))}).")

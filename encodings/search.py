@@ -26,7 +26,7 @@ import clingo
 
 from asprilo.bounds import Floor, makespan_bound
 from asprilo.checker import Report, check
-from asprilo.delivery_bound import delivery_schedule
+from asprilo.delivery_bound import assigned_bound, delivery_schedule
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
 from asprilo.isolation import run_isolated
@@ -408,7 +408,10 @@ class _Search:
             return self.horizon, self.horizon
         first = int(bound)
         if self.assign:
-            first = max(first, int(assignment_bound(self.instance, self.outcome.assignment.facts, self.floor)))
+            facts = self.outcome.assignment.facts
+            first = max(first, int(assignment_bound(self.instance, facts, self.floor)))
+            if self.domain.delivers:
+                first = int(assigned_bound(self.instance, self.domain, self.floor, self._carriers(), first))
         last = self.max_horizon if self.max_horizon is not None else self._largest_horizon(first)
         return first, last
 
@@ -474,6 +477,14 @@ class _Search:
             hinted = bool(schedule)
         solver.load(self.encoding.program)
         return hinted
+
+    def _carriers(self) -> dict[int, int]:
+        """Shelf -> robot of the task assignment (``assign(robot(R),shelf(S),pickingStation(P))``)."""
+        carriers = {}
+        for fact in self.outcome.assignment.facts:
+            robot, shelf = clingo.parse_term(fact).arguments[:2]
+            carriers[shelf.arguments[0].number] = robot.arguments[0].number
+        return carriers
 
     def _station_distances(self) -> str:
         """``to_station/3`` facts (abc/distance.lp would compute them layer by layer)."""
