@@ -174,6 +174,15 @@ class _Request:
     max_horizon: int | None
 
 
+def ground(instance: Instance, domain: Domain | str, horizon: int, encoding: str = "plain") -> Solver:
+    """The program :func:`solve` grounds for ``horizon`` (encoding, instance, distances, hints),
+    grounded and ready to solve: for measurements and experiments."""
+    domain = Domain.parse(domain)
+    watch = _Watch(None, None, None, None)
+    return _Search(instance, domain, find_encoding(domain, encoding), _Request(horizon, False, False, None, None),
+                   watch).grounded(horizon)[0]
+
+
 def _check_request(instance: Instance, domain: Domain, horizon: int | None, assign: bool, method: str) -> None:
     if horizon is not None and horizon < 0:
         raise InputError(f"the horizon must be at least 0, got {horizon}")
@@ -552,8 +561,8 @@ class _Search:
                 turn *= 2
             hints = not hints
 
-    def _solve_at(self, horizon: int, limit: float | None = None) -> Result:
-        """Ground and solve the encoding for exactly this horizon, in a fresh solver."""
+    def grounded(self, horizon: int) -> tuple[Solver, bool]:
+        """The encoding grounded for exactly this horizon in a fresh solver, and whether it has hints."""
         if self.encoding.incremental:
             solver = Solver(self.encoding.theory, self.options)
             self._program(solver, None)
@@ -562,14 +571,18 @@ class _Search:
             steps = [("step", [t]) for t in range(1, horizon + 1)]
             solver.ground([("base", []), *steps, ("check", [horizon])])
             solver.assign_external(f"query({horizon})", True)
-        else:
-            solver = Solver(self.encoding.theory, self.options, constants={"horizon": horizon})
-            hinted = self._program(solver, horizon)
-            self.watch.attach(solver)
-            self.watch.phase("grounding", horizon)
-            solver.ground()
-            return self._solve(solver, horizon, limit, hinted)
-        return self._solve(solver, horizon, limit)
+            return solver, False
+        solver = Solver(self.encoding.theory, self.options, constants={"horizon": horizon})
+        hinted = self._program(solver, horizon)
+        self.watch.attach(solver)
+        self.watch.phase("grounding", horizon)
+        solver.ground()
+        return solver, hinted
+
+    def _solve_at(self, horizon: int, limit: float | None = None) -> Result:
+        """Ground and solve the encoding for exactly this horizon, in a fresh solver."""
+        solver, hinted = self.grounded(horizon)
+        return self._solve(solver, horizon, limit, hinted)
 
     def _single_shot(self, first: int, last: int) -> None:
         for horizon in range(first, last + 1):
