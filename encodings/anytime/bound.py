@@ -1,0 +1,20 @@
+"""The lower bounds the anytime search measures its plans against (the one place that
+says which bound function is used)."""
+
+from __future__ import annotations
+
+from asprilo.bounds import mapf_bounds
+from asprilo.domain import Domain
+from asprilo.model import Instance
+
+from ..bounds import lower_bound
+
+
+def makespan_bound(instance: Instance, domain: Domain) -> float:
+    """No plan of ``domain`` is shorter (``inf``: there is no plan at all)."""
+    return lower_bound(instance, domain)
+
+
+def sum_of_costs_bound(instance: Instance, domain: Domain) -> float | None:
+    """No plan has a smaller sum of costs (M and Md; ``None``: no bound known)."""
+    return None if domain.delivers else mapf_bounds(instance)[1]

@@ -1,0 +1,211 @@
+"""The work of one instance: what every robot has to do, and how that is decided.
+
+:class:`Work` turns an assignment (goal cells in M/Md, shelves and order lines in A/B/C)
+into errands, one per robot, and re-assigns the robots a neighbourhood frees.  Robots
+without work that stand where others need to be (a station, a shelf to be fetched, a goal)
+are sent to park nearby.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+
+import clingo
+
+from asprilo.domain import Domain
+from asprilo.model import Cell, Instance
+
+from .assignment import Choice, aims, goal_problem, shelf_problem
+from .errands import Task, Trip, delivery_errand, goal_errand, shelf_home, trips
+from .grid import FAR, Grid, cells_of
+
+#: the share of the time limit the first assignment may spend optimising, and its cap (s)
+ASSIGN_SHARE, ASSIGN_CAP = 0.05, 2.0
+#: cells offered to a robot that has to make room
+ROOM_CELLS = 6
+#: how far from its last station a robot may park when the others' tracks are all known
+PARK_RADIUS = 3
+
+
+class Work:
+    """Errands per robot for one instance, and the assignment they come from."""
+
+    def __init__(self, instance: Instance, domain: Domain, grid: Grid, longest: float):
+        self.instance, self.domain, self.grid = instance, domain, grid
+        self.homes = {s: shelf_home(instance, s) for s in instance.shelves}
+        self.longest = longest
+        self.goals: dict[int, Cell] = {}
+        self.trips: dict[int, list[Trip]] = {}
+        self.choice = Choice()
+        self._problem = None
+        self._parking: dict[Cell, tuple[Cell, ...]] = {}
+        self._parking_cells: frozenset[Cell] | None = None
+
+    # --- the first assignment ----------------------------------------------------------------
+
+    def assign(self, budget: float, deadline: float) -> bool:
+        """Compute the first assignment; whether there is one."""
+        if self.domain.delivers:
+            return self._assign_shelves(budget, deadline)
+        self._problem = goal_problem(self.instance, self.grid, self.longest)
+        choice = self._problem.assigner.solve(budget=budget, deadline=deadline)
+        if choice is None:
+            return False
+        self._take(choice)
+        return True
+
+    def _assign_shelves(self, budget: float, deadline: float) -> bool:
+        nearest = 12
+        while True:
+            self._problem = shelf_problem(self.instance, self.grid, self.domain, self.homes, nearest)
+            choice = self._problem.assigner.solve(budget=budget, deadline=deadline)
+            if choice is not None:
+                self._take(choice)
+                return True
+            if not self._problem.assigner.unsatisfiable or nearest >= len(self.instance.robots):
+                return False
+            nearest *= 4
+
+    def _take(self, choice: Choice) -> None:
+        self.choice, self._parking_cells = choice, None
+        if self.domain.delivers:
+            self.trips = trips(self.instance, self.domain, choice.of("give"), choice.of("carry"), self.homes)
+        else:
+            self.goals = aims(choice, self._problem)
+
+    def save(self) -> tuple:
+        """The current assignment, to :meth:`restore` it later."""
+        return self.choice, self.trips, self.goals
+
+    def restore(self, saved: tuple) -> None:
+        self.choice, self.trips, self.goals = saved
+        self._parking_cells = None
+
+    # --- re-assigning a neighbourhood --------------------------------------------------------------
+
+    def reassign(self, freed: set[int], budget: float) -> bool:
+        """Assign the work of the ``freed`` robots among them anew (others keep theirs);
+        whether the assignment changed."""
+        if self._problem is None:
+            return False
+        keep, drop = self._fixed(freed)
+        choice = self._problem.assigner.solve(keep, drop, budget=budget, deadline=time.perf_counter() + budget)
+        if choice is None or choice.atoms == self.choice.atoms:
+            return False
+        self._take(choice)
+        return True
+
+    def _fixed(self, freed: set[int]) -> tuple[list[clingo.Symbol], list[clingo.Symbol]]:
+        """The atoms that keep the other robots' work: those to hold, those to be false."""
+        atoms, offered = self.choice.atoms, self._problem.assigner.atoms
+        if not self.domain.delivers:
+            kept = {a for a in atoms if a.arguments[0].number not in freed}
+            owners = {a.arguments[0].number for a in kept}
+            return list(kept), [a for a in offered if a.name == "aim" and a.arguments[0].number in owners
+                                and a not in kept]
+        carries = [a for a in atoms if a.name == "carry"]
+        kept = {a for a in carries if a.arguments[0].number not in freed}
+        owners = {a.arguments[0].number for a in kept}
+        shelves = {a.arguments[1].number for a in kept}
+        kept |= {a for a in atoms if a.name == "give" and a.arguments[0].number in shelves}
+        drop = [a for a in offered if a not in kept and (
+            (a.name == "carry" and a.arguments[0].number in owners)
+            or (a.name == "give" and a.arguments[0].number in shelves))]
+        return list(kept), drop
+
+    # --- errands -------------------------------------------------------------------------------
+
+    def workers(self) -> list[int]:
+        """The robots that have something to do."""
+        return sorted(self.trips if self.domain.delivers else self.goals)
+
+    def stations_of(self, robot: int) -> set[Cell]:
+        return {cell for trip in self.trips.get(robot, []) for cell, _, _ in trip.deliveries}
+
+    def errand(self, robot: int, routed: set[int], roomy: bool = False) -> list[Task]:
+        """What ``robot`` does; ``routed``: the robots whose tracks are fixed when it is routed
+        (a robot may stay on its last station when every other robot using it is routed);
+        ``roomy``: it may also park near its last station (when all others are routed, so
+        that routing sees whether it would be in somebody's way)."""
+        if not self.domain.delivers:
+            return goal_errand(self.goals[robot]) if robot in self.goals else self._make_room(robot)
+        trips_ = self.trips.get(robot, [])
+        if not trips_:
+            return self._make_room(robot)
+        park = ()
+        last = trips_[-1].deliveries[-1][0] if trips_[-1].deliveries else None
+        if last is not None and all(other in routed for other in self.trips
+                                    if other != robot and last in self.stations_of(other)):
+            park = (last,)
+        if last is not None and roomy:
+            park += self._near(last)
+        return delivery_errand(self.instance, robot, trips_, park)
+
+    def _near(self, station: Cell) -> tuple[Cell, ...]:
+        """Cells a few steps from a station where a robot with a shelf may park."""
+        if station not in self._parking:
+            passable = self.grid.floor & ~self.grid.mask(self.homes.values())
+            distance = self.grid.distances([station], passable)
+            stations = {s.at for s in self.instance.stations.values()}
+            self._parking[station] = tuple(sorted(
+                (c for c in cells_of(distance <= PARK_RADIUS) if c not in stations),
+                key=lambda c: (int(distance[c]), c)))
+        return self._parking[station]
+
+    def parking(self) -> frozenset[Cell]:
+        """Cells where robots with work park for good (goals; homes of the shelves used):
+        others had better keep off them."""
+        if self._parking_cells is None:
+            if self.domain.delivers:
+                self._parking_cells = frozenset(self.homes[t.shelf] for ts in self.trips.values() for t in ts)
+            else:
+                self._parking_cells = frozenset(self.goals.values())
+        return self._parking_cells
+
+    def needed_cells(self) -> set[Cell]:
+        """Cells robots with work must be able to use: goals, stations, shelves to fetch."""
+        if not self.domain.delivers:
+            return set(self.goals.values())
+        cells = {cell for robot in self.trips for cell in self.stations_of(robot)}
+        cells |= {self.homes[trip.shelf] for ts in self.trips.values() for trip in ts}
+        return cells
+
+    def idle_in_the_way(self) -> list[int]:
+        """Robots without work standing on a cell that a robot with work needs."""
+        needed = self.needed_cells()
+        busy = set(self.workers())
+        return sorted(r for r, robot in self.instance.robots.items() if r not in busy and robot.at in needed)
+
+    def _make_room(self, robot: int) -> list[Task]:
+        """A robot without work: stay, or, standing where others need to be, park nearby."""
+        start = self.instance.robots[robot].at
+        carried = self.instance.robots[robot].carries
+        needed = self.needed_cells()
+        if start not in needed:
+            return [Task("park", (start,), carried is not None, carried)]
+        passable = self.grid.floor
+        if carried is not None:
+            passable = passable & ~self.grid.mask(self.homes.values())
+        distance = self.grid.distances([start], passable)
+        stations = {s.at for s in self.instance.stations.values()}
+        free = sorted((int(distance[c]), c) for c in cells_of(passable & (distance < FAR))
+                      if c not in needed and c not in stations)
+        cells = tuple(c for _, c in free[:ROOM_CELLS])
+        return [Task("park", cells or (start,), carried is not None, carried)]
+
+    def estimate(self, robot: int) -> float:
+        """Steps the robot's errand takes at least (to order robots: the longest first)."""
+        if not self.domain.delivers:
+            goal = self.goals.get(robot)
+            start = self.instance.robots[robot].at
+            return math.inf if goal is None else abs(goal[0] - start[0]) + abs(goal[1] - start[1])
+        at, steps = self.instance.robots[robot].at, 0
+        for trip in self.trips.get(robot, []):
+            home = self.homes[trip.shelf]
+            steps += abs(home[0] - at[0]) + abs(home[1] - at[1]) + 1
+            at = home
+            for cell, _, _ in trip.deliveries:
+                steps += abs(cell[0] - at[0]) + abs(cell[1] - at[1]) + 1
+                at = cell
+        return steps
