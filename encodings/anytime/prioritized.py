@@ -12,6 +12,7 @@ import random
 from collections.abc import Callable
 
 from .reservations import Reservations, Track
+from .room import depths
 from .router import Router
 from .work import Work
 
@@ -40,8 +41,9 @@ def first_tracks(work: Work, router: Router, reservations: Reservations, stopped
     """Tracks for every robot of the instance, or ``None`` when stopped first."""
     robots = sorted(reservations.instance.robots)
     idle = [r for r in robots if r not in set(work.workers())]
-    movers = work.idle_in_the_way()
-    workers = sorted(work.workers(), key=lambda r: (-work.estimate(r), r))
+    movers = work.movers()
+    depth = depths(reservations.instance)
+    workers = sorted(work.workers(), key=lambda r: (depth[r] > 1, depth[r], -work.estimate(r), r))
     order = movers + workers
     shuffler = random.Random(seed)
     attempt = 0
@@ -61,4 +63,5 @@ def first_tracks(work: Work, router: Router, reservations: Reservations, stopped
         order.insert(0, failed)
         if attempt % 4 == 0:
             shuffler.shuffle(order)
+        order.sort(key=lambda r: depth[r])  # stable: a robot still leaves after those in front of it
     return None

@@ -18,12 +18,11 @@ from asprilo.model import Cell, Instance
 
 from .assignment import Choice, aims, goal_problem, shelf_problem
 from .errands import Task, Trip, delivery_errand, goal_errand, shelf_home, trips
-from .grid import FAR, Grid, cells_of
+from .grid import Grid, cells_of
+from .room import movers, room_task
 
 #: the share of the time limit the first assignment may spend optimising, and its cap (s)
 ASSIGN_SHARE, ASSIGN_CAP = 0.05, 2.0
-#: cells offered to a robot that has to make room
-ROOM_CELLS = 6
 #: how far from its last station a robot may park when the others' tracks are all known
 PARK_RADIUS = 3
 
@@ -41,6 +40,7 @@ class Work:
         self._problem = None
         self._parking: dict[Cell, tuple[Cell, ...]] = {}
         self._parking_cells: frozenset[Cell] | None = None
+        self._movers: list[int] | None = None
 
     # --- the first assignment ----------------------------------------------------------------
 
@@ -68,7 +68,7 @@ class Work:
             nearest *= 4
 
     def _take(self, choice: Choice) -> None:
-        self.choice, self._parking_cells = choice, None
+        self.choice, self._parking_cells, self._movers = choice, None, None
         if self.domain.delivers:
             self.trips = trips(self.instance, self.domain, choice.of("give"), choice.of("carry"), self.homes)
         else:
@@ -80,7 +80,7 @@ class Work:
 
     def restore(self, saved: tuple) -> None:
         self.choice, self.trips, self.goals = saved
-        self._parking_cells = None
+        self._parking_cells = self._movers = None
 
     # --- re-assigning a neighbourhood --------------------------------------------------------------
 
@@ -97,20 +97,14 @@ class Work:
         return True
 
     def _fixed(self, freed: set[int]) -> tuple[list[clingo.Symbol], list[clingo.Symbol]]:
-        """The atoms that keep the other robots' work: those to hold, those to be false."""
+        """The atoms that keep the other robots' work as it is: those to hold, and those
+        to be false (no other robot gets new work; a kept shelf serves what it served)."""
         atoms, offered = self.choice.atoms, self._problem.assigner.atoms
-        if not self.domain.delivers:
-            kept = {a for a in atoms if a.arguments[0].number not in freed}
-            owners = {a.arguments[0].number for a in kept}
-            return list(kept), [a for a in offered if a.name == "aim" and a.arguments[0].number in owners
-                                and a not in kept]
-        carries = [a for a in atoms if a.name == "carry"]
-        kept = {a for a in carries if a.arguments[0].number not in freed}
-        owners = {a.arguments[0].number for a in kept}
-        shelves = {a.arguments[1].number for a in kept}
+        kept = {a for a in atoms if a.name in ("aim", "carry") and a.arguments[0].number not in freed}
+        shelves = {a.arguments[1].number for a in kept if a.name == "carry"}
         kept |= {a for a in atoms if a.name == "give" and a.arguments[0].number in shelves}
         drop = [a for a in offered if a not in kept and (
-            (a.name == "carry" and a.arguments[0].number in owners)
+            (a.name in ("aim", "carry") and a.arguments[0].number not in freed)
             or (a.name == "give" and a.arguments[0].number in shelves))]
         return list(kept), drop
 
@@ -124,21 +118,20 @@ class Work:
         return {cell for trip in self.trips.get(robot, []) for cell, _, _ in trip.deliveries}
 
     def errand(self, robot: int, routed: set[int], roomy: bool = False) -> list[Task]:
-        """What ``robot`` does; ``routed``: the robots whose tracks are fixed when it is routed
-        (a robot may stay on its last station when every other robot using it is routed);
-        ``roomy``: it may also park near its last station (when all others are routed, so
-        that routing sees whether it would be in somebody's way)."""
+        """What ``robot`` does.  ``roomy``: every other robot's track is known (``routed``
+        holds those that are), so it may park on its last station when no other robot needs
+        that station any more, or on a free cell near it; the first plan does neither
+        (robots parked there would block the ones routed later)."""
         if not self.domain.delivers:
             return goal_errand(self.goals[robot]) if robot in self.goals else self._make_room(robot)
         trips_ = self.trips.get(robot, [])
         if not trips_:
             return self._make_room(robot)
-        park = ()
         last = trips_[-1].deliveries[-1][0] if trips_[-1].deliveries else None
-        if last is not None and all(other in routed for other in self.trips
-                                    if other != robot and last in self.stations_of(other)):
-            park = (last,)
+        park: tuple[Cell, ...] = ()
         if last is not None and roomy:
+            if all(other in routed for other in self.trips if other != robot and last in self.stations_of(other)):
+                park = (last,)
             park += self._near(last)
         return delivery_errand(self.instance, robot, trips_, park)
 
@@ -171,28 +164,18 @@ class Work:
         cells |= {self.homes[trip.shelf] for ts in self.trips.values() for trip in ts}
         return cells
 
-    def idle_in_the_way(self) -> list[int]:
-        """Robots without work standing on a cell that a robot with work needs."""
-        needed = self.needed_cells()
-        busy = set(self.workers())
-        return sorted(r for r, robot in self.instance.robots.items() if r not in busy and robot.at in needed)
+    def movers(self) -> list[int]:
+        """Robots without work that have to make room (see :mod:`.room`), in routing order."""
+        if self._movers is None:
+            self._movers = movers(self.instance, set(self.workers()), self.needed_cells())
+        return self._movers
 
     def _make_room(self, robot: int) -> list[Task]:
-        """A robot without work: stay, or, standing where others need to be, park nearby."""
-        start = self.instance.robots[robot].at
-        carried = self.instance.robots[robot].carries
-        needed = self.needed_cells()
-        if start not in needed:
-            return [Task("park", (start,), carried is not None, carried)]
-        passable = self.grid.floor
-        if carried is not None:
-            passable = passable & ~self.grid.mask(self.homes.values())
-        distance = self.grid.distances([start], passable)
-        stations = {s.at for s in self.instance.stations.values()}
-        free = sorted((int(distance[c]), c) for c in cells_of(passable & (distance < FAR))
-                      if c not in needed and c not in stations)
-        cells = tuple(c for _, c in free[:ROOM_CELLS])
-        return [Task("park", cells or (start,), carried is not None, carried)]
+        """A robot without work: stay, or, standing in the way, park nearby."""
+        if robot not in self.movers():
+            carried = self.instance.robots[robot].carries
+            return [Task("park", (self.instance.robots[robot].at,), carried is not None, carried)]
+        return [room_task(self.instance, self.grid, robot, self.needed_cells(), set(self.homes.values()))]
 
     def estimate(self, robot: int) -> float:
         """Steps the robot's errand takes at least (to order robots: the longest first)."""
