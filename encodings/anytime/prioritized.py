@@ -1,14 +1,17 @@
 """Prioritized planning: route robots one after the other, each around those routed before.
 
 Robots not routed yet stand still on their start cells, so the robots routed before them
-go around them.  When a robot finds no route, planning starts over with that robot first
-(and, after a few such restarts, in a shuffled order).  Both the first plan and the
+go around them.  A robot that finds no route takes the routed robots in its way out again
+(they are routed once more at the end).  When that does not help, planning starts over
+with that robot first (and robots not routed yet in the way only at step 0: they have to
+get out of the way when their turn comes), after a few restarts in a shuffled order.  Both the first plan and the
 repairs of the large-neighbourhood search (:mod:`.improve`) plan this way.
 """
 
 from __future__ import annotations
 
 import random
+from collections import Counter, deque
 from collections.abc import Callable
 
 from .reservations import Reservations, Track
@@ -16,23 +19,36 @@ from .room import depths
 from .router import Router
 from .work import Work
 
+#: how often one robot may bump others before planning starts over, and how many at once
+BUMPS, BUMPED = 3, 6
+
 
 def route_in_turn(order: list[int], work: Work, router: Router, reservations: Reservations,
                   stopped: Callable[[], bool]) -> int | None:
     """Route the robots of ``order`` one after the other into ``reservations`` (they must be
-    held there, not routed); the first robot that finds no route (then the robots routed
-    so far stay in the table), or ``None``."""
-    routed = set(reservations.tracks)
-    for robot in order:
+    held there, not routed).  A robot that finds no route bumps the routed robots in its
+    way: they are taken out and routed again after the others.  Returns the robot that
+    failed once too often (or was being routed when ``stopped``), else ``None``."""
+    queue = deque(order)
+    bumps: Counter[int] = Counter()
+    while queue:
+        robot = queue.popleft()
         if stopped():
             return robot
         start = reservations.instance.robots[robot].at
-        found = router.route(robot, work.errand(robot, routed), start, avoid=work.parking())
-        if found is None:
+        found = router.route(robot, work.errand(robot, set(reservations.tracks)), start, avoid=work.parking())
+        if found is not None:
+            reservations.add(Track(robot, *found))
+            continue
+        bumps[robot] += 1
+        blockers = [r for r in router.in_the_way(robot, work.errand(robot, set()), start) if r in reservations.tracks
+                    and reservations.tracks[r].parked > 0][:BUMPED]
+        if bumps[robot] > BUMPS or not blockers:
             return robot
-        cells, done = found
-        reservations.add(Track(robot, cells, done))
-        routed.add(robot)
+        for other in blockers:
+            reservations.remove(other)
+        queue.appendleft(robot)
+        queue.extend(blockers)
     return None
 
 
@@ -40,21 +56,19 @@ def first_tracks(work: Work, router: Router, reservations: Reservations, stopped
                  seed: int = 0) -> dict[int, Track] | None:
     """Tracks for every robot of the instance, or ``None`` when stopped first."""
     robots = sorted(reservations.instance.robots)
-    idle = [r for r in robots if r not in set(work.workers())]
     movers = work.movers()
+    idle = [r for r in robots if r not in set(work.workers()) and r not in movers]
     depth = depths(reservations.instance)
     workers = sorted(work.workers(), key=lambda r: (depth[r] > 1, depth[r], -work.estimate(r), r))
     order = movers + workers
     shuffler = random.Random(seed)
     attempt = 0
     while not stopped():
-        for robot in list(reservations.tracks):
-            reservations.remove(robot)
+        reservations.reset(still=attempt == 0)  # after a failure, robots not routed yet may be passed
         for robot in robots:
             reservations.hold(robot)
         for robot in idle:
-            if robot not in movers:
-                reservations.add(Track(robot, [reservations.instance.robots[robot].at]))
+            reservations.add(Track(robot, [reservations.instance.robots[robot].at]))
         failed = route_in_turn(order, work, router, reservations, stopped)
         if failed is None:
             return dict(reservations.tracks)

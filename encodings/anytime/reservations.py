@@ -73,12 +73,25 @@ class Reservations:
         self.stays: dict[Cell, dict[int, int]] = defaultdict(dict)     # cell -> robot -> from step
         self.away: dict[int, list[tuple[int, int]]] = {}               # shelf -> carried periods
         self.carried_from_start = {r.carries: r.id for r in instance.robots.values() if r.carries is not None}
+        self.still = True
 
     # --- changing the table --------------------------------------------------------------
 
+    def reset(self, still: bool) -> None:
+        """Forget all tracks and holds; ``still``: how robots not planned are held."""
+        self.tracks.clear()
+        for table in (self.visits, self.entries, self.stays, self.away):
+            table.clear()
+        self.still = still
+
     def hold(self, robot: int) -> None:
-        """A robot not planned (yet) stays on its start cell for good."""
-        self.stays[self.instance.robots[robot].at][robot] = 0
+        """A robot not planned (yet) stays on its start cell for good (with ``still`` off:
+        stands there at step 0 only, and will have to get out of the way when planned)."""
+        start = self.instance.robots[robot].at
+        if self.still:
+            self.stays[start][robot] = 0
+        else:
+            self.visits[start][0] = robot
 
     def add(self, track: Track) -> None:
         robot = track.robot

@@ -9,6 +9,7 @@ the slack grows (:data:`LEVELS`) before the errand is given up.
 
 from __future__ import annotations
 
+from collections import Counter
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -38,7 +39,7 @@ LEVELS = (Level(1, 6), Level(2, 20), Level(4, 60), Level(None, 150, 12), Level(N
 #: a level whose corridors hold more (cell, step) pairs than this is not tried
 MAX_SLOTS = 300_000
 #: how many steps longer a way may get by keeping off the cells where others park
-DETOUR = 4
+DETOUR = 0
 
 
 @dataclass
@@ -76,6 +77,22 @@ class Router:
             if found is not None:
                 return found
         return None
+
+    def in_the_way(self, robot: int, tasks: list[Task], begin: Cell) -> list[int]:
+        """Other robots on or next to a shortest way through ``tasks``: those parked there
+        first, then those passing there most often."""
+        passable = [self._passable(robot, tasks, number) for number in range(len(tasks))]
+        legs = self._legs(tasks, begin, 0, passable, Level(1, 0), frozenset())
+        if legs is None:
+            return []
+        table, met = self.reservations, Counter()
+        for cell in {cell for leg in legs for cell in leg.windows}:
+            for other in table.stays.get(cell, {}):
+                met[other] += 1000
+            for other in table.visits.get(cell, {}).values():
+                met[other] += 1
+        met.pop(robot, None)
+        return [other for other, _ in met.most_common()]
 
     # --- the search space ------------------------------------------------------------------
 
