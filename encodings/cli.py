@@ -1,7 +1,9 @@
 """Find a plan for an instance with a reference encoding (or max-flow for M/Md).
 
 Without --horizon the search starts at a lower bound of the makespan and goes up one step
-at a time, so the first plan found has minimal makespan.  The plan is checked, then
+at a time, so the first plan found has minimal makespan.  --method anytime instead finds a
+plan fast and then better ones until the time limit (default 60 s) or the lower bound;
+each one is checked and reported with its gap to the bound.  The plan is checked, then
 printed as occurs/3 facts (stdout, or -o PLAN); a summary goes to stderr.
 Exit status: 0 plan found, 1 no plan within the limits, 2 bad input.
 
@@ -11,6 +13,7 @@ Examples:
   asprilo solve instance.lp --horizon 12 --domain b
   asprilo solve instance.lp --assign
   asprilo solve m-instance.lp --method flow
+  asprilo solve instance.lp --method anytime --time-limit 30
   asprilo solve --list
 """
 
@@ -37,8 +40,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--assign", action="store_true",
                         help="compute a task assignment first and plan along it")
     parser.add_argument("--time-limit", type=float, metavar="S", help="stop after S seconds")
-    parser.add_argument("--method", choices=("asp", "flow"), default="asp",
-                        help="asp: an encoding (default); flow: exact max-flow solver for M/Md")
+    parser.add_argument("--method", choices=("asp", "flow", "anytime"), default="asp",
+                        help="asp: an encoding (default); flow: exact max-flow solver for M/Md; "
+                             "anytime: a plan fast, then better ones")
     parser.add_argument("-o", "--output", metavar="PLAN", help="write the plan to this file")
     parser.add_argument("--json", action="store_true", help="print a JSON report instead of the plan")
     parser.add_argument("--list", action="store_true", help="list the encodings and exit")
@@ -67,6 +71,10 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _progress(attempt: Attempt) -> None:
+    if attempt.result == "improved":
+        print(f"plan: makespan {attempt.horizon}, {attempt.note} ({attempt.seconds:.2f} s)",
+              file=sys.stderr, flush=True)
+        return
     note = f" {attempt.note}" if attempt.note else ""
     print(f"horizon {attempt.horizon}{note}: {attempt.result} ({attempt.seconds:.2f} s)",
           file=sys.stderr, flush=True)
@@ -89,6 +97,9 @@ def _summary(outcome: Outcome) -> None:
                      + (f": {outcome.message}" if outcome.message else ""))
     if outcome.method == "flow":
         lines.append(f"max-flow {stats['solve_time']:.2f} s")
+    elif outcome.method == "anytime":
+        lines.append(f"first plan {stats.get('first_plan_seconds', 0):.2f} s, {len(outcome.history)} plans reported, "
+                     f"{stats.get('neighbourhoods', 0)} neighbourhoods tried")
     else:
         lines.append(f"ground {stats['ground_time']:.2f} s, solve {stats['solve_time']:.2f} s, "
                      f"rules {stats['rules']}, atoms {stats['atoms']}, "
@@ -111,4 +122,5 @@ def report(outcome: Outcome) -> dict:
         "assignment": outcome.assignment.facts if outcome.assignment is not None else None,
         "plan": [format_action(action) for action in outcome.plan.actions] if outcome.found else None,
         "message": outcome.message,
+        **({"history": outcome.history} if outcome.method == "anytime" else {}),
     }

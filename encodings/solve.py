@@ -87,6 +87,7 @@ class Outcome:
     assignment: Assignment | None = None
     check: Report | None = None  # the ASP checker's verdict on the plan
     message: str = ""
+    history: list[dict[str, Any]] = field(default_factory=list)  # method anytime: the plans reported
 
     @property
     def found(self) -> bool:
@@ -170,16 +171,18 @@ def solve(instance: Instance | str | Path, domain: Domain | str | None = None, e
     from :data:`ENCODINGS` (``method="asp"``).  ``horizon``: solve at this makespan only;
     without it, search the minimal makespan upwards from a lower bound, up to
     ``max_horizon``.  ``assign``: compute a task assignment first and make the planner
-    follow it.  ``method="flow"``: the exact max-flow solver of M/Md.  ``on_progress`` is
-    called after every horizon; setting ``cancel`` stops the search from another thread.
+    follow it.  ``method="flow"``: the exact max-flow solver of M/Md.  ``method="anytime"``:
+    a checked plan fast, then better ones until ``time_limit`` (default 60 s) or the lower
+    bound (:mod:`.anytime`); ``on_progress`` hears of each.  ``on_progress`` is called after
+    every horizon; setting ``cancel`` stops the search from another thread.
     """
     if not isinstance(instance, Instance):
         instance = read_instance(instance)
     domain = detect_domain(instance) if domain is None else Domain.parse(domain)
     if horizon is not None and horizon < 0:
         raise InputError(f"the horizon must be at least 0, got {horizon}")
-    if method not in ("asp", "flow"):
-        raise InputError(f"unknown method '{method}' (choose asp or flow)")
+    if method not in ("asp", "flow", "anytime"):
+        raise InputError(f"unknown method '{method}' (choose asp, flow or anytime)")
     if method == "flow" and domain.delivers:
         raise InputError(f"the flow method solves domains M and Md only, not {domain.label}")
     if instance.assignment and method == "flow":
@@ -190,16 +193,16 @@ def solve(instance: Instance | str | Path, domain: Domain | str | None = None, e
     program = find_encoding(domain, encoding) if method == "asp" else None
     watch = _Watch(time_limit, cancel)
     try:
-        if method == "flow":
-            outcome = _solve_flow(instance, domain, horizon, watch, on_progress)
+        if method in _OTHER_METHODS:
+            outcome = _OTHER_METHODS[method](instance, domain, horizon, watch, on_progress)
         else:
             outcome = _Search(instance, domain, program, horizon, assign, watch, on_progress,
                               max_horizon).run()
     finally:
         watch.close()
-    outcome.stats = watch.stats.as_dict()
+    outcome.stats = outcome.stats or watch.stats.as_dict()
     outcome.stats.pop("models", None)
-    if outcome.plan is not None:
+    if outcome.plan is not None and outcome.check is None:
         outcome.check = check_plan(instance, outcome.plan, domain)
         if not outcome.check.valid:
             outcome.status = SolveStatus.INVALID
@@ -235,6 +238,38 @@ def _solve_flow(instance: Instance, domain: Domain, horizon: int | None, watch: 
     elif search.stopped is None:
         outcome.status = SolveStatus.NONE
     return outcome
+
+
+# --- anytime -------------------------------------------------------------------------------
+
+def _solve_anytime(instance: Instance, domain: Domain, horizon: int | None, watch: _Watch,
+                   on_progress: Progress | None) -> Outcome:
+    """The anytime planner (:mod:`.anytime`); its improvements are the attempts reported."""
+    from .anytime import plan_anytime
+
+    if horizon is not None:
+        raise InputError("the anytime method searches the makespan itself; leave out --horizon")
+
+    def report(better) -> None:
+        gap = "" if better.gap is None else f", {100 * better.gap:.1f}% above the lower bound"
+        attempt = Attempt(better.makespan, "improved", better.seconds, f"sum of costs {better.sum_of_costs}{gap}")
+        outcome.horizons_tried.append(attempt)
+        if on_progress is not None:
+            on_progress(attempt)
+
+    outcome = Outcome(SolveStatus.LIMIT, domain, "anytime", "anytime")
+    result = plan_anytime(instance, domain, watch.remaining(), watch.cancel, report)
+    outcome.status = SolveStatus(result.status)
+    outcome.plan, outcome.check, outcome.minimal = result.plan, result.check, result.minimal
+    outcome.horizon = result.plan.horizon if result.plan is not None else None
+    outcome.lower_bound, outcome.message = result.bound, result.message
+    outcome.history = [better.__dict__ for better in result.history]
+    outcome.stats = dict(result.stats)
+    return outcome
+
+
+#: the methods that use no reference encoding
+_OTHER_METHODS = {"flow": _solve_flow, "anytime": _solve_anytime}
 
 
 # --- answer set programming ------------------------------------------------------------------

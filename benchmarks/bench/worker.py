@@ -5,7 +5,8 @@ line: what the solver found, its statistics, the plan, and its own peak memory. 
 
 - ``{"kind": "makespan", ...}``: the minimal makespan of an instance in a domain (with or
   without task assignment): the flow solver for M/Md, else an incremental search;
-- ``{"kind": "run", ...}``: one benchmark run at a given horizon.
+- ``{"kind": "run", ...}``: one benchmark run at a given horizon;
+- ``{"kind": "anytime", ...}``: one run of the anytime planner for the whole time limit.
 """
 
 from __future__ import annotations
@@ -37,6 +38,8 @@ def run(job: dict) -> dict:
         outcome = solve(job["instance"], domain=job["domain"], encoding=job.get("encoding", "plain"),
                         assign=job.get("assign", False), time_limit=job["time_limit"],
                         method="flow" if flow else "asp")
+    elif job["kind"] == "anytime":
+        outcome = solve(job["instance"], domain=job["domain"], method="anytime", time_limit=job["time_limit"])
     else:
         outcome = solve(job["instance"], domain=job["domain"], encoding=job["encoding"],
                         horizon=job["horizon"], assign=job.get("assign", False),
@@ -51,6 +54,7 @@ def run(job: dict) -> dict:
         "stats": outcome.stats,
         "memory_mb": _peak_mb(),
         "message": outcome.message,
+        **({"history": outcome.history, "lower_bound": outcome.lower_bound} if job["kind"] == "anytime" else {}),
     }
 
 

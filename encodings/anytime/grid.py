@@ -88,7 +88,7 @@ def widen(cells: np.ndarray, radius: int) -> np.ndarray:
 def cells_of(mask: np.ndarray) -> list[Cell]:
     """The true cells of a mask, as ``(X,Y)``."""
     xs, ys = np.nonzero(mask)
-    return list(zip(xs.tolist(), ys.tolist()))
+    return list(zip(xs.tolist(), ys.tolist(), strict=True))
 
 
 def distance_table(grid: Grid, sources: list[Cell], targets: list[Cell]) -> np.ndarray:

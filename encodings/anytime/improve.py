@@ -17,7 +17,6 @@ Neighbourhoods, chosen with weights that grow with their successes:
 from __future__ import annotations
 
 import random
-import time
 from collections.abc import Callable
 
 from asprilo.model import Cell
@@ -91,8 +90,9 @@ class Improver:
             return [late], 0, False
         if kind in ("crowd", "tail"):
             group = [late, *self._met(late)[:size - 1]]
-            start = max(0, self.table.tracks[late].finish - self.random.randint(TAIL // 2, TAIL)) if kind == "tail" else 0
-            return group, start, False
+            if kind == "crowd":
+                return group, 0, False
+            return group, max(0, self.table.tracks[late].finish - self.random.randint(TAIL // 2, TAIL)), False
         if kind == "random":
             others = [r for r in self.work.workers() if r != late]
             return [late, *self.random.sample(others, min(len(others), size - 1))], 0, False

@@ -20,7 +20,7 @@ from asprilo.model import Cell
 
 from .errands import Task
 from .grid import FAR, Grid, cells_of, widen
-from .reservations import FOREVER, Reservations, Track
+from .reservations import FOREVER, Reservations
 
 PROGRAM = Path(__file__).resolve().parent / "route.lp"
 
@@ -111,7 +111,7 @@ class Router:
               level: Level, avoid: frozenset[Cell]) -> list[Leg] | None:
         legs, start, earliest = [], begin, step
         shunned = self.grid.mask(avoid - {c for task in tasks for c in task.cells} - {begin})
-        for task, allowed in zip(tasks, passable):
+        for task, allowed in zip(tasks, passable, strict=True):
             to_task = self.grid.distances(task.cells, allowed)
             if to_task[start] >= FAR:
                 return None
@@ -178,8 +178,8 @@ class Router:
             since = table.stay(cell, robot)
             if since is not None and since <= last:
                 out.append(f"stays({_c(cell)},{since}).")
-            out += [f"crossing({_c(source)},{_c(cell)},{t})." for source, t in table.crossings(cell, first, last + 1, robot)
-                    if source in spans]
+            out += [f"crossing({_c(source)},{_c(cell)},{t})."
+                    for source, t in table.crossings(cell, first, last + 1, robot) if source in spans]
         return out
 
     def _shelves(self, robot: int, legs: list[Leg]) -> list[str]:
