@@ -10,8 +10,7 @@ without grounding again.
 from __future__ import annotations
 
 import math
-import time
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -53,9 +52,10 @@ class Assigner:
         self.unsatisfiable = False  # the last solve call proved that no assignment exists
 
     def solve(self, keep: Iterable[clingo.Symbol] = (), drop: Iterable[clingo.Symbol] = (),
-              budget: float = 1.0, deadline: float | None = None) -> Choice | None:
-        """The best assignment found within ``budget`` seconds (or the first one found
-        before ``deadline``), with the atoms of ``keep`` true and those of ``drop`` false."""
+              budget: float = 1.0, stopped: Callable[[], bool] = lambda: True) -> Choice | None:
+        """The best assignment found within ``budget`` seconds (or, when none is found by
+        then, the first one found before ``stopped()``), with the atoms of ``keep`` true and
+        those of ``drop`` false."""
         keep = list(keep)
         if any(atom not in self.atoms for atom in keep):
             return None  # a kept choice the program does not offer
@@ -69,7 +69,7 @@ class Assigner:
 
         with self.control.solve(assumptions=assumptions, on_model=record, async_=True) as handle:
             finished = handle.wait(budget)
-            while not finished and not found and (deadline is None or time.perf_counter() < deadline):
+            while not finished and not found and not stopped():
                 finished = handle.wait(0.2)
             if not finished:
                 handle.cancel()

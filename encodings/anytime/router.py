@@ -80,7 +80,8 @@ class Router:
 
     def in_the_way(self, robot: int, tasks: list[Task], begin: Cell) -> list[int]:
         """Other robots on or next to a shortest way through ``tasks``: those parked there
-        first, then those passing there most often."""
+        first, then those that come to the robot's start while it is still there, then
+        those passing the way most often."""
         passable = [self._passable(robot, tasks, number) for number in range(len(tasks))]
         legs = self._legs(tasks, begin, 0, passable, Level(1, 0), frozenset())
         if legs is None:
@@ -89,8 +90,9 @@ class Router:
         for cell in {cell for leg in legs for cell in leg.windows}:
             for other in table.stays.get(cell, {}):
                 met[other] += 1000
-            for other in table.visits.get(cell, {}).values():
-                met[other] += 1
+            for step, other in table.visits.get(cell, {}).items():
+                near_start = abs(cell[0] - begin[0]) + abs(cell[1] - begin[1]) <= 1 and step <= 3
+                met[other] += 100 if near_start else 1
         met.pop(robot, None)
         return [other for other, _ in met.most_common()]
 

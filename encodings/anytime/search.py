@@ -151,7 +151,7 @@ def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = 
         return result
     grid = Grid(instance.cells)
     work = Work(instance, domain, grid, result.bound)
-    if not work.assign(min(ASSIGN_CAP, ASSIGN_SHARE * limit), run.deadline):
+    if not work.assign(min(ASSIGN_CAP, ASSIGN_SHARE * limit), run.out_of_time):
         result.status = "cancelled" if run.cancelled() else "limit"
         result.message = "no assignment of the work to the robots within the time limit"
         return result

@@ -9,7 +9,7 @@ are sent to park nearby.
 from __future__ import annotations
 
 import math
-import time
+from collections.abc import Callable
 
 import clingo
 
@@ -44,22 +44,23 @@ class Work:
 
     # --- the first assignment ----------------------------------------------------------------
 
-    def assign(self, budget: float, deadline: float) -> bool:
-        """Compute the first assignment; whether there is one."""
+    def assign(self, budget: float, stopped: Callable[[], bool]) -> bool:
+        """Compute the first assignment (optimising for ``budget`` seconds, waiting for a
+        first one until ``stopped()``); whether there is one."""
         if self.domain.delivers:
-            return self._assign_shelves(budget, deadline)
+            return self._assign_shelves(budget, stopped)
         self._problem = goal_problem(self.instance, self.grid, self.longest)
-        choice = self._problem.assigner.solve(budget=budget, deadline=deadline)
+        choice = self._problem.assigner.solve(budget=budget, stopped=stopped)
         if choice is None:
             return False
         self._take(choice)
         return True
 
-    def _assign_shelves(self, budget: float, deadline: float) -> bool:
+    def _assign_shelves(self, budget: float, stopped: Callable[[], bool]) -> bool:
         nearest = 12
         while True:
             self._problem = shelf_problem(self.instance, self.grid, self.domain, self.homes, nearest)
-            choice = self._problem.assigner.solve(budget=budget, deadline=deadline)
+            choice = self._problem.assigner.solve(budget=budget, stopped=stopped)
             if choice is not None:
                 self._take(choice)
                 return True
@@ -90,7 +91,7 @@ class Work:
         if self._problem is None:
             return False
         keep, drop = self._fixed(freed)
-        choice = self._problem.assigner.solve(keep, drop, budget=budget, deadline=time.perf_counter() + budget)
+        choice = self._problem.assigner.solve(keep, drop, budget=budget)
         if choice is None or choice.atoms == self.choice.atoms:
             return False
         self._take(choice)
