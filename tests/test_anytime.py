@@ -169,3 +169,21 @@ def test_cli_refuses_a_horizon_with_the_anytime_method(capsys):
     path = REPO / "x4_y4_n16_r2_s3_ps1_pr2_u4_o2_N1.lp"
     assert main(["solve", str(path), "--method", "anytime", "--horizon", "5"]) == 2
     assert capsys.readouterr().err == "error: the anytime method searches the makespan itself; leave out --horizon\n"
+
+
+@pytest.mark.parametrize("steps", [8, 12])
+def test_it_plans_from_a_state_in_the_middle_of_a_plan(steps):
+    """What the online link asks after new orders: robots carrying shelves (some from the
+    start, some standing on a station), shelves away from their cells, lines done."""
+    from asprilo.model import Plan
+    from asprilo.online.planner import world_at
+    from asprilo.simulate import simulate
+
+    instance = read_instance(PAPER / "1x2x4/x11_y6_n66_r8_s16_ps1_pr16_u16_o8_N001.lp")
+    first = plan_anytime(instance, Domain.B, time_limit=2)
+    done = Plan([action for action in first.plan.actions if action.step <= steps])
+    now = world_at(instance, simulate(instance, done, Domain.B).state(steps))
+    assert any(robot.carries is not None for robot in now.robots.values())
+    result = plan_anytime(now, Domain.B, time_limit=5)
+    assert result.status == "found"
+    _assert_sound(result, now, Domain.B)

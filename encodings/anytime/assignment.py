@@ -152,7 +152,8 @@ def shelf_problem(instance: Instance, grid: Grid, domain: Domain, homes: dict[in
 
 def _hauls(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: list[int]) -> dict[tuple[int, int], int]:
     """(shelf, station) -> steps to carry the shelf there around the other resting shelves."""
-    resting = grid.mask(homes.values())
+    carried = {robot.carries for robot in instance.robots.values()}
+    resting = grid.mask(cell for shelf, cell in homes.items() if shelf not in carried)
     haul = {}
     for station in sorted(instance.stations.values(), key=lambda s: s.id):
         distance = grid.distances([station.at], grid.floor & ~resting)

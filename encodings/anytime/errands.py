@@ -55,12 +55,11 @@ def shelf_home(instance: Instance, shelf: int) -> Cell:
     return instance.shelves[shelf].at
 
 
-def delivery_errand(instance: Instance, robot: int, trips: list[Trip],
-                    park_cells: tuple[Cell, ...] = ()) -> list[Task]:
-    """The tasks of a robot that brings ``trips`` one after the other.
+def delivery_errand(instance: Instance, robot: int, trips: list[Trip], park_cells: tuple[Cell, ...]) -> list[Task]:
+    """The tasks of a robot that brings ``trips`` (at least one) one after the other.
 
     Every shelf but the last goes back to its own cell and is put down there; the last one
-    is kept and the robot parks on its cell, or on one of ``park_cells``.
+    is kept and the robot parks with it on one of ``park_cells``.
     """
     carried = instance.robots[robot].carries
     tasks: list[Task] = []
@@ -73,9 +72,7 @@ def delivery_errand(instance: Instance, robot: int, trips: list[Trip],
         if number < len(trips) - 1:
             tasks.append(Task("putdown", (home,), True, trip.shelf))
         else:
-            tasks.append(Task("park", (home, *park_cells), True, trip.shelf))
-    if not trips:
-        tasks.append(Task("park", (instance.robots[robot].at, *park_cells), carried is not None, carried))
+            tasks.append(Task("park", park_cells, True, trip.shelf))
     return tasks
 
 

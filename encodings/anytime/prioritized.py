@@ -2,7 +2,7 @@
 
 Robots not routed yet stand still on their start cells, so the robots routed before them
 go around them.  A robot that finds no route takes the routed robots in its way out again
-(they are routed once more at the end).  When that does not help, planning starts over
+(they are routed once more right after it).  When that does not help, planning starts over
 with that robot first (and robots not routed yet in the way only at step 0: they have to
 get out of the way when their turn comes), after a few restarts in a shuffled order.  Both the first plan and the
 repairs of the large-neighbourhood search (:mod:`.improve`) plan this way.
@@ -27,7 +27,7 @@ def route_in_turn(order: list[int], work: Work, router: Router, reservations: Re
                   stopped: Callable[[], bool]) -> int | None:
     """Route the robots of ``order`` one after the other into ``reservations`` (they must be
     held there, not routed).  A robot that finds no route bumps the routed robots in its
-    way: they are taken out and routed again after the others.  Returns the robot that
+    way: they are taken out, it is routed, then they are routed again.  Returns the robot that
     failed once too often (or was being routed when ``stopped``), else ``None``."""
     queue = deque(order)
     bumps: Counter[int] = Counter()
@@ -47,20 +47,29 @@ def route_in_turn(order: list[int], work: Work, router: Router, reservations: Re
             return robot
         for other in blockers:
             reservations.remove(other)
-        queue.appendleft(robot)
-        queue.extend(blockers)
+        queue.extendleft(reversed([robot, *blockers]))  # it goes first now, they right after it
     return None
 
 
 def first_tracks(work: Work, router: Router, reservations: Reservations, stopped: Callable[[], bool],
                  seed: int = 0) -> dict[int, Track] | None:
-    """Tracks for every robot of the instance, or ``None`` when stopped first."""
+    """Tracks for every robot of the instance, or ``None`` when stopped first.
+
+    Robots with work go longest errand first (they decide the makespan); the third attempt
+    tries shortest first (robots crowding at a station then come and go in turn)."""
     robots = sorted(reservations.instance.robots)
     movers = work.movers()
     idle = [r for r in robots if r not in set(work.workers()) and r not in movers]
     depth = depths(reservations.instance)
-    workers = sorted(work.workers(), key=lambda r: (depth[r] > 1, depth[r], -work.estimate(r), r))
-    order = movers + workers
+    on_the_way = {r for r in robots if reservations.instance.robots[r].at in work.needed_cells()}
+
+    def ordered(longest_first: bool) -> list[int]:
+        # shallow robots first, and of those first the ones standing where others must go
+        sign = -1 if longest_first else 1
+        return movers + sorted(work.workers(), key=lambda r: (depth[r] > 1, r not in on_the_way, depth[r],
+                                                               sign * work.estimate(r), r))
+
+    order = ordered(True)
     shuffler = random.Random(seed)
     attempt = 0
     while not stopped():
@@ -73,6 +82,9 @@ def first_tracks(work: Work, router: Router, reservations: Reservations, stopped
         if failed is None:
             return dict(reservations.tracks)
         attempt += 1
+        if attempt == 2:
+            order = ordered(False)
+            continue
         order.remove(failed)
         order.insert(0, failed)
         if attempt % 4 == 0:

@@ -14,7 +14,7 @@ from collections.abc import Callable
 import clingo
 
 from asprilo.domain import Domain
-from asprilo.model import Cell, Instance
+from asprilo.model import DIRECTIONS, Cell, Instance
 
 from .assignment import Choice, aims, goal_problem, shelf_problem
 from .errands import Task, Trip, delivery_errand, goal_errand, shelf_home, trips
@@ -33,6 +33,9 @@ class Work:
     def __init__(self, instance: Instance, domain: Domain, grid: Grid, longest: float):
         self.instance, self.domain, self.grid = instance, domain, grid
         self.homes = {s: shelf_home(instance, s) for s in instance.shelves}
+        carried = {robot.carries for robot in instance.robots.values()}
+        #: the cells of the shelves that rest at the start (not those carried)
+        self.resting = {cell for shelf, cell in self.homes.items() if shelf not in carried}
         self.longest = longest
         self.goals: dict[int, Cell] = {}
         self.trips: dict[int, list[Trip]] = {}
@@ -129,7 +132,10 @@ class Work:
         if not trips_:
             return self._make_room(robot)
         last = trips_[-1].deliveries[-1][0] if trips_[-1].deliveries else None
-        park: tuple[Cell, ...] = ()
+        home = self.homes[trips_[-1].shelf]
+        # a shelf carried from the start has the robot's start cell as its home: park
+        # elsewhere when that is no place for a shelf (a highway, a station)
+        park = (home,) if home in self.instance.storage_cells else self._room(robot).cells
         if last is not None and roomy:
             if all(other in routed for other in self.trips if other != robot and last in self.stations_of(other)):
                 park = (last,)
@@ -139,7 +145,7 @@ class Work:
     def _near(self, station: Cell) -> tuple[Cell, ...]:
         """Cells a few steps from a station where a robot with a shelf may park."""
         if station not in self._parking:
-            passable = self.grid.floor & ~self.grid.mask(self.homes.values())
+            passable = self.grid.floor & ~self.grid.mask(self.resting)
             distance = self.grid.distances([station], passable)
             stations = {s.at for s in self.instance.stations.values()}
             self._parking[station] = tuple(sorted(
@@ -158,12 +164,14 @@ class Work:
         return self._parking_cells
 
     def needed_cells(self) -> set[Cell]:
-        """Cells robots with work must be able to use: goals, stations, shelves to fetch."""
+        """Cells robots with work must be able to use: goals, shelves to fetch, stations and
+        the cells next to them (the ways in and out)."""
         if not self.domain.delivers:
             return set(self.goals.values())
-        cells = {cell for robot in self.trips for cell in self.stations_of(robot)}
+        stations = {cell for robot in self.trips for cell in self.stations_of(robot)}
+        cells = stations | {(x + dx, y + dy) for x, y in stations for dx, dy in DIRECTIONS}
         cells |= {self.homes[trip.shelf] for ts in self.trips.values() for trip in ts}
-        return cells
+        return cells & self.instance.cells
 
     def movers(self) -> list[int]:
         """Robots without work that have to make room (see :mod:`.room`), in routing order."""
@@ -176,7 +184,10 @@ class Work:
         if robot not in self.movers():
             carried = self.instance.robots[robot].carries
             return [Task("park", (self.instance.robots[robot].at,), carried is not None, carried)]
-        return [room_task(self.instance, self.grid, robot, self.needed_cells(), set(self.homes.values()))]
+        return [self._room(robot)]
+
+    def _room(self, robot: int) -> Task:
+        return room_task(self.instance, self.grid, robot, self.needed_cells(), self.resting)
 
     def estimate(self, robot: int) -> float:
         """Steps the robot's errand takes at least (to order robots: the longest first)."""
