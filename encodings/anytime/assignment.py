@@ -144,9 +144,10 @@ def shelf_problem(instance: Instance, grid: Grid, domain: Domain, homes: dict[in
               for s in shelves for p, u in stock[s].items() if p in wanted]
     haul = _hauls(instance, grid, homes, shelves)
     facts += [f"haul({s},{ps},{d})." for (s, ps), d in haul.items()]
-    facts += _carriers(instance, grid, homes, shelves, nearest)
     robots = max(1, sum(1 for r in instance.robots.values() if r.carries is None))
-    facts.append(f"cap({max(1, math.ceil(len(lines) / robots))}).")
+    cap = max(1, math.ceil(len(lines) / robots))
+    facts += _carriers(instance, grid, homes, shelves, nearest, cap)
+    facts.append(f"cap({cap}).")
     return ShelfProblem(lines, Assigner("assign_shelves.lp", facts, {"domain": domain.value}), haul)
 
 
@@ -165,16 +166,25 @@ def _hauls(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: list
     return haul
 
 
-def _carriers(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: list[int], nearest: int) -> list[str]:
-    """``option(R,S,D)``: the robots nearest to each shelf; a robot that starts with a shelf
+def _carriers(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: list[int], nearest: int,
+              cap: int) -> list[str]:
+    """``option(R,S,D)``: the robots nearest to each shelf, and the robot a cheapest matching
+    of robots (each up to ``cap`` times) to shelves gives it, so that the cap can be kept
+    even where many shelves have the same nearest robots; a robot that starts with a shelf
     carries that one or none, and nobody else carries it."""
+    from scipy.optimize import linear_sum_assignment  # imported when needed: it is slow to import
+
     carried = {r.carries: r.id for r in instance.robots.values() if r.carries is not None}
     free = sorted(r.id for r in instance.robots.values() if r.carries is None)
     facts = [f"option({carried[s]},{s},0)." for s in shelves if s in carried]
     loose = [s for s in shelves if s not in carried]
     distance = distance_table(grid, [instance.robots[r].at for r in free], [homes[s] for s in loose])
-    for column, shelf in enumerate(loose):
-        for row in np.argsort(distance[:, column], kind="stable")[:nearest]:
-            if distance[row, column] < FAR:
-                facts.append(f"option({free[row]},{shelf},{int(distance[row, column])}).")
+    offered = {(int(row), column) for column in range(len(loose))
+               for row in np.argsort(distance[:, column], kind="stable")[:nearest]}
+    if free and loose:
+        copies = np.repeat(np.where(distance < FAR, distance, FAR), cap, axis=0)
+        rows, columns = linear_sum_assignment(copies)
+        offered |= {(int(row) // cap, int(column)) for row, column in zip(rows, columns, strict=True)}
+    facts += [f"option({free[row]},{loose[column]},{int(distance[row, column])})."
+              for row, column in sorted(offered) if distance[row, column] < FAR]
     return facts

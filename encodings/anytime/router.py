@@ -10,6 +10,7 @@ the slack grows (:data:`LEVELS`) before the errand is given up.
 from __future__ import annotations
 
 from collections import Counter
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -54,10 +55,11 @@ class Leg:
 
 
 class Router:
-    """Routes errands on one floor against one reservation table."""
+    """Routes errands on one floor against one reservation table; ``stopped()`` true ends
+    the widening of a search early (no route then)."""
 
-    def __init__(self, grid: Grid, reservations: Reservations):
-        self.grid, self.reservations = grid, reservations
+    def __init__(self, grid: Grid, reservations: Reservations, stopped: Callable[[], bool] = lambda: False):
+        self.grid, self.reservations, self.stopped = grid, reservations, stopped
 
     def route(self, robot: int, tasks: list[Task], begin: Cell, step: int = 0,
               levels: tuple[Level, ...] = LEVELS, avoid: frozenset[Cell] = frozenset()
@@ -68,6 +70,8 @@ class Router:
         makes a way more than :data:`DETOUR` steps longer."""
         passable = [self._passable(robot, tasks, number) for number in range(len(tasks))]
         for level in levels:
+            if self.stopped():
+                return None
             legs = self._legs(tasks, begin, step, passable, level, avoid)
             if legs is None or _too_late(legs, self.reservations, robot):
                 return None  # some task cannot be reached (in time) at all

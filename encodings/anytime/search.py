@@ -50,7 +50,8 @@ class AnytimeResult:
     """What :func:`plan_anytime` found.
 
     ``status``: ``found`` (a checked plan), ``none`` (no plan can exist: some goal or line
-    cannot be reached), ``limit`` (no plan within the time) or ``cancelled``.  ``minimal``:
+    cannot be reached), ``limit`` (no plan within the time), ``cancelled``, or ``invalid``
+    (the first plan failed the check: a bug, reported in ``message``).  ``minimal``:
     the plan's makespan meets the lower bound, so no shorter plan exists.
     """
 
@@ -83,7 +84,10 @@ class _Run:
         self.check_seconds = 0.0
         self.last_check = -math.inf
         self.pending: dict[int, Track] | None = None
-        self.good: dict[int, Track] | None = None
+        self.good: dict[int, Track] | None = None  # the tracks of the last plan that passed the check
+        self.work: Work | None = None
+        self.good_work: tuple | None = None         # ... and the assignment they follow
+        self.pending_work: tuple | None = None
 
     def elapsed(self) -> float:
         return time.perf_counter() - self.started
@@ -104,6 +108,7 @@ class _Run:
         """A better plan: report it now if checking is due (or ``force``), else later;
         ``False`` when it failed the check (the search then goes back to the last good one)."""
         self.pending = dict(tracks)
+        self.pending_work = self.work.save()
         if not force and time.perf_counter() - self.last_check < max(CHECK_GAP, CHECK_FACTOR * self.check_seconds):
             return True
         return self.report()
@@ -121,7 +126,7 @@ class _Run:
         if not verdict.valid:
             self.result.message = "a plan failed the check and was dropped: " + verdict.errors[0].message
             return False
-        self.good = tracks
+        self.good, self.good_work = tracks, self.pending_work
         result = self.result
         result.status, result.plan, result.check = "found", plan, verdict
         makespan, soc = verdict.metrics["horizon"], verdict.metrics["sum_of_costs"]
@@ -150,20 +155,22 @@ def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = 
         result.message = "some goal or order line can never be reached"
         return result
     grid = Grid(instance.cells)
-    work = Work(instance, domain, grid, result.bound)
+    work = run.work = Work(instance, domain, grid, result.bound)
     if not work.assign(min(ASSIGN_CAP, ASSIGN_SHARE * limit), run.out_of_time):
         result.status = "cancelled" if run.cancelled() else "limit"
         result.message = "no assignment of the work to the robots within the time limit"
         return result
     table = Reservations(instance, work.homes)
-    router = Router(grid, table)
+    router = Router(grid, table, run.out_of_time)
     tracks = first_tracks(work, router, table, run.out_of_time, seed)
     result.stats["first_plan_seconds"] = round(run.elapsed(), 3)
     if tracks is None:
         result.status = "cancelled" if run.cancelled() else "limit"
         result.message = "no first plan within the time limit"
         return result
-    run.offer(tracks, force=True)
+    if not run.offer(tracks, force=True):
+        result.status = "invalid"
+        return result
     _improve(run, Improver(work, router, table, seed), table)
     if run.pending is not None:
         run.report()
@@ -182,6 +189,7 @@ def _improve(run: _Run, improver: Improver, table: Reservations) -> None:
         steps += 1
         if improver.step(lambda: run.out_of_time()) and not run.offer(table.tracks):
             _go_back(table, run.good)
+            improver.work.restore(run.good_work)
     run.result.stats.update(neighbourhoods=steps, tried=dict(improver.tried), improved=dict(improver.won))
 
 
