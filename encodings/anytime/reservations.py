@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections import defaultdict
 from dataclasses import dataclass, field
+from functools import cached_property
 
 from asprilo.model import Cell, Instance
 
@@ -36,9 +37,9 @@ class Track:
     def at(self, step: int) -> Cell:
         return self.cells[min(step, self.parked)]
 
-    @property
+    @cached_property
     def finish(self) -> int:
-        """The step of the robot's last action (0 when it never acts)."""
+        """The step of the robot's last action (0 when it never acts; tracks never change)."""
         last = 0
         for step in range(1, len(self.cells)):
             if self.cells[step] != self.cells[step - 1]:
