@@ -25,8 +25,11 @@ from .domain import Domain
 from .model import DIRECTIONS, Cell, Instance
 
 INFINITE = math.inf
-#: the scheduling relaxation: conflicts per horizon (a deterministic budget) and horizons tried
+#: the scheduling relaxation: conflicts per horizon (a deterministic budget, smaller for big
+#: programs, whose conflicts cost more: at most SCHEDULE_WORK / (lines x robots x horizon))
+#: and horizons tried
 SCHEDULE_CONFLICTS = 20_000
+SCHEDULE_WORK = 400_000_000
 SCHEDULE_STEPS = 64
 _PROGRAM = Path(__file__).resolve().parent / "delivery_bound.lp"
 
@@ -83,6 +86,15 @@ class Deliveries:
         self.lifted = {s: 0 if s in carried else float(walks[k].min(initial=INFINITE)) + 1
                        for k, s in enumerate(ids)}
         self._arrivals: dict[int, dict[Cell, float]] = {}
+        self._from_station: dict[Cell, dict[int, float]] = {}
+
+    def carry(self, shelf: int, station: Cell) -> float:
+        """The distance from ``shelf``'s cell to ``station`` (one search per station)."""
+        if station not in self._from_station:
+            ids = sorted(self.shelves)
+            row = self.floor.distances([station], [self.shelves[s] for s in ids])[0]
+            self._from_station[station] = dict(zip(ids, row, strict=True))
+        return float(self._from_station[station][shelf])
 
     def _lines(self) -> list[Line]:
         lines = []
@@ -162,17 +174,24 @@ def schedule_bound(facts: Deliveries, start: float) -> float:
     text = _schedule_facts(facts)
     horizon = int(start)
     for _ in range(SCHEDULE_STEPS):
-        if _relaxed_schedule(text, horizon) != "unsat":
+        if _relaxed_schedule(text, horizon, _conflicts(facts, horizon)) != "unsat":
             return float(horizon)
         horizon += 1
     return float(horizon)
 
 
-def _relaxed_schedule(text: str, horizon: int) -> list | str:
-    """A model of the relaxation at ``horizon`` (its deliver/3 atoms), or "unsat" / "unknown"."""
+def _conflicts(facts: Deliveries, horizon: int) -> int:
+    """The conflict budget of the relaxation at ``horizon``."""
+    size = max(1, len(facts.lines) * len(facts.robots) * horizon)
+    return max(1, min(SCHEDULE_CONFLICTS, SCHEDULE_WORK // size))
+
+
+def _relaxed_schedule(text: str, horizon: int, conflicts: int) -> list | str:
+    """A model of the relaxation at ``horizon`` (its deliver/3 atoms), or "unsat" / "unknown"
+    (no answer within ``conflicts`` conflicts)."""
     import clingo
 
-    control = clingo.Control(["--warn=none", f"-c horizon={horizon}", f"--solve-limit={SCHEDULE_CONFLICTS}"])
+    control = clingo.Control(["--warn=none", f"-c horizon={horizon}", f"--solve-limit={conflicts}"])
     control.load(str(_PROGRAM))
     control.add("base", [], text)
     control.ground([("base", [])])
@@ -200,7 +219,7 @@ def delivery_schedule(instance: Instance, domain: Domain, floor, horizon: int,
     facts = Deliveries(instance, domain, floor, carriers)
     if not facts.lines or not schedulable(facts):
         return []
-    model = _relaxed_schedule(_schedule_facts(facts), horizon)
+    model = _relaxed_schedule(_schedule_facts(facts), horizon, _conflicts(facts, horizon))
     if isinstance(model, str):
         return []
     steps = []
@@ -229,7 +248,7 @@ def _robot_release(facts: Deliveries, robot: int, position: int, shelf: int, sta
     lifting it and carrying it there (and no earlier than any robot could)."""
     carrier = facts.instance.robots[robot].carries
     walk = 0.0 if carrier == shelf else float(facts.walk[shelf][position]) + 1
-    carry = float(facts.floor.distances([facts.shelves[shelf]], [station])[0, 0])
+    carry = facts.carry(shelf, station)
     return max(facts.arrival(shelf, station), walk + carry) + 1
 
 
@@ -249,8 +268,7 @@ def _cycle(facts: Deliveries) -> float:
     for line in facts.lines:
         for shelf in line.holders:
             k = shelves.index(shelf)
-            carry = facts.floor.distances([facts.shelves[shelf]], [line.station])[0, 0]
-            best = min(best, 3 + via[k] + carry)
+            best = min(best, 3 + via[k] + facts.carry(shelf, line.station))
     return best
 
 

@@ -1,7 +1,9 @@
 """Find a plan for an instance with a reference encoding (or max-flow for M/Md).
 
 Without --horizon the search starts at a lower bound of the makespan and goes up one step
-at a time, so the first plan found has minimal makespan.  The plan is checked, then
+at a time, so the first plan found has minimal makespan.  --method anytime instead finds a
+plan fast and then better ones until the time limit (default 60 s) or the lower bound;
+each one is checked and reported with its gap to the bound.  The plan is checked, then
 printed as occurs/3 facts (stdout, or -o PLAN); a summary goes to stderr.
 Exit status: 0 plan found, 1 no plan within the limits, 2 bad input.
 
@@ -11,6 +13,7 @@ Examples:
   asprilo solve instance.lp --horizon 12 --domain b
   asprilo solve instance.lp --assign
   asprilo solve m-instance.lp --method flow
+  asprilo solve instance.lp --method anytime --time-limit 30
   asprilo solve --list
 """
 
@@ -27,10 +30,11 @@ from asprilo.arguments import domain_argument, megabytes_argument, seconds_argum
 from asprilo.errors import InputError
 from asprilo.writer import format_action, format_plan, refuse_overwriting, write_text
 
+from .anytime import DEFAULT_SECONDS as ANYTIME_SECONDS
 from .registry import ENCODINGS
 from .search import Attempt, Outcome, Phase, solve
 
-#: seconds ``asprilo solve`` may take unless told otherwise
+#: seconds ``asprilo solve`` may take unless told otherwise (the anytime method: its own default)
 DEFAULT_TIME_LIMIT = 300.0
 
 
@@ -42,12 +46,14 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--horizon", type=int, metavar="H", help="solve at this makespan only")
     parser.add_argument("--assign", action="store_true",
                         help="compute a task assignment first and plan along it")
-    parser.add_argument("--time-limit", type=seconds_argument, default=DEFAULT_TIME_LIMIT, metavar="S",
-                        help=f"stop after S seconds, grounding included (default {DEFAULT_TIME_LIMIT:g})")
+    parser.add_argument("--time-limit", type=seconds_argument, metavar="S",
+                        help=f"stop after S seconds, grounding included (default {DEFAULT_TIME_LIMIT:g}; "
+                             f"anytime: {ANYTIME_SECONDS:g})")
     parser.add_argument("--memory-limit", type=megabytes_argument, metavar="MB",
                         help="stop when the solver needs more than MB megabytes (default: no limit)")
-    parser.add_argument("--method", choices=("asp", "flow"), default="asp",
-                        help="asp: an encoding (default); flow: exact max-flow solver for M/Md")
+    parser.add_argument("--method", choices=("asp", "flow", "anytime"), default="asp",
+                        help="asp: an encoding (default); flow: exact max-flow solver for M/Md; "
+                             "anytime: a plan fast, then better ones")
     parser.add_argument("-o", "--output", metavar="PLAN", help="write the plan to this file")
     parser.add_argument("--json", action="store_true", help="print a JSON report instead of the plan")
     parser.add_argument("--list", action="store_true", help="list the encodings and exit")
@@ -62,10 +68,13 @@ def run(args: argparse.Namespace) -> int:
     if args.instance is None:
         raise InputError("no instance given (asprilo solve INSTANCE)")
     refuse_overwriting(args.output, [args.instance])
+    time_limit = args.time_limit
+    if time_limit is None:
+        time_limit = ANYTIME_SECONDS if args.method == "anytime" else DEFAULT_TIME_LIMIT
     progress = SearchProgress(sys.stderr)
     try:
         outcome = solve(args.instance, args.domain, args.encoding, args.horizon, args.assign,
-                        args.time_limit, args.method, on_progress=progress.attempt, on_phase=progress.phase,
+                        time_limit, args.method, on_progress=progress.attempt, on_phase=progress.phase,
                         isolate=True, memory_limit=args.memory_limit)
     finally:
         progress.close()
@@ -101,8 +110,11 @@ class SearchProgress:
             self._say(f"{self._label(phase)}: {phase.name} (elapsed {self.since - self.started:.1f} s)")
 
     def attempt(self, attempt: Attempt) -> None:
-        note = f" {attempt.note}" if attempt.note else ""
         self.current = None
+        if attempt.result == "improved":
+            self._say(f"plan: makespan {attempt.horizon}, {attempt.note} ({attempt.seconds:.2f} s)")
+            return
+        note = f" {attempt.note}" if attempt.note else ""
         self._say(f"horizon {attempt.horizon}{note}: {attempt.result} ({attempt.seconds:.2f} s)")
 
     def close(self) -> None:
@@ -150,6 +162,9 @@ def _summary(outcome: Outcome) -> None:
                          f"{outcome.proven_bound:g}")
     if outcome.method == "flow":
         lines.append(f"max-flow {stats['solve_time']:.2f} s")
+    elif outcome.method == "anytime":
+        lines.append(f"first plan {stats.get('first_plan_seconds', 0):.2f} s, {len(outcome.history)} plans reported, "
+                     f"{stats.get('neighbourhoods', 0)} neighbourhoods tried")
     else:
         lines.append(f"ground {stats['ground_time']:.2f} s, solve {stats['solve_time']:.2f} s, "
                      f"rules {stats['rules']}, atoms {stats['atoms']}, "
@@ -167,13 +182,15 @@ def report(outcome: Outcome) -> dict:
         "horizon": outcome.horizon,
         "minimal": outcome.minimal,
         "lower_bound": outcome.lower_bound if outcome.lower_bound != float("inf") else None,
-        "horizons_tried": [attempt.__dict__ for attempt in outcome.horizons_tried],
+        "horizons_tried": [{key: value for key, value in attempt.__dict__.items() if key != "plan"}
+                           for attempt in outcome.horizons_tried],
         "refuted": outcome.refuted,
         "proven_bound": outcome.proven_bound if outcome.proven_bound != float("inf") else None,
         "stats": outcome.stats,
         "assignment": outcome.assignment.facts if outcome.assignment is not None else None,
         "plan": [format_action(action) for action in outcome.plan.actions] if outcome.found else None,
         "message": outcome.message,
+        **({"history": outcome.history} if outcome.method == "anytime" else {}),
     }
 
 

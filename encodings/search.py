@@ -67,13 +67,16 @@ class Attempt:
     """One horizon tried: ``sat``, ``unsat`` or ``unknown`` (stopped), and how long it took.
 
     ``note`` is ``"without assignment"`` for the tries that follow a plan found along a task
-    assignment, looking for a shorter plan or the proof that there is none.
+    assignment, looking for a shorter plan or the proof that there is none.  The anytime
+    method reports each better plan as ``improved`` at its makespan, the plan itself in
+    ``plan`` (so that a search stopped from outside still has its best plan).
     """
 
     horizon: int
     result: str
     seconds: float
     note: str = ""
+    plan: Plan | None = field(default=None, repr=False)
 
 
 @dataclass
@@ -108,6 +111,7 @@ class Outcome:
     minimal_along_assignment: bool = False  # no shorter plan follows the assignment
     check: Report | None = None  # the ASP checker's verdict on the plan
     message: str = ""
+    history: list[dict[str, Any]] = field(default_factory=list)  # method anytime: the plans reported
 
     @property
     def found(self) -> bool:
@@ -146,7 +150,9 @@ def solve(instance: Instance | str | Path, domain: Domain | str | None = None, e
     without it, search the minimal makespan upwards from a lower bound, up to
     ``max_horizon``.  ``assign``: compute a task assignment first and make the planner
     follow it; then (unless ``tighten`` is false) try shorter plans without it for a while.
-    ``method="flow"``: the exact max-flow solver of M/Md.  ``on_progress`` is
+    ``method="flow"``: the exact max-flow solver of M/Md; ``method="anytime"``: a checked
+    plan fast, then better ones until ``time_limit`` (default 60 s) or the lower bound
+    (:mod:`.anytime`).  ``on_progress`` is
     called after every horizon, ``on_phase`` when grounding or solving starts; setting
     ``cancel`` stops the search from another thread.  ``isolate``: search in a child
     process, so that ``time_limit`` and ``memory_limit`` (MB) hold while clingo grounds.
@@ -186,8 +192,10 @@ def ground(instance: Instance, domain: Domain | str, horizon: int, encoding: str
 def _check_request(instance: Instance, domain: Domain, horizon: int | None, assign: bool, method: str) -> None:
     if horizon is not None and horizon < 0:
         raise InputError(f"the horizon must be at least 0, got {horizon}")
-    if method not in ("asp", "flow"):
-        raise InputError(f"unknown method '{method}' (choose asp or flow)")
+    if method not in ("asp", "flow", "anytime"):
+        raise InputError(f"unknown method '{method}' (choose asp, flow or anytime)")
+    if method == "anytime" and horizon is not None:
+        raise InputError("the anytime method searches the makespan itself; leave out --horizon")
     if method == "flow" and domain.delivers:
         raise InputError(f"the flow method solves domains M and Md only, not {domain.label}")
     if instance.assignment and method == "flow":
@@ -204,12 +212,14 @@ def _solve_here(instance: Instance, domain: Domain, program: Encoding | None, re
     try:
         if method == "flow":
             outcome = _solve_flow(instance, domain, request.horizon, watch)
+        elif method == "anytime":
+            outcome = _solve_anytime(instance, domain, watch)
         else:
             outcome = _Search(instance, domain, program, request, watch).run()
     finally:
         watch.close()
-    outcome.stats = watch.totals()
-    if outcome.plan is not None:
+    outcome.stats = outcome.stats or watch.totals()
+    if outcome.plan is not None and outcome.check is None:
         outcome.check = check(instance, outcome.plan, domain)
         if not outcome.check.valid:
             outcome.status = SolveStatus.INVALID
@@ -234,8 +244,15 @@ def _solve_isolated(instance: Instance, domain: Domain, program: Encoding | None
     if child.done:
         return child.value
     outcome = Outcome(SolveStatus.CANCELLED if cancel is not None and cancel.is_set() else SolveStatus.LIMIT,
-                      domain, method, program.name if program else "flow")
+                      domain, method, program.name if program else method)
     outcome.horizons_tried = [m for m in child.messages if isinstance(m, Attempt)]
+    best = [attempt for attempt in outcome.horizons_tried if attempt.plan is not None]
+    if best:  # the anytime method stopped from outside: its last plan reported (checked) is the answer
+        outcome.status, outcome.plan, outcome.horizon = SolveStatus.FOUND, best[-1].plan, best[-1].horizon
+        outcome.check = check(instance, outcome.plan, domain)
+        outcome.lower_bound = makespan_bound(instance, domain)
+        outcome.minimal = outcome.horizon <= outcome.lower_bound
+        return outcome
     outcome.lower_bound = makespan_bound(instance, domain)
     outcome.stats = {key: value for key, value in Statistics().as_dict().items() if key != "models"}
     outcome.message = {"timeout": f"stopped at the time limit ({time_limit:g} s)" if time_limit else "stopped",
@@ -319,6 +336,31 @@ class _Watch:
 
     def close(self) -> None:
         self.done.set()
+
+
+# --- anytime -------------------------------------------------------------------------------
+
+def _solve_anytime(instance: Instance, domain: Domain, watch: _Watch) -> Outcome:
+    """The anytime planner (:mod:`.anytime`); each plan it reports is an ``improved`` attempt."""
+    from .anytime import plan_anytime
+
+    outcome = Outcome(SolveStatus.LIMIT, domain, "anytime", "anytime")
+
+    def report(better) -> None:
+        gap = "" if better.gap is None else f", {100 * better.gap:.1f}% above the lower bound"
+        attempt = Attempt(better.makespan, "improved", better.seconds, f"sum of costs {better.sum_of_costs}{gap}",
+                          plan=better.plan)
+        outcome.horizons_tried.append(attempt)
+        watch.progress(attempt)
+
+    result = plan_anytime(instance, domain, watch.remaining(), watch.cancel, report)
+    outcome.status = SolveStatus(result.status)
+    outcome.plan, outcome.check, outcome.minimal = result.plan, result.check, result.minimal
+    outcome.horizon = result.plan.horizon if result.plan is not None else None
+    outcome.lower_bound, outcome.message = result.bound, result.message
+    outcome.history = [better.figures() for better in result.history]
+    outcome.stats = dict(result.stats)
+    return outcome
 
 
 # --- max-flow ------------------------------------------------------------------------------

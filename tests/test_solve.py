@@ -80,7 +80,7 @@ def test_no_plan_when_an_ordered_product_cannot_reach_its_station(write):
                             "plain-inc, split-inc, clingcon-inc)"),
     (dict(domain="b", encoding="dl"), "no encoding 'dl' for domain B (choose one of plain)"),
     (dict(domain="a", method="flow"), "the flow method solves domains M and Md only, not A"),
-    (dict(method="sat"), "unknown method 'sat' (choose asp or flow)"),
+    (dict(method="sat"), "unknown method 'sat' (choose asp, flow or anytime)"),
     (dict(horizon=-1), "the horizon must be at least 0, got -1"),
     (dict(domain="e"), "unknown domain 'e' (choose one of a, b, c, m, md)"),
 ])

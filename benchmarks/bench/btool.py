@@ -143,17 +143,19 @@ def _runscript(suite: Suite, runner: Runner, files: dict[str, list[str]], jobs: 
 
 
 def _arguments(spec: RunSpec) -> str:
+    if spec.anytime:
+        return f"--domain {spec.domain.value} --method anytime"
     return f"--domain {spec.domain.value} --encoding {spec.encoding}" + (" --assign" if spec.assign else "")
 
 
 # --- reading btool eval's output ---------------------------------------------------------
 
 #: record fields that btool's measures carry as text
-_TEXT = ("set", "instance", "domain", "label", "encoding", "status")
+_TEXT = ("set", "instance", "domain", "label", "encoding", "status", "method")
 #: record fields that btool's measures carry as numbers, and their Python types
 _NUMBERS = {"robots": int, "horizon": int, "time": float, "time_limit": float, "memory_mb": float, "assign": bool,
             "ground_time": float, "solve_time": float, "rules": int, "atoms": int, "choices": int,
-            "conflicts": int}
+            "conflicts": int, "lower_bound": float}
 
 
 def read_results(path: str | Path) -> list[dict]:

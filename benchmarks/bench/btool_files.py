@@ -53,9 +53,9 @@ import os
 import re
 from xml.sax.saxutils import escape
 
-TEXT = ("key", "set", "instance", "domain", "label", "encoding", "status")
+TEXT = ("key", "set", "instance", "domain", "label", "encoding", "status", "method")
 NUMBERS = ("robots", "horizon", "time", "time_limit", "memory_mb", "ground_time", "solve_time", "rules",
-           "atoms", "choices", "conflicts")
+           "atoms", "choices", "conflicts", "lower_bound")
 OUT_OF_LIMITS = ("timeout", "memout", "no-makespan")
 
 
@@ -112,7 +112,7 @@ def parse(path, runspec, instance, run):
         record["status"] = "error"
     if record["status"] != "solved":
         record["time"] = record["time_limit"]
-    measures = {name: ("string", escape(str(record[name]), {'"': "&quot;"})) for name in TEXT}
+    measures = {name: ("string", escape(str(record[name]), {'"': "&quot;"})) for name in TEXT if name in record}
     measures.update({name: ("float", float(record[name])) for name in NUMBERS if record.get(name) is not None})
     measures["assign"] = ("float", float(bool(record.get("assign"))))
     measures["timeout"] = ("float", float(record["status"] in OUT_OF_LIMITS))

@@ -157,7 +157,9 @@ def _report(path: Path) -> int:
         raise InputError("no results here (neither results.jsonl nor btool eval's results.xml)", str(path))
     order_file = (path if path.is_dir() else path.parent) / SUITE_ORDER
     order = json.loads(order_file.read_text())["sets"] if order_file.exists() else None
-    text = "\n\n".join([report.summary(records, order), *report.by_robots(records, order)])
+    anytime = report.anytime_table(records, order)
+    text = "\n\n".join([report.summary(records, order), *report.by_robots(records, order),
+                        *([anytime] if anytime else [])])
     print(text)
     out = folder / "report" if path.is_dir() else folder
     write_text(out / "summary.txt", text + "\n")

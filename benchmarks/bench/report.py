@@ -93,7 +93,8 @@ def grouped_table(records: list[dict], column_of, columns: list, caption: str,
     for label in {label for label, _e in rows}:
         for column in columns:
             candidates = [(cells[(label, e, column)].unsolved, cells[(label, e, column)].average, e)
-                          for row_label, e in rows if row_label == label and (label, e, column) in cells]
+                          for row_label, e in rows if row_label == label and (label, e, column) in cells
+                          and e != "anytime"]  # its time is the time to a first plan: not comparable
             if len(candidates) > 1:
                 best.add((label, min(candidates)[2], column))
     sets = _ordered({r["set"] for r in records}, set_order or [])
@@ -126,6 +127,30 @@ def by_robots(records: list[dict], set_order: list[str] | None = None) -> list[s
         tables.append(grouped_table(runs, lambda r: r["robots"], counts,
                                     f"Instance set {name}: average run time (unsolved runs) by number of robots"))
     return tables
+
+
+def anytime_table(records: list[dict], set_order: list[str] | None = None) -> str | None:
+    """The anytime runs: per domain and instance set, how many found a plan, the average time
+    to the first plan, and the average makespan at the end over its lower bound and over
+    the minimal makespan (where another run of the suite knows it); ``None`` without such runs."""
+    runs = [r for r in records if r.get("method") == "anytime"]
+    if not runs:
+        return None
+    minimal = {(r["instance"], r["label"]): r["horizon"] for r in records
+               if r.get("method") != "anytime" and r.get("horizon") is not None}
+    body = []
+    for label in _ordered({r["label"] for r in runs}, LABELS):
+        for name in _ordered({r["set"] for r in runs if r["label"] == label}, set_order or []):
+            group = [r for r in runs if r["label"] == label and r["set"] == name]
+            solved = [r for r in group if r["status"] == SOLVED]
+            bound = [r["horizon"] / r["lower_bound"] for r in solved if r.get("lower_bound")]
+            optimum = [r["horizon"] / minimal[(r["instance"], label)] for r in solved
+                       if minimal.get((r["instance"], label))]
+            body.append([label, name, f"{len(solved)}/{len(group)}",
+                         f"{mean(r['time'] for r in solved):.1f}" if solved else "-",
+                         f"{mean(bound):.2f}" if bound else "-", f"{mean(optimum):.2f}" if optimum else "-"])
+    header = ["domain", "set", "plans", "first plan (s)", "makespan/bound", "makespan/minimal"]
+    return "Anytime runs: plans found, time to the first plan, makespan at the end\n\n" + _table(header, body)
 
 
 CSV_FIELDS = ["key", "set", "instance", "robots", "domain", "label", "encoding", "assign", "status",

@@ -60,12 +60,15 @@ class SuiteInstance:
 
 
 def new_record(instance: SuiteInstance, spec: RunSpec, horizon: int | None, time_limit: float) -> dict:
-    """The record of a run before it runs (``no-makespan`` when there is no horizon to run at)."""
+    """The record of a run before it runs (``no-makespan`` when there is no horizon to run at;
+    an anytime run needs none)."""
     record = {"key": run_key(instance.set, instance.name, spec.label, spec.encoding),
               "set": instance.set, "instance": instance.name, "robots": instance.robots,
               "domain": spec.domain.value, "label": spec.label, "encoding": spec.encoding,
               "assign": spec.assign, "time_limit": time_limit, "horizon": horizon}
-    if horizon is None:
+    if spec.anytime:
+        record["method"] = "anytime"
+    elif horizon is None:
         record.update(status=NO_MAKESPAN, time=time_limit,
                       error="the minimal makespan is unknown (its search timed out)")
     return record
@@ -90,6 +93,19 @@ def complete(record: dict, path: Path, status: str, wall: float, report: dict, d
         return {**record, "status": ERROR,
                 "error": report.get("message") or f"no plan at the minimal makespan {record['horizon']}"}
     return {**record, "time": report["time"], **plan_verdict(path, record["domain"], report["plan"])}
+
+
+def complete_anytime(record: dict, path: Path, run: LimitedRun) -> dict:
+    """A run of the anytime planner: ``solved`` when it returned a plan that passes the check,
+    its time is the time to the first plan; the makespan it reached, its lower bound and the
+    plans it reported on the way are kept."""
+    if run.status != DONE or run.report.get("status") != SolveStatus.FOUND.value:
+        return complete(record, path, run.status, run.wall, run.report, run.detail)
+    history = run.report.get("history") or []
+    record = complete(record, path, run.status, run.wall, run.report)
+    record.update(time=history[0]["seconds"] if history else record["time"], horizon=run.report["horizon"],
+                  lower_bound=run.report.get("lower_bound"), history=history)
+    return record
 
 
 def plan_verdict(path: Path, domain: str, plan_text: str) -> dict:
@@ -213,7 +229,7 @@ class Runner:
         todo = list(dict.fromkeys(
             (instance, spec.domain, spec.assign, spec.label) for instance in instances
             for spec in self.suite.runs
-            if spec.runs_on(instance.set) and spec.label not in known.get(instance.name, {})))
+            if not spec.anytime and spec.runs_on(instance.set) and spec.label not in known.get(instance.name, {})))
         if todo:
             progress = BenchProgress(len(todo), "makespans", self.stream)
 
@@ -254,6 +270,9 @@ class Runner:
     def _run_one(self, instance: SuiteInstance, spec: RunSpec, makespans: dict) -> dict:
         horizon = makespans.get(instance.name, {}).get(spec.label)
         record = new_record(instance, spec, horizon, self.time_limit)
+        if spec.anytime:
+            job = {"kind": "anytime", "instance": str(instance.path), "domain": spec.domain.value}
+            return complete_anytime(record, instance.path, run_limited(job, self.time_limit, self.memory_limit))
         if horizon is None:
             return record
         outcome = run_limited(run_job(instance.path, spec, horizon), self.time_limit, self.memory_limit)

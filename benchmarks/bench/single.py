@@ -2,6 +2,7 @@
 
     python -m asprilo.bench.single --domain m --encoding plain [--assign] --time-limit S
                                    [--makespan-time-limit S] INSTANCE
+    python -m asprilo.bench.single --domain a --method anytime --time-limit S INSTANCE
 
 The horizon is the instance's minimal makespan, from ``INSTANCE.makespans.json`` beside it,
 or else searched here (at most ``--makespan-time-limit`` seconds, not counted in the run's
@@ -25,7 +26,7 @@ from asprilo.writer import write_text
 from .btool import makespan_cache, read_makespan_cache
 from .limits import DONE, LimitedRun
 from .results import SOLVED
-from .runner import SuiteInstance, complete, makespan_status, new_record
+from .runner import SuiteInstance, complete, complete_anytime, makespan_status, new_record
 from .suite import RunSpec
 from .worker import run
 
@@ -55,7 +56,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--assign", action="store_true")
     parser.add_argument("--time-limit", type=float, required=True)
     parser.add_argument("--makespan-time-limit", type=float, default=600.0)
+    parser.add_argument("--method", choices=("asp", "anytime"), default="asp")
     args = parser.parse_args(argv)
+    if args.method == "anytime":
+        return _anytime(args)
     spec = RunSpec(Domain.parse(args.domain), args.encoding, args.assign)
     horizon = minimal_makespan(args.instance, spec, args.makespan_time_limit)
     robots = len(read_instance(args.instance).robots)
@@ -69,6 +73,21 @@ def main(argv: list[str] | None = None) -> int:
                       "time_limit": args.time_limit})
         record = complete(record, args.instance, DONE, time.perf_counter() - started, report)
         print(json.dumps(record, sort_keys=True), flush=True)
+    return 0
+
+
+def _anytime(args: argparse.Namespace) -> int:
+    """A run of the anytime planner: no minimal makespan needed."""
+    spec = RunSpec(Domain.parse(args.domain), "anytime", False, method="anytime")
+    robots = len(read_instance(args.instance).robots)
+    record = new_record(SuiteInstance(args.instance.parent.name, args.instance, args.instance.name, robots),
+                        spec, None, args.time_limit)
+    print(json.dumps(record, sort_keys=True), flush=True)
+    started = time.perf_counter()
+    report = run({"kind": "anytime", "instance": str(args.instance), "domain": spec.domain.value,
+                  "time_limit": args.time_limit})
+    record = complete_anytime(record, args.instance, LimitedRun(DONE, time.perf_counter() - started, report))
+    print(json.dumps(record, sort_keys=True), flush=True)
     return 0
 
 

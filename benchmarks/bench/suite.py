@@ -13,8 +13,12 @@ A suite is a YAML file::
     runs:                     # every combination of the listed values is run on every instance
       - {domain: m, encoding: [plain, split, clingcon, dl], assign: [false, true]}
       - {domain: [c, b, a], encoding: [plain, clingcon], assign: [false, true], sets: [tiny]}
+      - {domain: [a, m], method: anytime}   # the anytime planner for the whole time limit
 
-A run entry with ``sets`` runs on the instances of those sets only.
+A run entry with ``sets`` runs on the instances of those sets only.  ``method: anytime``
+runs the anytime planner (``asprilo solve --method anytime``) instead of an encoding at the
+minimal makespan: its encoding is ``anytime``, and it is reported by time to the first plan
+and by the makespan it reached over its lower bound.
 
 Paths are relative to the suite file.
 """
@@ -61,6 +65,11 @@ class RunSpec:
     encoding: str
     assign: bool
     sets: tuple[str, ...] | None = None  # the instance sets it runs on (None: all)
+    method: str = "asp"                  # asp: an encoding at the minimal makespan; anytime
+
+    @property
+    def anytime(self) -> bool:
+        return self.method == "anytime"
 
     def runs_on(self, instance_set: str) -> bool:
         return self.sets is None or instance_set in self.sets
@@ -83,7 +92,8 @@ class Suite:
 
 
 SUITE_KEYS = ("name", "time_limit", "memory_limit", "makespan_time_limit", "instances", "runs")
-RUN_KEYS = ("domain", "encoding", "assign", "sets")
+RUN_KEYS = ("domain", "encoding", "assign", "sets", "method")
+METHODS = ("asp", "anytime")
 
 
 def _listed(value: Any) -> list:
@@ -178,7 +188,15 @@ class _SuiteFile:
             unknown = [name for name in sets if name not in set_names]
             if unknown:
                 raise self.fail(f"{where}.sets", f"no instance set '{unknown[0]}'", entry.line_of("sets"))
-        return [RunSpec(d, e, a, sets) for d, e, a in itertools.product(domains, encodings, assigns)]
+        method = str(entry.get("method", "asp"))
+        if method not in METHODS:
+            raise self.fail(f"{where}.method", f"unknown method '{method}' (choose {' or '.join(METHODS)})",
+                            entry.line_of("method"))
+        if method == "anytime":
+            if "encoding" in entry or True in assigns:
+                raise self.fail(where, "method anytime takes no encoding and no assignment", line)
+            encodings = ["anytime"]
+        return [RunSpec(d, e, a, sets, method) for d, e, a in itertools.product(domains, encodings, assigns)]
 
 
 def load_suite(path: str | Path) -> Suite:

@@ -6,7 +6,8 @@ line: what the solver found, its statistics, the plan, and its own peak memory. 
 - ``{"kind": "makespan", ...}``: the minimal makespan of an instance in a domain: the flow
   solver for M/Md, else the horizon search; with task assignment, the shortest plan along
   the assignment (the horizon the assigned runs are given);
-- ``{"kind": "run", ...}``: one benchmark run at a given horizon.
+- ``{"kind": "run", ...}``: one benchmark run at a given horizon;
+- ``{"kind": "anytime", ...}``: one run of the anytime planner for the whole time limit.
 """
 
 from __future__ import annotations
@@ -39,6 +40,8 @@ def run(job: dict) -> dict:
         outcome = solve(job["instance"], domain=job["domain"], encoding=job.get("encoding", "plain"),
                         assign=job.get("assign", False), time_limit=job["time_limit"],
                         method="flow" if flow else "asp", tighten=False)
+    elif job["kind"] == "anytime":
+        outcome = solve(job["instance"], domain=job["domain"], method="anytime", time_limit=job["time_limit"])
     else:
         outcome = solve(job["instance"], domain=job["domain"], encoding=job["encoding"],
                         horizon=job["horizon"], assign=job.get("assign", False),
@@ -53,6 +56,7 @@ def run(job: dict) -> dict:
         "stats": outcome.stats,
         "memory_mb": _peak_mb(),
         "message": outcome.message,
+        **({"history": outcome.history, "lower_bound": outcome.lower_bound} if job["kind"] == "anytime" else {}),
     }
 
 

@@ -1,0 +1,190 @@
+"""Who does what: goal cells to robots (M, Md) and shelves to order lines and robots (A, B, C).
+
+Both are logic programs (``assign_goals.lp``, ``assign_shelves.lp``) grounded once per
+instance.  :meth:`Assigner.solve` optimises within a time budget (a cut-off answer is still
+a valid assignment) and takes the choices of robots that are to stay as they are as
+assumptions, so the large-neighbourhood search re-assigns only the robots it freed,
+without grounding again.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import clingo
+import numpy as np
+
+from asprilo.bounds import goal_cells
+from asprilo.domain import Domain
+from asprilo.model import Cell, Instance
+
+from .grid import FAR, Grid, distance_table
+
+HERE = Path(__file__).resolve().parent
+#: robots offered for each shelf or goal at first (the nearest ones); doubled while that is too few
+NEAREST = 12
+
+
+@dataclass
+class Choice:
+    """An assignment as the program's atoms: ``aim(R,G)`` or ``give(S,O,P,N)`` / ``carry(R,S)``."""
+
+    atoms: set[clingo.Symbol] = field(default_factory=set)
+    optimal: bool = False
+
+    def of(self, name: str) -> list[tuple[int, ...]]:
+        return sorted(tuple(a.number for a in atom.arguments) for atom in self.atoms if atom.name == name)
+
+
+class Assigner:
+    """One grounded assignment program and the facts it was grounded from."""
+
+    def __init__(self, program: str, facts: list[str], constants: dict[str, str] | None = None):
+        arguments = ["--opt-strategy=bb,hier", "--warn=none", *(f"-c{k}={v}" for k, v in (constants or {}).items())]
+        self.control = clingo.Control(arguments)
+        self.control.load(str(HERE / program))
+        self.control.add("base", [], "\n".join(facts))
+        self.control.ground([("base", [])])
+        self.atoms = {atom.symbol for atom in self.control.symbolic_atoms}
+        self.unsatisfiable = False  # the last solve call proved that no assignment exists
+
+    def solve(self, keep: Iterable[clingo.Symbol] = (), drop: Iterable[clingo.Symbol] = (),
+              budget: float = 1.0, stopped: Callable[[], bool] = lambda: True) -> Choice | None:
+        """The best assignment found within ``budget`` seconds (or, when none is found by
+        then, the first one found before ``stopped()``), with the atoms of ``keep`` true and
+        those of ``drop`` false."""
+        keep = list(keep)
+        if any(atom not in self.atoms for atom in keep):
+            return None  # a kept choice the program does not offer
+        assumptions = [(a, True) for a in keep] + [(a, False) for a in drop if a in self.atoms]
+        best = Choice()
+        found = False
+
+        def record(model: clingo.Model) -> None:
+            nonlocal found
+            best.atoms, found = set(model.symbols(shown=True)), True
+
+        with self.control.solve(assumptions=assumptions, on_model=record, async_=True) as handle:
+            finished = handle.wait(budget)
+            while not finished and not found and not stopped():
+                finished = handle.wait(0.2)
+            if not finished:
+                handle.cancel()
+            result = handle.get()
+        self.unsatisfiable = finished and result.unsatisfiable
+        if not found:
+            return None
+        best.optimal = finished and result.exhausted
+        return best
+
+
+# --- domains M and Md ----------------------------------------------------------------------
+
+@dataclass
+class GoalProblem:
+    """Goal cells, the grounded program, and how far each robot is from each goal."""
+
+    goals: list[Cell]
+    robots: list[int]
+    distance: np.ndarray  # robots x goals
+    assigner: Assigner
+
+
+def goal_problem(instance: Instance, grid: Grid, longest: float) -> GoalProblem:
+    """Ground the goal assignment: each robot may take the goals at most ``longest`` steps
+    away (the bottleneck bound, so the best assignment is kept), and its nearest ones."""
+    goals = goal_cells(instance)
+    robots = sorted(instance.robots)
+    distance = distance_table(grid, [instance.robots[r].at for r in robots], goals)
+    labelled = instance.assigned_cells()
+    facts = [f"goal({g})." for g in range(len(goals))]
+    limit = longest if math.isfinite(longest) else FAR - 1
+    for i, robot in enumerate(robots):
+        if robot in labelled:
+            g = goals.index(labelled[robot])
+            facts += [f"labelled({robot},{g}).", f"option({robot},{g},{int(distance[i, g])})."]
+            continue
+        nearest = set(np.argsort(distance[i], kind="stable")[:NEAREST].tolist())
+        for g in range(len(goals)):
+            if distance[i, g] < FAR and (distance[i, g] <= limit or g in nearest):
+                facts.append(f"option({robot},{g},{int(distance[i, g])}).")
+    return GoalProblem(goals, robots, distance, Assigner("assign_goals.lp", facts))
+
+
+def aims(choice: Choice, problem: GoalProblem) -> dict[int, Cell]:
+    """Robot -> goal cell of an assignment."""
+    return {robot: problem.goals[goal] for robot, goal in choice.of("aim")}
+
+
+# --- domains A, B and C --------------------------------------------------------------------
+
+@dataclass
+class ShelfProblem:
+    """The lines to serve, the shelves that can serve them, and the grounded program."""
+
+    lines: dict[tuple[int, int], int]        # (order, product) -> units
+    assigner: Assigner
+    haul: dict[tuple[int, int], int] = field(default_factory=dict)  # (shelf, station) -> steps
+
+
+def shelf_problem(instance: Instance, grid: Grid, domain: Domain, homes: dict[int, Cell],
+                  nearest: int = NEAREST) -> ShelfProblem:
+    """Ground the shelf assignment with each shelf offered to its ``nearest`` robots."""
+    stock = instance.shelf_stock()
+    lines = {(o.id, p): (1 if q is None or domain is not Domain.A else q)
+             for o in instance.orders.values() for p, q in o.lines.items()}
+    wanted = {p for _, p in lines}
+    shelves = sorted(s for s in homes if wanted & set(stock.get(s, {})))
+    facts = [f"line({o},{p},{q})." for (o, p), q in lines.items()]
+    facts += [f"order({o.id},{o.station})." for o in instance.orders.values()]
+    facts += [f"holds({s},{p},{1 if u is None or domain is not Domain.A else u})."
+              for s in shelves for p, u in stock[s].items() if p in wanted]
+    haul = _hauls(instance, grid, homes, shelves)
+    facts += [f"haul({s},{ps},{d})." for (s, ps), d in haul.items()]
+    robots = max(1, sum(1 for r in instance.robots.values() if r.carries is None))
+    cap = max(1, math.ceil(len(lines) / robots))
+    facts += _carriers(instance, grid, homes, shelves, nearest, cap)
+    facts.append(f"cap({cap}).")
+    return ShelfProblem(lines, Assigner("assign_shelves.lp", facts, {"domain": domain.value}), haul)
+
+
+def _hauls(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: list[int]) -> dict[tuple[int, int], int]:
+    """(shelf, station) -> steps to carry the shelf there around the other resting shelves."""
+    carried = {robot.carries for robot in instance.robots.values()}
+    resting = grid.mask(cell for shelf, cell in homes.items() if shelf not in carried)
+    haul = {}
+    for station in sorted(instance.stations.values(), key=lambda s: s.id):
+        distance = grid.distances([station.at], grid.floor & ~resting)
+        for shelf in shelves:
+            x, y = homes[shelf]
+            steps = min(int(distance[x + dx, y + dy]) for dx, dy in ((1, 0), (-1, 0), (0, 1), (0, -1)))
+            if steps < FAR:
+                haul[(shelf, station.id)] = steps + 1
+    return haul
+
+
+def _carriers(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: list[int], nearest: int,
+              cap: int) -> list[str]:
+    """``option(R,S,D)``: the robots nearest to each shelf, and the robot a cheapest matching
+    of robots (each up to ``cap`` times) to shelves gives it, so that the cap can be kept
+    even where many shelves have the same nearest robots; a robot that starts with a shelf
+    carries that one or none, and nobody else carries it."""
+    from scipy.optimize import linear_sum_assignment  # imported when needed: it is slow to import
+
+    carried = {r.carries: r.id for r in instance.robots.values() if r.carries is not None}
+    free = sorted(r.id for r in instance.robots.values() if r.carries is None)
+    facts = [f"option({carried[s]},{s},0)." for s in shelves if s in carried]
+    loose = [s for s in shelves if s not in carried]
+    distance = distance_table(grid, [instance.robots[r].at for r in free], [homes[s] for s in loose])
+    offered = {(int(row), column) for column in range(len(loose))
+               for row in np.argsort(distance[:, column], kind="stable")[:nearest]}
+    if free and loose:
+        copies = np.repeat(np.where(distance < FAR, distance, FAR), cap, axis=0)
+        rows, columns = linear_sum_assignment(copies)
+        offered |= {(int(row) // cap, int(column)) for row, column in zip(rows, columns, strict=True)}
+    facts += [f"option({free[row]},{loose[column]},{int(distance[row, column])})."
+              for row, column in sorted(offered) if distance[row, column] < FAR]
+    return facts

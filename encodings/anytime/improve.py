@@ -1,0 +1,177 @@
+"""Large-neighbourhood search: free a few robots (or the tail of their tracks), route them
+again around all the others, and keep the result when the plan got better.
+
+A plan is better when its makespan is shorter, or equal with a smaller sum of costs.
+Neighbourhoods, chosen with weights that grow with their successes:
+
+- ``alone``: a robot that finishes last, routed again on its own; it may now park near
+  its last station, since every other track is known.
+- ``crowd``: that robot and the robots that came near its track; it goes first.
+- ``tail``: the same group, but only from a step some way before the robot finishes:
+  the tracks up to that step stay, the rest is routed again (a window of steps).
+- ``random``: a few robots drawn at random.
+- ``swap``: a late robot and its nearest neighbours, whose work (goals, shelves, order
+  lines) is assigned among them anew by the grounded assignment program first.
+"""
+
+from __future__ import annotations
+
+import random
+from collections.abc import Callable
+
+from asprilo.model import Cell
+
+from .reservations import Reservations, Track
+from .router import LEVELS, Router
+from .work import Work
+
+KINDS = ("alone", "crowd", "tail", "random", "swap")
+#: the most robots one neighbourhood frees
+GROUP = 8
+#: how many steps before a robot's finish a ``tail`` neighbourhood starts
+TAIL = 30
+#: routing in a neighbourhood gives up sooner than for a first plan: it can be undone
+LNS_LEVELS = LEVELS[:3]
+#: seconds a ``swap`` may spend re-assigning
+SWAP_SECONDS = 0.5
+
+
+def score(tracks: dict[int, Track]) -> tuple[int, int]:
+    """(makespan, sum of costs) of the tracks."""
+    finishes = [track.finish for track in tracks.values()]
+    return max(finishes, default=0), sum(finishes)
+
+
+class Improver:
+    """Improves the tracks held in a reservation table, one neighbourhood at a time."""
+
+    def __init__(self, work: Work, router: Router, reservations: Reservations, seed: int = 0):
+        self.work, self.router, self.table = work, router, reservations
+        self.random = random.Random(seed)
+        self.weights = dict.fromkeys(KINDS, 1.0)
+        if not work.domain.delivers:
+            self.weights["alone"] = 0.2
+        self.tried = dict.fromkeys(KINDS, 0)
+        self.won = dict.fromkeys(KINDS, 0)
+
+    def score(self) -> tuple[int, int]:
+        return score(self.table.tracks)
+
+    def step(self, stopped: Callable[[], bool]) -> bool:
+        """Try one neighbourhood; whether the plan got better."""
+        kind = self.random.choices(KINDS, [self.weights[k] for k in KINDS])[0]
+        late = self._late_robot()
+        group, start, reassign = self._neighbourhood(kind, late)
+        self.tried[kind] += 1
+        better = bool(group) and self._repair(group, start, reassign, stopped)
+        self.weights[kind] = min(10.0, self.weights[kind] * 1.5) if better else max(0.1, self.weights[kind] * 0.97)
+        self.won[kind] += better
+        return better
+
+    # --- choosing a neighbourhood ---------------------------------------------------------------
+
+    def _late_robot(self) -> int:
+        """A robot that finishes last (while the makespan can still drop), else one of the
+        robots that lose most steps against their estimate."""
+        tracks = self.table.tracks
+        workers = self.work.workers() or list(tracks)
+        makespan = max(tracks[r].finish for r in workers)
+        last = [r for r in workers if tracks[r].finish == makespan]
+        if self.random.random() < 0.7:
+            return self.random.choice(last)
+        delays = sorted(workers, key=lambda r: self.work.estimate(r) - tracks[r].finish)
+        return self.random.choice(delays[:max(1, len(delays) // 5)])
+
+    def _neighbourhood(self, kind: str, late: int) -> tuple[list[int], int, bool]:
+        """The robots to free (the first goes first), the step from which they are routed
+        again, and whether their work is re-assigned."""
+        size = self.random.randint(2, GROUP)
+        if kind == "alone":
+            return [late], 0, False
+        if kind in ("crowd", "tail"):
+            group = [late, *self._met(late)[:size - 1]]
+            if kind == "crowd":
+                return group, 0, False
+            return group, max(0, self.table.tracks[late].finish - self.random.randint(TAIL // 2, TAIL)), False
+        if kind == "random":
+            others = [r for r in self.work.workers() if r != late]
+            return [late, *self.random.sample(others, min(len(others), size - 1))], 0, False
+        return [late, *self._nearest(late)[:size - 1]], 0, True
+
+    def _met(self, robot: int) -> list[int]:
+        """Other robots that were within a step of ``robot``'s track, most often first."""
+        track, met = self.table.tracks[robot], {}
+        for step, (x, y) in enumerate(track.cells):
+            for cell in ((x, y), (x + 1, y), (x - 1, y), (x, y + 1), (x, y - 1)):
+                for near in (step - 1, step, step + 1):
+                    other = self.table.visits.get(cell, {}).get(near)
+                    if other is not None and other != robot:
+                        met[other] = met.get(other, 0) + 1
+                for other in self.table.stays.get(cell, {}):
+                    if other != robot:
+                        met[other] = met.get(other, 0) + 1
+        ranked = sorted(met, key=lambda r: -met[r])
+        return ranked
+
+    def _nearest(self, robot: int) -> list[int]:
+        """The robots with work whose start cells are nearest to ``robot``'s."""
+        x, y = self.table.instance.robots[robot].at
+        others = [r for r in self.work.workers() if r != robot]
+        return sorted(others, key=lambda r: abs(self.table.instance.robots[r].at[0] - x)
+                      + abs(self.table.instance.robots[r].at[1] - y))
+
+    # --- routing the neighbourhood again -----------------------------------------------------------
+
+    def _repair(self, group: list[int], start: int, reassign: bool, stopped: Callable[[], bool]) -> bool:
+        before = self.score()
+        old = {robot: self.table.tracks[robot] for robot in group}
+        saved = self.work.save()
+        if reassign and not self.work.reassign(set(group), SWAP_SECONDS):
+            return False
+        if start > 0:
+            group = [r for r in group if old[r].finish > start]
+        for robot in group:
+            self.table.remove(robot)
+            if start > 0:
+                self.table.add(_prefix(old[robot], start))
+        order = group[:1] + self.random.sample(group[1:], len(group) - 1)
+        routed = set(self.table.instance.robots) - set(group)
+        for robot in order:
+            if stopped() or not self._route(robot, old[robot], start, routed):
+                self._restore(old, saved)
+                return False
+            routed.add(robot)
+        if self.score() < before:
+            return True
+        self._restore(old, saved)
+        return False
+
+    def _route(self, robot: int, old: Track, start: int, routed: set[int]) -> bool:
+        tasks = self.work.errand(robot, routed, roomy=True)
+        begin: Cell = self.table.instance.robots[robot].at
+        if start > 0:
+            tasks = tasks[sum(1 for step in old.done if step <= start):]
+            begin = old.at(start)
+        found = self.router.route(robot, tasks, begin, start, LNS_LEVELS, self.work.parking())
+        if found is None:
+            return False
+        cells, done = found
+        if start > 0:
+            cells = old.cells[:start] + cells
+            done = {**{s: t for s, t in old.done.items() if s <= start}, **done}
+            self.table.remove(robot)
+        self.table.add(Track(robot, cells, done))
+        return True
+
+    def _restore(self, old: dict[int, Track], saved) -> None:
+        for robot in old:
+            if robot in self.table.tracks:
+                self.table.remove(robot)
+        for track in old.values():
+            self.table.add(track)
+        self.work.restore(saved)
+
+
+def _prefix(track: Track, step: int) -> Track:
+    """The track up to ``step``, the robot staying there afterwards."""
+    return Track(track.robot, track.cells[:step + 1], {s: t for s, t in track.done.items() if s <= step})

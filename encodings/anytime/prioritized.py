@@ -1,0 +1,93 @@
+"""Prioritized planning: route robots one after the other, each around those routed before.
+
+Robots not routed yet stand still on their start cells, so the robots routed before them
+go around them.  A robot that finds no route takes the routed robots in its way out again
+(they are routed once more right after it).  When that does not help, planning starts over
+with that robot first (and robots not routed yet in the way only at step 0: they have to
+get out of the way when their turn comes), after a few restarts in a shuffled order.  Both the first plan and the
+repairs of the large-neighbourhood search (:mod:`.improve`) plan this way.
+"""
+
+from __future__ import annotations
+
+import random
+from collections import Counter, deque
+from collections.abc import Callable
+
+from .reservations import Reservations, Track
+from .room import depths
+from .router import Router
+from .work import Work
+
+#: how often one robot may bump others before planning starts over, and how many at once
+BUMPS, BUMPED = 3, 6
+
+
+def route_in_turn(order: list[int], work: Work, router: Router, reservations: Reservations,
+                  stopped: Callable[[], bool]) -> int | None:
+    """Route the robots of ``order`` one after the other into ``reservations`` (they must be
+    held there, not routed).  A robot that finds no route bumps the routed robots in its
+    way: they are taken out, it is routed, then they are routed again.  Returns the robot that
+    failed once too often (or was being routed when ``stopped``), else ``None``."""
+    queue = deque(order)
+    bumps: Counter[int] = Counter()
+    while queue:
+        robot = queue.popleft()
+        if stopped():
+            return robot
+        start = reservations.instance.robots[robot].at
+        found = router.route(robot, work.errand(robot, set(reservations.tracks)), start, avoid=work.parking())
+        if found is not None:
+            reservations.add(Track(robot, *found))
+            continue
+        bumps[robot] += 1
+        blockers = [r for r in router.in_the_way(robot, work.errand(robot, set()), start) if r in reservations.tracks
+                    and reservations.tracks[r].parked > 0][:BUMPED]
+        if bumps[robot] > BUMPS or not blockers:
+            return robot
+        for other in blockers:
+            reservations.remove(other)
+        queue.extendleft(reversed([robot, *blockers]))  # it goes first now, they right after it
+    return None
+
+
+def first_tracks(work: Work, router: Router, reservations: Reservations, stopped: Callable[[], bool],
+                 seed: int = 0) -> dict[int, Track] | None:
+    """Tracks for every robot of the instance, or ``None`` when stopped first.
+
+    Robots with work go longest errand first (they decide the makespan); the third attempt
+    tries shortest first (robots crowding at a station then come and go in turn)."""
+    robots = sorted(reservations.instance.robots)
+    movers = work.movers()
+    idle = [r for r in robots if r not in set(work.workers()) and r not in movers]
+    depth = depths(reservations.instance)
+    on_the_way = {r for r in robots if reservations.instance.robots[r].at in work.needed_cells()}
+
+    def ordered(longest_first: bool) -> list[int]:
+        # shallow robots first, and of those first the ones standing where others must go
+        sign = -1 if longest_first else 1
+        return movers + sorted(work.workers(), key=lambda r: (depth[r] > 1, r not in on_the_way, depth[r],
+                                                               sign * work.estimate(r), r))
+
+    order = ordered(True)
+    shuffler = random.Random(seed)
+    attempt = 0
+    while not stopped():
+        reservations.reset(still=attempt == 0)  # after a failure, robots not routed yet may be passed
+        for robot in robots:
+            reservations.hold(robot)
+        for robot in idle:
+            reservations.add(Track(robot, [reservations.instance.robots[robot].at]))
+        failed = route_in_turn(order, work, router, reservations, stopped)
+        if failed is None:
+            return dict(reservations.tracks)
+        attempt += 1
+        if attempt == 2:
+            order = ordered(False)
+            continue
+        order.remove(failed)
+        order.insert(0, failed)
+        if attempt % 4 == 0:
+            shuffler.shuffle(order)
+        order.sort(key=lambda r: depth[r])  # stable: a robot still leaves after those in front of it
+    return None

@@ -1,0 +1,206 @@
+"""The work of one instance: what every robot has to do, and how that is decided.
+
+:class:`Work` turns an assignment (goal cells in M/Md, shelves and order lines in A/B/C)
+into errands, one per robot, and re-assigns the robots a neighbourhood frees.  Robots
+without work that stand where others need to be (a station, a shelf to be fetched, a goal)
+are sent to park nearby.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import clingo
+
+from asprilo.domain import Domain
+from asprilo.model import DIRECTIONS, Cell, Instance
+
+from .assignment import Choice, aims, goal_problem, shelf_problem
+from .errands import Task, Trip, delivery_errand, goal_errand, shelf_home, trips
+from .grid import Grid, cells_of
+from .room import movers, room_task
+
+#: the share of the time limit the first assignment may spend optimising, and its cap (s)
+ASSIGN_SHARE, ASSIGN_CAP = 0.05, 2.0
+#: how far from its last station a robot may park when the others' tracks are all known
+PARK_RADIUS = 3
+
+
+class Work:
+    """Errands per robot for one instance, and the assignment they come from."""
+
+    def __init__(self, instance: Instance, domain: Domain, grid: Grid, longest: float):
+        self.instance, self.domain, self.grid = instance, domain, grid
+        self.homes = {s: shelf_home(instance, s) for s in instance.shelves}
+        carried = {robot.carries for robot in instance.robots.values()}
+        #: the cells of the shelves that rest at the start (not those carried)
+        self.resting = {cell for shelf, cell in self.homes.items() if shelf not in carried}
+        self.longest = longest
+        self.goals: dict[int, Cell] = {}
+        self.trips: dict[int, list[Trip]] = {}
+        self.choice = Choice()
+        self._problem = None
+        self._parking: dict[Cell, tuple[Cell, ...]] = {}
+        self._parking_cells: frozenset[Cell] | None = None
+        self._movers: list[int] | None = None
+
+    # --- the first assignment ----------------------------------------------------------------
+
+    def assign(self, budget: float, stopped: Callable[[], bool]) -> bool:
+        """Compute the first assignment (optimising for ``budget`` seconds, waiting for a
+        first one until ``stopped()``); whether there is one."""
+        if self.domain.delivers:
+            return self._assign_shelves(budget, stopped)
+        self._problem = goal_problem(self.instance, self.grid, self.longest)
+        choice = self._problem.assigner.solve(budget=budget, stopped=stopped)
+        if choice is None:
+            return False
+        self._take(choice)
+        return True
+
+    def _assign_shelves(self, budget: float, stopped: Callable[[], bool]) -> bool:
+        nearest = 12
+        while True:
+            self._problem = shelf_problem(self.instance, self.grid, self.domain, self.homes, nearest)
+            choice = self._problem.assigner.solve(budget=budget, stopped=stopped)
+            if choice is not None:
+                self._take(choice)
+                return True
+            if not self._problem.assigner.unsatisfiable or nearest >= len(self.instance.robots):
+                return False
+            nearest *= 4
+
+    def _take(self, choice: Choice) -> None:
+        self.choice, self._parking_cells, self._movers = choice, None, None
+        if self.domain.delivers:
+            self.trips = trips(self.instance, self.domain, choice.of("give"), choice.of("carry"), self.homes)
+        else:
+            self.goals = aims(choice, self._problem)
+
+    def save(self) -> tuple:
+        """The current assignment, to :meth:`restore` it later."""
+        return self.choice, self.trips, self.goals
+
+    def restore(self, saved: tuple) -> None:
+        self.choice, self.trips, self.goals = saved
+        self._parking_cells = self._movers = None
+
+    # --- re-assigning a neighbourhood --------------------------------------------------------------
+
+    def reassign(self, freed: set[int], budget: float) -> bool:
+        """Assign the work of the ``freed`` robots among them anew (others keep theirs);
+        whether the assignment changed."""
+        if self._problem is None:
+            return False
+        keep, drop = self._fixed(freed)
+        choice = self._problem.assigner.solve(keep, drop, budget=budget)
+        if choice is None or choice.atoms == self.choice.atoms:
+            return False
+        self._take(choice)
+        return True
+
+    def _fixed(self, freed: set[int]) -> tuple[list[clingo.Symbol], list[clingo.Symbol]]:
+        """The atoms that keep the other robots' work as it is: those to hold, and those
+        to be false (no other robot gets new work; a kept shelf serves what it served)."""
+        atoms, offered = self.choice.atoms, self._problem.assigner.atoms
+        kept = {a for a in atoms if a.name in ("aim", "carry") and a.arguments[0].number not in freed}
+        shelves = {a.arguments[1].number for a in kept if a.name == "carry"}
+        kept |= {a for a in atoms if a.name == "give" and a.arguments[0].number in shelves}
+        drop = [a for a in offered if a not in kept and (
+            (a.name in ("aim", "carry") and a.arguments[0].number not in freed)
+            or (a.name == "give" and a.arguments[0].number in shelves))]
+        return list(kept), drop
+
+    # --- errands -------------------------------------------------------------------------------
+
+    def workers(self) -> list[int]:
+        """The robots that have something to do."""
+        return sorted(self.trips if self.domain.delivers else self.goals)
+
+    def stations_of(self, robot: int) -> set[Cell]:
+        return {cell for trip in self.trips.get(robot, []) for cell, _, _ in trip.deliveries}
+
+    def errand(self, robot: int, routed: set[int], roomy: bool = False) -> list[Task]:
+        """What ``robot`` does.  ``roomy``: every other robot's track is known (``routed``
+        holds those that are), so it may park on its last station when no other robot needs
+        that station any more, or on a free cell near it; the first plan does neither
+        (robots parked there would block the ones routed later)."""
+        if not self.domain.delivers:
+            return goal_errand(self.goals[robot]) if robot in self.goals else self._make_room(robot)
+        trips_ = self.trips.get(robot, [])
+        if not trips_:
+            return self._make_room(robot)
+        last = trips_[-1].deliveries[-1][0] if trips_[-1].deliveries else None
+        home = self.homes[trips_[-1].shelf]
+        # a shelf carried from the start has the robot's start cell as its home: park
+        # elsewhere when that is no place for a shelf (a highway, a station)
+        park = (home,) if home in self.instance.storage_cells else self._room(robot).cells
+        if last is not None and roomy:
+            if all(other in routed for other in self.trips if other != robot and last in self.stations_of(other)):
+                park = (last,)
+            park += self._near(last)
+        return delivery_errand(self.instance, robot, trips_, park)
+
+    def _near(self, station: Cell) -> tuple[Cell, ...]:
+        """Cells a few steps from a station where a robot with a shelf may park."""
+        if station not in self._parking:
+            passable = self.grid.floor & ~self.grid.mask(self.resting)
+            distance = self.grid.distances([station], passable)
+            stations = {s.at for s in self.instance.stations.values()}
+            self._parking[station] = tuple(sorted(
+                (c for c in cells_of(distance <= PARK_RADIUS) if c not in stations),
+                key=lambda c: (int(distance[c]), c)))
+        return self._parking[station]
+
+    def parking(self) -> frozenset[Cell]:
+        """Cells where robots with work park for good (goals; homes of the shelves used):
+        others had better keep off them."""
+        if self._parking_cells is None:
+            if self.domain.delivers:
+                self._parking_cells = frozenset(self.homes[t.shelf] for ts in self.trips.values() for t in ts)
+            else:
+                self._parking_cells = frozenset(self.goals.values())
+        return self._parking_cells
+
+    def needed_cells(self) -> set[Cell]:
+        """Cells robots with work must be able to use: goals, shelves to fetch, stations and
+        the cells next to them (the ways in and out)."""
+        if not self.domain.delivers:
+            return set(self.goals.values())
+        stations = {cell for robot in self.trips for cell in self.stations_of(robot)}
+        cells = stations | {(x + dx, y + dy) for x, y in stations for dx, dy in DIRECTIONS}
+        cells |= {self.homes[trip.shelf] for ts in self.trips.values() for trip in ts}
+        return cells & self.instance.cells
+
+    def movers(self) -> list[int]:
+        """Robots without work that have to make room (see :mod:`.room`), in routing order."""
+        if self._movers is None:
+            self._movers = movers(self.instance, set(self.workers()), self.needed_cells())
+        return self._movers
+
+    def _make_room(self, robot: int) -> list[Task]:
+        """A robot without work: stay, or, standing in the way, park nearby."""
+        if robot not in self.movers():
+            carried = self.instance.robots[robot].carries
+            return [Task("park", (self.instance.robots[robot].at,), carried is not None, carried)]
+        return [self._room(robot)]
+
+    def _room(self, robot: int) -> Task:
+        return room_task(self.instance, self.grid, robot, self.needed_cells(), self.resting)
+
+    def estimate(self, robot: int) -> float:
+        """Steps the robot's errand takes at least (to order robots: the longest first)."""
+        if not self.domain.delivers:
+            goal = self.goals.get(robot)
+            start = self.instance.robots[robot].at
+            return math.inf if goal is None else abs(goal[0] - start[0]) + abs(goal[1] - start[1])
+        at, steps = self.instance.robots[robot].at, 0
+        for trip in self.trips.get(robot, []):
+            home = self.homes[trip.shelf]
+            steps += abs(home[0] - at[0]) + abs(home[1] - at[1]) + 1
+            at = home
+            for cell, _, _ in trip.deliveries:
+                steps += abs(cell[0] - at[0]) + abs(cell[1] - at[1]) + 1
+                at = cell
+        return steps
