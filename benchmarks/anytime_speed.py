@@ -60,7 +60,7 @@ def run_one(job: dict) -> dict:
     result = plan_anytime(instance, domain, time_limit=job["limit"])
     return {**job, "seconds": time.perf_counter() - started, "status": result.status, "bound": result.bound,
             "minimal": result.minimal, "optimum": optimum, "valid": result.check.valid if result.check else None,
-            "history": [better.__dict__ for better in result.history],
+            "history": [better.figures() for better in result.history],
             "peak_mb": resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024}
 
 
