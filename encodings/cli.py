@@ -160,6 +160,8 @@ def _summary(outcome: Outcome) -> None:
         if outcome.refuted and outcome.status.value == "limit":
             lines.append(f"refuted horizons {_spans(outcome.refuted)}: no plan is shorter than "
                          f"{outcome.proven_bound:g}")
+        if outcome.status.value == "limit" and outcome.method == "asp":
+            lines.append("for a plan fast (not proven minimal), try --method anytime")
     if outcome.method == "flow":
         lines.append(f"max-flow {stats['solve_time']:.2f} s")
     elif outcome.method == "anytime":

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import threading
 import time
 
@@ -49,6 +50,15 @@ def test_the_time_limit_ends_a_search_that_has_no_end(write, isolate):
     assert outcome.refuted and outcome.refuted == list(range(int(outcome.lower_bound), outcome.refuted[-1] + 1))
     assert outcome.proven_bound == outcome.refuted[-1] + 1
     assert time.perf_counter() - started < 1.5 + 10  # the limit and a generous start-up, however slow
+
+
+def test_command_says_what_a_search_that_ran_out_of_time_proved(write, capsys):
+    assert main(["solve", str(write("corridor.lp", CORRIDOR)), "--domain", "b", "--time-limit", "1.5"]) == 1
+    summary = capsys.readouterr().err.splitlines()[-4:-1]
+    assert summary[0] == "no plan within the limits"
+    refuted = re.fullmatch(r"refuted horizons (\d+)-(\d+): no plan is shorter than (\d+)", summary[1])
+    assert refuted and int(refuted[3]) == int(refuted[2]) + 1
+    assert summary[2] == "for a plan fast (not proven minimal), try --method anytime"
 
 
 def test_cancel_from_another_thread():
