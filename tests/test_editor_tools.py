@@ -19,8 +19,8 @@ from PyQt5.QtWidgets import QMessageBox  # noqa: E402
 
 from asprilo.checker import check  # noqa: E402
 from asprilo.generator import populate  # noqa: E402
-from asprilo.reader import read_instance  # noqa: E402
 from asprilo.model import PickingStation  # noqa: E402
+from asprilo.reader import read_instance  # noqa: E402
 from asprilo.visualizer import edits  # noqa: E402
 from asprilo.visualizer.window import MainWindow  # noqa: E402
 from asprilo.writer import format_instance  # noqa: E402
