@@ -39,7 +39,8 @@ IDLE_SECONDS = 3600.0  # a client silent this long is let go
 
 def configure(parser: argparse.ArgumentParser) -> None:
     roles = parser.add_subparsers(dest="role", metavar="ROLE", required=True)
-    solver = roles.add_parser("solver", help="plan with the reference encodings, re-plan when the world changes")
+    solver = roles.add_parser("solver", help="plan with the reference encodings or the anytime planner, "
+                                             "re-plan when the world changes")
     solver.add_argument("--domain", type=domain_argument, help="a|b|c|m|md (default: detected)")
     solver.add_argument("--method", choices=("asp", "anytime"), default="asp",
                         help="asp: minimal makespan with --encoding (default); anytime: a plan fast, then "
