@@ -58,8 +58,9 @@ def encodings_planner(encoding: str = "plain", time_limit: float | None = 60.0, 
 
 
 def anytime_planner(time_limit: float = 60.0) -> Planner:
-    """A planner through the anytime method: every (re-)planning answers within ``time_limit``
-    seconds with the best plan found by then (sooner when a plan meets the lower bound)."""
+    """A planner through the anytime method: every (re-)planning answers after about
+    ``time_limit`` seconds (a routing call being grounded finishes first) with the best plan
+    found by then, sooner when a plan meets the lower bound."""
     return encodings_planner(time_limit=time_limit, method="anytime")
 
 

@@ -4,7 +4,7 @@ both (Online > Connect…) and plays what they say; see visualizer/README.md for
 
 Examples:
   asprilo serve solver --port 5000
-  asprilo serve solver --method anytime --time-limit 5                (a plan within 5 s, the best one by then)
+  asprilo serve solver --method anytime --time-limit 5             (each answer after about 5 s: the best plan by then)
   asprilo serve simulator instance.lp --port 5001 --every 4        (one order every 4 steps)
   asprilo serve simulator instance.lp --at 3:2 --at 8:3,4          (order 2 at step 3, 3 and 4 at step 8)
   asprilo serve solver --port 0                                     (any free port; the port is printed)
@@ -48,7 +48,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     solver.add_argument("--encoding", default="plain", help="reference encoding (default plain)")
     solver.add_argument("--time-limit", type=seconds_argument, default=60.0, metavar="S",
                         help="seconds per (re-)planning (default 60); anytime: each re-planning answers "
-                             "within S with its best plan")
+                             "after about S with its best plan")
     simulator = roles.add_parser("simulator", help="release the orders of an instance over time")
     simulator.add_argument("instance", metavar="INSTANCE", help="the warehouse and all its orders")
     simulator.add_argument("--at", action="append", default=[], metavar="STEP:ORDER[,ORDER...]",

@@ -133,10 +133,9 @@ class Document:
         drafted = self._before_draft is not None
         if drafted:  # the step goes from the plan the draft covers
             (self.scenario.plan, self.scenario.plan_sources), self._before_draft = self._before_draft, None
-        if drafted and plan == self.scenario.plan:
-            self.put_plan(plan, self.scenario.plan_sources, time)
-            return False
         if plan == self.scenario.plan:
+            if drafted:  # the plan from before the draft, shown again
+                self.put_plan(plan, self.scenario.plan_sources, time)
             return False
         sources = self.scenario.plan_sources if sources is None else sources
         self.history.push(_PlanStep(self, plan, sources, text, time))
