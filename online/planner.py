@@ -47,13 +47,21 @@ def world_at(instance: Instance, state: State) -> Instance:
 Planner = Callable[[Instance, Domain, threading.Event], "Plan | None"]
 
 
-def encodings_planner(encoding: str = "plain", time_limit: float | None = 60.0) -> Planner:
-    """A planner through the reference encodings (minimal makespan)."""
+def encodings_planner(encoding: str = "plain", time_limit: float | None = 60.0, method: str = "asp") -> Planner:
+    """A planner through :func:`asprilo.encodings.solve`: the reference encodings (minimal
+    makespan), or another of its methods."""
     def plan(instance: Instance, domain: Domain, cancel: threading.Event) -> Plan | None:
         from asprilo.encodings import solve
-        outcome = solve(instance, domain, encoding=encoding, time_limit=time_limit, cancel=cancel)
+        outcome = solve(instance, domain, encoding=encoding, time_limit=time_limit, cancel=cancel, method=method)
         return outcome.plan if outcome.found else None
     return plan
+
+
+def anytime_planner(time_limit: float = 60.0) -> Planner:
+    """A planner through the anytime method: every (re-)planning answers after about
+    ``time_limit`` seconds (a routing call being grounded finishes first) with the best plan
+    found by then, sooner when a plan meets the lower bound."""
+    return encodings_planner(time_limit=time_limit, method="anytime")
 
 
 @dataclass

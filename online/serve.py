@@ -4,6 +4,7 @@ both (Online > Connect…) and plays what they say; see visualizer/README.md for
 
 Examples:
   asprilo serve solver --port 5000
+  asprilo serve solver --method anytime --time-limit 5             (each answer after about 5 s: the best plan by then)
   asprilo serve simulator instance.lp --port 5001 --every 4        (one order every 4 steps)
   asprilo serve simulator instance.lp --at 3:2 --at 8:3,4          (order 2 at step 3, 3 and 4 at step 8)
   asprilo serve solver --port 0                                     (any free port; the port is printed)
@@ -25,10 +26,10 @@ import sys
 import threading
 from collections.abc import Callable
 
-from asprilo.arguments import domain_argument, port_argument
+from asprilo.arguments import domain_argument, port_argument, seconds_argument
 from asprilo.errors import InputError
 
-from .planner import OnlinePlanner, Schedule, encodings_planner, parse_arrivals
+from .planner import OnlinePlanner, Planner, Schedule, anytime_planner, encodings_planner, parse_arrivals
 from .protocol import DONE, END, RESET, Channel, Message, action_facts, check_facts, error
 
 DEFAULT_PORTS = {"solver": 5000, "simulator": 5001}
@@ -38,11 +39,16 @@ IDLE_SECONDS = 3600.0  # a client silent this long is let go
 
 def configure(parser: argparse.ArgumentParser) -> None:
     roles = parser.add_subparsers(dest="role", metavar="ROLE", required=True)
-    solver = roles.add_parser("solver", help="plan with the reference encodings, re-plan when the world changes")
+    solver = roles.add_parser("solver", help="plan with the reference encodings or the anytime planner, "
+                                             "re-plan when the world changes")
     solver.add_argument("--domain", type=domain_argument, help="a|b|c|m|md (default: detected)")
+    solver.add_argument("--method", choices=("asp", "anytime"), default="asp",
+                        help="asp: minimal makespan with --encoding (default); anytime: a plan fast, then "
+                             "better ones, the best by the time limit")
     solver.add_argument("--encoding", default="plain", help="reference encoding (default plain)")
-    solver.add_argument("--time-limit", type=float, default=60.0, metavar="S",
-                        help="seconds per (re-)planning (default 60)")
+    solver.add_argument("--time-limit", type=seconds_argument, default=60.0, metavar="S",
+                        help="seconds per (re-)planning (default 60); anytime: each re-planning answers "
+                             "after about S with its best plan")
     simulator = roles.add_parser("simulator", help="release the orders of an instance over time")
     simulator.add_argument("instance", metavar="INSTANCE", help="the warehouse and all its orders")
     simulator.add_argument("--at", action="append", default=[], metavar="STEP:ORDER[,ORDER...]",
@@ -64,7 +70,7 @@ def run(args: argparse.Namespace) -> int:
     if args.clients < 1 or not args.idle_timeout > 0:
         raise InputError("--clients and --idle-timeout must be positive")
     if args.role == "solver":
-        planner, log = encodings_planner(args.encoding, args.time_limit), _log("solver")
+        planner, log = _planner(args), _log("solver")
         session = lambda channel: solver_session(channel, OnlinePlanner(planner, args.domain, log))  # noqa: E731
     else:
         schedule = _schedule(args)
@@ -79,6 +85,12 @@ def run(args: argparse.Namespace) -> int:
     finally:
         listener.close()
     return 0
+
+
+def _planner(args: argparse.Namespace) -> Planner:
+    if args.method == "anytime":
+        return anytime_planner(args.time_limit)
+    return encodings_planner(args.encoding, args.time_limit)
 
 
 def _log(role: str) -> Callable[[str], None]:

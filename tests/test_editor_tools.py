@@ -7,17 +7,20 @@ import os
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
+import re  # noqa: E402
 import time  # noqa: E402
 from itertools import pairwise  # noqa: E402
 
 import pytest  # noqa: E402
 from helpers import SMALL_A, WRONG_OUTCOME  # noqa: E402
-from helpers.online import TINY  # noqa: E402
+from helpers.online import TINY, tiny  # noqa: E402
 from PyQt5.QtCore import QSettings, QTimer  # noqa: E402
 from PyQt5.QtWidgets import QMessageBox  # noqa: E402
 
+from asprilo.checker import check  # noqa: E402
 from asprilo.generator import populate  # noqa: E402
 from asprilo.model import PickingStation  # noqa: E402
+from asprilo.reader import read_instance  # noqa: E402
 from asprilo.visualizer import edits  # noqa: E402
 from asprilo.visualizer.window import MainWindow  # noqa: E402
 from asprilo.writer import format_instance  # noqa: E402
@@ -97,6 +100,78 @@ def test_solving_keeps_the_window_alive_and_can_be_cancelled(window, qtbot):
     assert len(window.scenario.plan) == 0 and not window.jobs.bar.isVisible()
     assert window.editor.palette.isEnabled()
     timer.stop()
+
+
+def watch_plans(window) -> list[tuple[bool, str, object]]:
+    """Each plan shown from now on: whether a job ran then, the progress line, the plan."""
+    seen = []
+    window.editor.document.changed.connect(lambda change: change.plan and seen.append(
+        (window.jobs.job is not None, window.jobs.bar.label.text(), window.scenario.plan)))
+    return seen
+
+
+def test_anytime_solve_shows_each_better_plan_then_plays_the_best(window, qtbot, write):
+    window.open_files([str(write("tiny.lp", TINY))])
+    anytime = next(a for a in window.jobs.methods.actions() if a.data() == "anytime")
+    anytime.trigger()
+    assert window.settings.value("tools/method") == "anytime"
+    window.jobs._show_method()  # what the menu shows when it opens
+    assert [a.isChecked() for a in window.jobs.methods.actions()] == [False, True]
+    seen = watch_plans(window)
+    window.jobs.solve()
+    finish(qtbot, window)
+    outcome = window.jobs.last_outcome
+    # the tiny world: robot 1 carries shelf 1 three cells to the station and delivers (4 steps);
+    # robot 2 moves onto shelf 2, picks it up, carries it 3 cells to the station, delivers: 6 steps
+    assert outcome.method == "anytime" and outcome.found and outcome.minimal and outcome.horizon == 6
+    assert check(tiny(), window.scenario.plan).valid and window.scenario.plan == outcome.plan
+    drafts = [(label, plan) for running, label, plan in seen if running]
+    makespans = [entry["makespan"] for entry in outcome.history]
+    assert [plan.horizon for _label, plan in drafts] == makespans and makespans[-1] == 6
+    assert all(a > b for a, b in pairwise(makespans))
+    assert [label for label, _plan in drafts] == [
+        f"Solve: makespan {e['makespan']}, sum of costs {e['sum_of_costs']}, {100 * e['gap']:.1f}% above "
+        f"the lower bound ({e['seconds']:.1f} s)" for e in outcome.history]
+    plans = len(makespans)
+    assert re.fullmatch(rf"plan found in \d+\.\d s: minimal makespan 6, {len(outcome.plan)} actions, "
+                        rf"{plans} plans? reported \(A, anytime\)", window.statusBar().currentMessage())
+    assert window.player.playing
+    history = window.editor.document.history
+    assert history.count == 1 and history.undo_text == "solve (anytime, makespan 6)"
+    window.editor.commands["undo"].trigger()
+    assert len(window.scenario.plan) == 0
+
+
+def test_cancelling_an_anytime_solve_keeps_its_best_plan(window, qtbot):
+    window.open_files([str(SMALL_A)])
+    window.jobs.solve(method="anytime", time_limit=600)
+    # no plan meets the lower bound 17 (it is refuted: see the test above), so it searches on
+    qtbot.waitUntil(lambda: window.jobs.bar.label.text().startswith("Solve: makespan "), timeout=WAIT_MS)
+    assert len(window.scenario.plan) > 0 and window.editor.document.history.count == 0  # a draft
+    started = time.perf_counter()
+    window.jobs.cancel()
+    finish(qtbot, window)
+    assert time.perf_counter() - started < 10.0
+    outcome = window.jobs.last_outcome
+    assert outcome.found and window.scenario.plan == outcome.plan
+    assert check(read_instance(SMALL_A), window.scenario.plan).valid
+    makespan = outcome.horizon
+    gap = 100 * (makespan - 17) / 17
+    assert re.fullmatch(rf"Solve stopped after \d+\.\d s, best plan: makespan {makespan}, {gap:.1f}% above the "
+                        rf"lower bound 17, {len(outcome.plan)} actions, \d+ plans? reported \(A, anytime\)",
+                        window.statusBar().currentMessage())
+    assert window.editor.document.history.undo_text == f"solve (anytime, makespan {makespan})"
+    window.editor.commands["undo"].trigger()
+    assert len(window.scenario.plan) == 0
+
+
+def test_a_plan_found_for_an_instance_no_longer_shown_is_dropped(window, qtbot, write):
+    window.open_files([str(SMALL_A)])
+    window.jobs.solve(method="anytime", time_limit=1.0)
+    window.open_files([str(write("tiny.lp", TINY))])  # before any plan of the search can come
+    finish(qtbot, window)
+    assert len(window.scenario.plan) == 0 and window.editor.document.history.count == 0
+    assert window.statusBar().currentMessage() == "Solve: another instance is open now; the plan found is dropped"
 
 
 def test_check_shows_the_asp_checkers_diagnostics(window, qtbot):

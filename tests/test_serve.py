@@ -5,14 +5,18 @@ from __future__ import annotations
 
 import subprocess
 import sys
+import time
 
 import pytest
+from helpers import SMALL_A
 from helpers.online import ORDER_2, TINY, WAIT, tiny
 
+from asprilo.checker import check
 from asprilo.errors import InputError
 from asprilo.model import Action, Plan
-from asprilo.online.planner import OnlinePlanner, Schedule, parse_arrivals, world_at
+from asprilo.online.planner import OnlinePlanner, Schedule, anytime_planner, parse_arrivals, world_at
 from asprilo.online.protocol import DONE, END, RESET, Channel, Message, done, parse, read_actions, read_world, reset
+from asprilo.reader import read_instance
 from asprilo.simulate import simulate
 
 # --- messages -----------------------------------------------------------------------------------------
@@ -89,6 +93,46 @@ def test_online_planner_replans_from_the_state_reached_when_facts_arrive():
     assert online.next_actions(0) == [] and len(asked) == 2  # nothing known: nothing planned
 
 
+# --- the anytime method as the online planner -------------------------------------------------------
+
+def run_online(online: OnlinePlanner, schedule: Schedule, steps: int = 200) -> tuple[Plan, dict[int, float]]:
+    """Ask for every step as the visualizer would, orders arriving as scheduled, until the
+    last order is known and nothing is left to do; the plan sent and how long each step took."""
+    online.learn(schedule.world())
+    actions, seconds = [], {}
+    for step in range(steps):
+        online.learn(schedule.arriving(step))
+        started = time.perf_counter()
+        answer = online.next_actions(step)
+        seconds[step] = time.perf_counter() - started
+        if step >= schedule.last and not answer:
+            break
+        actions += answer
+    return Plan(actions), seconds
+
+
+def test_the_anytime_planner_replans_when_an_order_arrives():
+    plan, _seconds = run_online(OnlinePlanner(anytime_planner(time_limit=WAIT)), Schedule(tiny(), {2: 3}))
+    assert check(tiny(), plan).valid
+    # order 1 alone: robot 1 carries shelf 1 along its only shortest way to the station;
+    # robot 2 has nothing to do until order 2 arrives at step 3
+    assert [a for a in plan.actions if a.step <= 3] == [Action(t, 1, "move", (1, 0)) for t in (1, 2, 3)]
+    # then robot 1 delivers (step 4) and robot 2 needs 6 steps: onto shelf 2, pick it up,
+    # 3 cells to the station, deliver (step 9)
+    deliveries = sorted((a.step, a.robot, a.args) for a in plan.actions if a.name == "deliver")
+    assert deliveries == [(4, 1, (1, 1, 1)), (9, 2, (2, 2, 2))] and plan.horizon == 9
+
+
+def test_anytime_replanning_answers_within_its_time_limit_with_the_best_plan():
+    instance = read_instance(SMALL_A)  # no plan meets its lower bound (17): the search runs to the limit
+    online = OnlinePlanner(anytime_planner(time_limit=2.0))
+    plan, seconds = run_online(online, Schedule(instance, {3: 2}))
+    assert check(instance, plan).valid
+    assert simulate(instance, plan).state(plan.horizon).open_lines == {}
+    assert 1.0 < seconds[0] < 2.0 + 5.0 and 1.0 < seconds[2] < 2.0 + 5.0  # planning, re-planning
+    assert max(t for step, t in seconds.items() if step not in (0, 2)) < 1.0  # answered from the plan
+
+
 # --- both servers on loopback, a plain client -----------------------------------------------------------
 
 def test_an_order_injected_at_step_3_is_delivered(servers):
@@ -125,6 +169,24 @@ def test_an_order_injected_at_step_3_is_delivered(servers):
     assert deliveries and min(a.step for a in deliveries) > 4
     assert sum(a.args[2] for a in deliveries) == 2
     assert timeline.state(plan.horizon).open_lines == {}
+
+
+def test_serve_solver_plans_with_the_anytime_method():
+    process = subprocess.Popen([sys.executable, "-m", "asprilo.cli", "serve", "solver", "--method", "anytime",
+                                "--time-limit", "5", "--port", "0", "--once"],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        port = int(process.stdout.readline().rsplit(":", 1)[1])
+        channel = Channel.connect("127.0.0.1", port, timeout=WAIT)
+        channel.send(reset())
+        channel.send(Message(Schedule(tiny(), {2: 3}).world(), DONE, 0))
+        assert read_actions(channel.receive().facts) == [Action(1, 1, "move", (1, 0))]
+        channel.close()
+        assert process.wait(WAIT) == 0
+    finally:
+        process.kill()
+        _out, errors = process.communicate()
+    assert "solver: step 0: planned 4 actions for steps 1..4" in errors
 
 
 def test_serve_command_prints_its_port_and_rejects_bad_input(tmp_path):

@@ -107,6 +107,29 @@ def test_plan_edits_are_undoable_and_saving_the_plan_leaves_the_instance_unsaved
     assert document.plan == original and document.unsaved(PLAN)  # differs from the file saved
 
 
+def test_draft_plans_stay_out_of_the_history_until_the_result_goes_in_as_one_step():
+    document = Document()
+    document.open(load_scenario([str(OUTCOME)]))
+    original, sources = document.plan, document.scenario.plan_sources
+    first, better = (Plan([a for a in original.actions if a.step <= steps]) for steps in (10, 5))
+    shown = []
+    document.changed.connect(lambda change: shown.append((change.plan, document.plan.horizon)))
+    document.draft_plan(first)
+    document.draft_plan(better)
+    assert shown == [(True, 10), (True, 5)] and document.history.count == 0 and not document.modified
+    assert document.replace_plan(better, "solve (anytime, makespan 5)", sources=[])
+    assert document.history.count == 1 and document.plan == better and document.modified
+    document.history.undo()
+    assert document.plan == original and document.scenario.plan_sources == sources  # the plan before the drafts
+    document.draft_plan(first)
+    document.drop_draft()
+    assert document.plan == original and document.scenario.plan_sources == sources
+    assert shown[-2:] == [(True, 10), (True, original.horizon)] and document.history.count == 1
+    document.draft_plan(first)
+    assert not document.replace_plan(original, "solve (anytime)")  # the same plan as before: no step
+    assert document.plan == original and shown[-1] == (True, original.horizon) and document.history.count == 1
+
+
 def test_saving_the_instance_keeps_the_plan_it_came_with(tmp_path):
     document = Document()
     document.open(load_scenario([str(OUTCOME)]))

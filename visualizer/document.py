@@ -3,7 +3,9 @@ domain, the files they came from), the undo history of edits to instance and pla
 whether either has unsaved edits.
 
 Edits of the instance always change its initial state; edits of the plan replace it as a
-whole.  Both go through the history, so Undo takes back the last one whatever it was.
+whole.  Both go through the history, so Undo takes back the last one whatever it was.  A search
+that finds better and better plans shows each as a *draft* outside the history; its result
+then goes in as one step (or the plan from before comes back).
 Observers learn of a new scenario through ``opened`` and of every change (done, undone,
 or a plan growing in an online session) through ``changed``.
 """
@@ -81,6 +83,7 @@ class Document:
         self.path: Path | None = None  # where Save instance writes (None: ask)
         self._empty = Instance()
         self._modified = False
+        self._before_draft: tuple[Plan, list[Source]] | None = None  # the plan a draft covers
         self.opened = Signal()            # (keep_time: bool) another scenario, or none
         self.changed = Signal()           # (Change) an edit done or undone, or the plan grew
         self.modified_changed = Signal()  # (modified: bool)
@@ -107,6 +110,7 @@ class Document:
         """Show and edit ``scenario`` from now on (``None``: nothing); a new history."""
         self.scenario = scenario
         self.path = _own_file(scenario)
+        self._before_draft = None
         self.history.clear()
         self.opened.emit(keep_time)
 
@@ -122,12 +126,35 @@ class Document:
     def replace_plan(self, plan: Plan, text: str, time: float | None = None,
                      sources: list[Source] | None = None) -> bool:
         """Show ``plan`` instead of the plan shown, as one undoable step; ``sources``: where
-        it comes from now (default: where the plan shown came from)."""
-        if self.scenario is None or plan == self.scenario.plan:
+        it comes from now (default: where the plan shown came from).  A draft shown ends:
+        the step replaces the plan from before the draft."""
+        if self.scenario is None:
+            return False
+        drafted = self._before_draft is not None
+        if drafted:  # the step goes from the plan the draft covers
+            (self.scenario.plan, self.scenario.plan_sources), self._before_draft = self._before_draft, None
+        if plan == self.scenario.plan:
+            if drafted:  # the plan from before the draft, shown again
+                self.put_plan(plan, self.scenario.plan_sources, time)
             return False
         sources = self.scenario.plan_sources if sources is None else sources
         self.history.push(_PlanStep(self, plan, sources, text, time))
         return True
+
+    def draft_plan(self, plan: Plan) -> None:
+        """Show ``plan`` for now, outside the history (a search's better plans as they come),
+        until :meth:`replace_plan` puts the result in as one step or :meth:`drop_draft` ends it."""
+        if self.scenario is None:
+            return
+        if self._before_draft is None:
+            self._before_draft = (self.scenario.plan, self.scenario.plan_sources)
+        self.put_plan(plan, [], None)
+
+    def drop_draft(self) -> None:
+        """Show the plan from before the draft again (the search failed or was dropped)."""
+        if self._before_draft is not None:
+            before, self._before_draft = self._before_draft, None
+            self.put_plan(*before, None)
 
     def grow_plan(self, plan: Plan) -> None:
         """The plan of an online session grew (not undoable: the session owns it)."""

@@ -5,6 +5,11 @@ what it does (the horizons the solver tries) with a Cancel button.  Editing is l
 while a job runs, so its result always fits the instance shown.  Cancelling a solve
 interrupts clingo at once; the generator cannot be interrupted, so a cancelled generation
 is left to finish in the background (at most its time limit) and its result is dropped.
+
+Solve has two methods (Run > Solve method, kept in the settings like the encoding): a plan
+of minimal makespan with a reference encoding, or the anytime planner, whose better plans
+are shown as they come (a draft, outside the undo history) and which answers with its best
+plan when cancelled.
 """
 
 from __future__ import annotations
@@ -31,6 +36,9 @@ from .state import ViewerState
 
 #: seconds the solver and the generator may take from the window
 SOLVE_SECONDS, GENERATE_SECONDS = 300.0, 120.0
+#: the Solve methods: setting -> menu entry (``asp``: minimal makespan with the encoding chosen)
+SOLVE_METHODS = {"asp": "&Minimal makespan (with the encoding chosen)",
+                 "anytime": "&Anytime: a plan fast, then better ones"}
 
 JOB_ACTIONS: Table = {
     "generate": ("&Generate (fill this layout)…", ("Ctrl+Shift+G",)),
@@ -41,9 +49,11 @@ JOB_ACTIONS: Table = {
 
 
 class Job(QThread):
-    """Runs ``work(job)`` in a worker thread and reports its result or failure."""
+    """Runs ``work(job)`` in a worker thread and reports its result or failure (and, from
+    an anytime search, each better result so far through ``better``)."""
 
     progress = pyqtSignal(str)
+    better = pyqtSignal(object)
     succeeded = pyqtSignal(object)
     failed = pyqtSignal(str)
 
@@ -101,6 +111,12 @@ class JobRunner(QObject):
                                                            "check": self.check, "cancel": self.cancel})
         self.encodings = QActionGroup(self)
         self.encoding_menu: QMenu | None = None
+        self.methods = QActionGroup(self)
+        for method, text in SOLVE_METHODS.items():
+            action = self.methods.addAction(text)
+            action.setCheckable(True)
+            action.setData(method)
+            action.triggered.connect(lambda _checked=False, m=method: self.settings.setValue("tools/method", m))
         state.shown.connect(lambda _keep: self.update_actions())
         state.locks_changed.connect(self.update_actions)
         self.update_actions()
@@ -109,6 +125,9 @@ class JobRunner(QObject):
         menu.addAction(self.commands["generate"])
         menu.addSeparator()
         menu.addAction(self.commands["solve"])
+        methods = menu.addMenu("Solve &method")
+        methods.addActions(self.methods.actions())
+        methods.aboutToShow.connect(self._show_method)
         self.encoding_menu = menu.addMenu("Solve &with encoding")
         self.encoding_menu.aboutToShow.connect(self._fill_encodings)
         menu.addAction(self.commands["check"])
@@ -134,15 +153,31 @@ class JobRunner(QObject):
             self.encodings.addAction(action)
             action.triggered.connect(lambda _checked=False, n=name: self.settings.setValue("tools/encoding", n))
 
+    @property
+    def method(self) -> str:
+        """The Solve method chosen (``asp`` or ``anytime``)."""
+        method = str(self.settings.value("tools/method", "asp"))
+        return method if method in SOLVE_METHODS else "asp"
+
+    def _show_method(self) -> None:
+        for action in self.methods.actions():
+            action.setChecked(action.data() == self.method)
+
     # --- running jobs ----------------------------------------------------------------------------
 
-    def start(self, title: str, work: Callable[[Job], Any], done: Callable[[Job, Any], None]) -> Job | None:
-        """Run ``work`` in the background; ``done(job, result)`` in the window's thread afterwards."""
+    def start(self, title: str, work: Callable[[Job], Any], done: Callable[[Job, Any], None],
+              better: Callable[[Any], None] | None = None) -> Job | None:
+        """Run ``work`` in the background; ``done(job, result)`` in the window's thread afterwards.
+
+        ``better(value)``, in the window's thread, hears of each better result so far; such
+        a job still answers when cancelled (with its best result)."""
         if self.job is not None or self.state.document.scenario is None:
             return None
         job = Job(title, work, self)
         job.progress.connect(lambda text: self.bar.label.setText(f"{title}: {text}"))
-        job.succeeded.connect(lambda result: self._finished(job) and done(job, result))
+        if better is not None:
+            job.better.connect(better)
+        job.succeeded.connect(lambda result: self._finished(job, better is not None) and done(job, result))
         job.failed.connect(lambda message: self._finished(job) and self.state.report_error(message))
         self.job = job
         self.bar.label.setText(f"{title}…")
@@ -152,13 +187,17 @@ class JobRunner(QObject):
         job.start()
         return job
 
-    def _finished(self, job: Job) -> bool:
-        """Tidy up after ``job``; whether its result is still wanted (not cancelled)."""
+    def _finished(self, job: Job, answers: bool = False) -> bool:
+        """Tidy up after ``job``; whether its result is still wanted (not cancelled, or
+        ``answers``: its result is the best so far also when cancelled).  A draft plan it
+        showed goes when its result is not wanted."""
         job.wait()
         job.deleteLater()
         if self.job is job:
             self._idle()
-        if job.cancel.is_set():
+        if not answers:
+            self.state.document.drop_draft()
+        if job.cancel.is_set() and not answers:
             self.state.say(f"{job.title} cancelled")
             return False
         return True
@@ -210,34 +249,63 @@ class JobRunner(QObject):
 
     # --- solve ----------------------------------------------------------------------------------
 
-    def solve(self, encoding: str | None = None, time_limit: float = SOLVE_SECONDS) -> Job | None:
-        """Find a plan of minimal makespan for the instance shown; play it when found."""
+    def solve(self, encoding: str | None = None, time_limit: float | None = None,
+              method: str | None = None) -> Job | None:
+        """Find a plan for the instance shown and play it: of minimal makespan with a reference
+        encoding (``method`` ``asp``), or with the anytime planner (``anytime``: each better
+        plan shown as it comes).  Default: the method and encoding chosen in the Run menu, the
+        time limit :data:`SOLVE_SECONDS` (anytime: the planner's own default)."""
+        from asprilo.encodings.anytime import DEFAULT_SECONDS as ANYTIME_SECONDS
+
         document = self.state.document
         if document.scenario is None:
             return None
-        instance, domain = copy.deepcopy(document.instance), document.domain
+        scenario, instance, domain = document.scenario, copy.deepcopy(document.instance), document.domain
+        method = method or self.method
+        anytime = method == "anytime"
         encoding = encoding or str(self.settings.value("tools/encoding", "plain"))
+        if time_limit is None:
+            time_limit = ANYTIME_SECONDS if anytime else SOLVE_SECONDS
 
         def work(job: Job):
             from asprilo.encodings import solve
-            return solve(instance, domain, encoding=encoding, time_limit=time_limit, cancel=job.cancel,
-                         on_progress=lambda attempt: job.progress.emit(
-                             f"horizon {attempt.horizon}: {attempt.result} ({attempt.seconds:.1f} s)"))
+
+            def heard(attempt) -> None:
+                job.progress.emit(tried(attempt))
+                if attempt.plan is not None:
+                    job.better.emit(attempt)
+
+            return solve(instance, domain, encoding=encoding, method=method, time_limit=time_limit,
+                         cancel=job.cancel, on_progress=heard)
+
+        def better(attempt) -> None:
+            if document.scenario is scenario:
+                document.draft_plan(attempt.plan)
 
         def done(job: Job, outcome) -> None:
-            self.last_outcome = outcome
-            if not outcome.found:
-                why = f" ({outcome.message})" if outcome.message else ""
-                self.state.report_error(f"No plan: {outcome.status.value}{why}.")
-                return
-            document.replace_plan(outcome.plan, f"solve ({encoding}, makespan {outcome.horizon})", time=0.0,
-                                  sources=[])
-            minimal = "minimal " if outcome.minimal else ""
-            self.state.say(f"plan found in {job.seconds:.1f} s: {minimal}makespan {outcome.horizon}, "
-                           f"{len(outcome.plan)} actions ({domain.label}, {encoding})", 10000)
-            self.player.play()
+            self._solved(job, outcome, scenario, domain.label)
 
-        return self.start("Solve", work, done)
+        return self.start("Solve", work, done, better if anytime else None)
+
+    def _solved(self, job: Job, outcome, scenario, domain: str) -> None:
+        """Load and play the plan found in ``scenario`` (if still shown), or say why there is none."""
+        document = self.state.document
+        self.last_outcome = outcome
+        if document.scenario is not scenario:
+            self.state.say("Solve: another instance is open now; the plan found is dropped", 10000)
+            return
+        if not outcome.found:
+            document.drop_draft()
+            if outcome.status.value == "cancelled":
+                self.state.say("Solve cancelled")
+                return
+            why = f" ({outcome.message})" if outcome.message else ""
+            self.state.report_error(f"No plan: {outcome.status.value}{why}.")
+            return
+        document.replace_plan(outcome.plan, f"solve ({outcome.encoding}, makespan {outcome.horizon})", time=0.0,
+                              sources=[])
+        self.state.say(found(outcome, job, domain), 10000)
+        self.player.play()
 
     # --- check ----------------------------------------------------------------------------------
 
@@ -267,6 +335,28 @@ class JobRunner(QObject):
         agree = "agrees with" if replay == {v.atom for v in violations} else "differs from"
         verdict = "valid plan" if report.valid else f"{len(violations)} violation{'s' if len(violations) != 1 else ''}"
         self.state.say(f"ASP checker: {verdict}; it {agree} the viewer's replay", 10000)
+
+
+def tried(attempt) -> str:
+    """What the progress line says of one horizon tried, or of a better plan (anytime)."""
+    if attempt.result == "improved":
+        return f"makespan {attempt.horizon}, {attempt.note} ({attempt.seconds:.1f} s)"
+    return f"horizon {attempt.horizon}: {attempt.result} ({attempt.seconds:.1f} s)"
+
+
+def found(outcome, job: Job, domain: str) -> str:
+    """What the status bar says of the plan a solve found."""
+    minimal = "minimal " if outcome.minimal else ""
+    if outcome.method != "anytime":
+        return (f"plan found in {job.seconds:.1f} s: {minimal}makespan {outcome.horizon}, "
+                f"{len(outcome.plan)} actions ({domain}, {outcome.encoding})")
+    head = f"Solve stopped after {job.seconds:.1f} s, best plan" if job.cancel.is_set() else \
+        f"plan found in {job.seconds:.1f} s"
+    gap = outcome.history[-1]["gap"] if outcome.history else None
+    above = f", {100 * gap:.1f}% above the lower bound {outcome.lower_bound:g}" if gap and not minimal else ""
+    plans = len(outcome.history)
+    return (f"{head}: {minimal}makespan {outcome.horizon}{above}, {len(outcome.plan)} actions, "
+            f"{plans} plan{'s' if plans != 1 else ''} reported ({domain}, anytime)")
 
 
 def explain(timeline, atom: str) -> Violation:
