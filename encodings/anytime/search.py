@@ -12,8 +12,10 @@ from __future__ import annotations
 import math
 import threading
 import time
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from functools import partial
 
 from asprilo.checker import Report, check
 from asprilo.domain import Domain
@@ -32,6 +34,8 @@ from .work import ASSIGN_CAP, ASSIGN_SHARE, Work
 DEFAULT_SECONDS = 60.0
 #: the least time between two checks, and how many check durations to wait between two
 CHECK_GAP, CHECK_FACTOR = 0.5, 3.0
+#: how many of the last neighbourhoods' durations say how long the next one may take
+RECENT_STEPS = 10
 
 
 @dataclass
@@ -186,14 +190,19 @@ def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = 
 
 
 def _improve(run: _Run, improver: Improver, table: Reservations) -> None:
-    """Large-neighbourhood search until time is up (keeping time for the last check) or
-    the bound is met."""
-    steps = 0
+    """Large-neighbourhood search until time is up or the bound is met.  Time is kept for
+    the last check, and a neighbourhood starts only if one as long as the longest of the last
+    few still fits (a routing call cannot be stopped while it grounds)."""
+    steps, recent = 0, deque(maxlen=RECENT_STEPS)
     while not run.reached_bound(table.tracks):
-        if run.out_of_time(keep=1.5 * run.check_seconds + 0.05):
+        reserve = 1.5 * run.check_seconds + 0.05
+        if run.out_of_time(keep=reserve + max(recent, default=0.0)):
             break
         steps += 1
-        if improver.step(lambda: run.out_of_time()) and not run.offer(table.tracks):
+        began = time.perf_counter()
+        better = improver.step(partial(run.out_of_time, reserve))
+        recent.append(time.perf_counter() - began)
+        if better and not run.offer(table.tracks):
             _go_back(table, run.good)
             improver.work.restore(run.good_work)
     run.result.stats.update(neighbourhoods=steps, tried=dict(improver.tried), improved=dict(improver.won))
