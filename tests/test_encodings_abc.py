@@ -66,7 +66,8 @@ def test_clingcon_deliveries_carry_the_integer_amounts():
     assert outcome.check.valid
 
 
-def test_several_robots_deliver_in_the_same_step(write):
+@pytest.mark.parametrize("domain", [Domain.A, Domain.B, Domain.C])
+def test_several_robots_deliver_in_the_same_step(write, domain):
     two_stations = """
     init(object(grid,1),value(xsize,3)). init(object(grid,1),value(ysize,2)).
     init(object(pickingStation,1),value(at,(1,1))). init(object(pickingStation,2),value(at,(3,1))).
@@ -76,7 +77,7 @@ def test_several_robots_deliver_in_the_same_step(write):
     init(object(order,1),value(line,(1,1))). init(object(order,1),value(pickingStation,1)).
     init(object(order,2),value(line,(2,1))). init(object(order,2),value(pickingStation,2)).
     """
-    outcome = solve(write("stations.lp", two_stations), Domain.A)
+    outcome = solve(write("stations.lp", two_stations), domain)
     assert outcome.horizon == 3 and outcome.check.valid
     assert sorted((a.step, a.robot) for a in outcome.plan.actions if a.name == "deliver") == [(3, 1), (3, 2)]
 
