@@ -505,6 +505,7 @@ class _Search:
             if result.status is not Status.SAT:
                 return
             outcome.plan, outcome.horizon = self._plan(result), horizon
+            outcome.minimal = horizon <= outcome.lower_bound
 
     def _largest_horizon(self, first: int) -> int:
         """Where an upward search gives up: no plan needs this many steps in practice."""
