@@ -246,14 +246,14 @@ def _solve_isolated(instance: Instance, domain: Domain, program: Encoding | None
     outcome = Outcome(SolveStatus.CANCELLED if cancel is not None and cancel.is_set() else SolveStatus.LIMIT,
                       domain, method, program.name if program else method)
     outcome.horizons_tried = [m for m in child.messages if isinstance(m, Attempt)]
+    outcome.lower_bound = makespan_bound(instance, domain)
     best = [attempt for attempt in outcome.horizons_tried if attempt.plan is not None]
     if best:  # the anytime method stopped from outside: its last plan reported (checked) is the answer
         outcome.status, outcome.plan, outcome.horizon = SolveStatus.FOUND, best[-1].plan, best[-1].horizon
         outcome.check = check(instance, outcome.plan, domain)
-        outcome.lower_bound = makespan_bound(instance, domain)
         outcome.minimal = outcome.horizon <= outcome.lower_bound
+        outcome.history = [{"seconds": a.seconds, "makespan": a.horizon} for a in best]
         return outcome
-    outcome.lower_bound = makespan_bound(instance, domain)
     outcome.stats = {key: value for key, value in Statistics().as_dict().items() if key != "models"}
     outcome.message = {"timeout": f"stopped at the time limit ({time_limit:g} s)" if time_limit else "stopped",
                        "memout": f"stopped at the memory limit ({memory_limit} MB)",
