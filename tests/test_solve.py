@@ -61,6 +61,14 @@ def test_command_says_what_a_search_that_ran_out_of_time_proved(write, capsys):
     assert summary[2] == "for a plan fast (not proven minimal), try --method anytime"
 
 
+def test_the_time_limit_holds_while_clingo_grounds(capsys):
+    """At horizon 100,000 the small example grounds for minutes; the limit ends it anyway."""
+    started = time.perf_counter()
+    assert main(["solve", str(SMALL_A), "--domain", "b", "--horizon", "100000", "--time-limit", "2"]) == 1
+    assert time.perf_counter() - started < 2 + 10  # the limit and a generous start-up, however slow
+    assert "no plan within the limits: stopped at the time limit (2 s)\n" in capsys.readouterr().err
+
+
 def test_cancel_from_another_thread():
     cancel, result = threading.Event(), {}
     worker = threading.Thread(target=lambda: result.update(
