@@ -79,6 +79,25 @@ def test_solve_loads_and_plays_a_plan_of_minimal_makespan(window, qtbot, write):
     assert "minimal makespan 6" in window.statusBar().currentMessage()
 
 
+#: a corridor P S S R (domain A: the line asks for 2 of the 3 units on shelf 2): shelf 2 can
+#: never pass shelf 1, so no horizon has a plan (as in test_solve.py)
+CORRIDOR = """
+init(object(grid,1),value(xsize,4)). init(object(grid,1),value(ysize,1)).
+init(object(pickingStation,1),value(at,(1,1))). init(object(robot,1),value(at,(4,1))).
+init(object(shelf,1),value(at,(2,1))). init(object(shelf,2),value(at,(3,1))).
+init(object(product,1),value(on,(2,3))).
+init(object(order,1),value(line,(1,2))). init(object(order,1),value(pickingStation,1)).
+"""
+
+
+def test_a_solve_out_of_time_points_to_the_anytime_method(window, qtbot, write):
+    window.open_files([str(write("corridor.lp", CORRIDOR))])
+    assert window.jobs.solve(time_limit=1.0) is not None, window.state.last_error
+    finish(qtbot, window)
+    assert window.state.last_error == ("No plan: limit. For a plan fast (not proven minimal), "
+                                       "choose Run > Solve method > Anytime.")
+
+
 def test_solving_keeps_the_window_alive_and_can_be_cancelled(window, qtbot):
     window.open_files([str(SMALL_A)])  # its minimal makespan takes minutes to prove
     ticks = []

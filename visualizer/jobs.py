@@ -300,7 +300,9 @@ class JobRunner(QObject):
                 self.state.say("Solve cancelled")
                 return
             why = f" ({outcome.message})" if outcome.message else ""
-            self.state.report_error(f"No plan: {outcome.status.value}{why}.")
+            hint = (" For a plan fast (not proven minimal), choose Run > Solve method > Anytime."
+                    if outcome.status.value == "limit" and outcome.method == "asp" else "")
+            self.state.report_error(f"No plan: {outcome.status.value}{why}.{hint}")
             return
         document.replace_plan(outcome.plan, f"solve ({outcome.encoding}, makespan {outcome.horizon})", time=0.0,
                               sources=[])
