@@ -12,9 +12,10 @@ import time  # noqa: E402
 from itertools import pairwise  # noqa: E402
 
 import pytest  # noqa: E402
-from helpers import SMALL_A, WRONG_OUTCOME  # noqa: E402
+from helpers import CORRIDOR, SMALL_A, WRONG_OUTCOME  # noqa: E402
 from helpers.online import TINY, tiny  # noqa: E402
-from PyQt5.QtCore import QSettings, QTimer  # noqa: E402
+from helpers.viewer import shown_window  # noqa: E402
+from PyQt5.QtCore import QTimer  # noqa: E402
 from PyQt5.QtWidgets import QMessageBox  # noqa: E402
 
 from asprilo.checker import check  # noqa: E402
@@ -22,7 +23,6 @@ from asprilo.generator import populate  # noqa: E402
 from asprilo.model import PickingStation  # noqa: E402
 from asprilo.reader import read_instance  # noqa: E402
 from asprilo.visualizer import edits  # noqa: E402
-from asprilo.visualizer.window import MainWindow  # noqa: E402
 from asprilo.writer import format_instance  # noqa: E402
 
 pytestmark = pytest.mark.gui
@@ -31,11 +31,7 @@ WAIT_MS = 60_000  # no job may take longer here
 
 @pytest.fixture
 def window(qtbot, tmp_path_factory, monkeypatch):
-    settings = QSettings(str(tmp_path_factory.mktemp("settings") / "viz.ini"), QSettings.IniFormat)
-    window = MainWindow(settings)
-    qtbot.addWidget(window)
-    window.show()
-    qtbot.waitExposed(window)
+    window = shown_window(qtbot, tmp_path_factory)
     monkeypatch.setattr(QMessageBox, "question", lambda *args: QMessageBox.Discard)
     yield window
     window.jobs.cancel()
@@ -77,17 +73,6 @@ def test_solve_loads_and_plays_a_plan_of_minimal_makespan(window, qtbot, write):
     assert not window.track.violations
     assert window.player.playing
     assert "minimal makespan 6" in window.statusBar().currentMessage()
-
-
-#: a corridor P S S R (domain A: the line asks for 2 of the 3 units on shelf 2): shelf 2 can
-#: never pass shelf 1, so no horizon has a plan (as in test_solve.py)
-CORRIDOR = """
-init(object(grid,1),value(xsize,4)). init(object(grid,1),value(ysize,1)).
-init(object(pickingStation,1),value(at,(1,1))). init(object(robot,1),value(at,(4,1))).
-init(object(shelf,1),value(at,(2,1))). init(object(shelf,2),value(at,(3,1))).
-init(object(product,1),value(on,(2,3))).
-init(object(order,1),value(line,(1,2))). init(object(order,1),value(pickingStation,1)).
-"""
 
 
 def test_a_solve_out_of_time_points_to_the_anytime_method(window, qtbot, write):

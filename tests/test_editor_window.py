@@ -9,14 +9,14 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
 from helpers import OUTCOME, SMALL_A  # noqa: E402
-from PyQt5.QtCore import QEvent, QPointF, QSettings, Qt  # noqa: E402
+from helpers.viewer import shown_window  # noqa: E402
+from PyQt5.QtCore import QEvent, QPointF, Qt  # noqa: E402
 from PyQt5.QtGui import QMouseEvent  # noqa: E402
 from PyQt5.QtWidgets import QApplication, QMessageBox  # noqa: E402
 
 from asprilo.reader import read_instance, read_plan  # noqa: E402
 from asprilo.visualizer import style  # noqa: E402
 from asprilo.visualizer.dialogs import GenerateDialog, SizeDialog, StockDialog  # noqa: E402
-from asprilo.visualizer.window import MainWindow  # noqa: E402
 from asprilo.writer import format_instance  # noqa: E402
 
 pytestmark = pytest.mark.gui
@@ -24,11 +24,7 @@ pytestmark = pytest.mark.gui
 
 @pytest.fixture
 def window(qtbot, tmp_path_factory, monkeypatch):
-    settings = QSettings(str(tmp_path_factory.mktemp("settings") / "viz.ini"), QSettings.IniFormat)
-    window = MainWindow(settings)
-    qtbot.addWidget(window)
-    window.show()
-    qtbot.waitExposed(window)
+    window = shown_window(qtbot, tmp_path_factory)
     # closing the window at the end must not ask "discard unsaved edits?"
     monkeypatch.setattr(QMessageBox, "question", lambda *args: QMessageBox.Discard)
     return window

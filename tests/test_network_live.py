@@ -11,22 +11,18 @@ import socket  # noqa: E402
 
 import pytest  # noqa: E402
 from helpers.online import ORDER_2, TINY, WAIT  # noqa: E402
-from PyQt5.QtCore import QSettings, Qt  # noqa: E402
+from helpers.viewer import shown_window  # noqa: E402
+from PyQt5.QtCore import Qt  # noqa: E402
 
 from asprilo.online.serve import listen  # noqa: E402
 from asprilo.visualizer import network  # noqa: E402
-from asprilo.visualizer.window import MainWindow  # noqa: E402
 
 pytestmark = pytest.mark.gui
 
 
 @pytest.fixture
 def window(qtbot, tmp_path_factory):
-    settings = QSettings(str(tmp_path_factory.mktemp("settings") / "viz.ini"), QSettings.IniFormat)
-    window = MainWindow(settings)
-    qtbot.addWidget(window)
-    window.show()
-    qtbot.waitExposed(window)
+    window = shown_window(qtbot, tmp_path_factory)
     window.player.set_speed(64)
     return window
 

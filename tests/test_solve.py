@@ -8,7 +8,7 @@ import threading
 import time
 
 import pytest
-from helpers import EXAMPLES, SMALL_A
+from helpers import CORRIDOR, EXAMPLES, SMALL_A
 
 from asprilo.cli import main
 from asprilo.domain import Domain
@@ -28,18 +28,6 @@ def test_outcome_of_a_search():
     assert [(a.horizon, a.result) for a in seen] == [(6, "sat")] and seen == outcome.horizons_tried
     assert set(outcome.stats) == {"ground_time", "solve_time", "rules", "atoms", "choices", "conflicts"}
     assert outcome.stats["rules"] > 0 and outcome.stats["atoms"] > 0
-
-
-#: a corridor P S S R: the robot can never bring shelf 2 past shelf 1 (it can only carry
-#: shelf 1 onto the station, where no shelf may be put down), so every horizon is refuted
-#: and a search without an end climbs until its time limit
-CORRIDOR = """
-init(object(grid,1),value(xsize,4)). init(object(grid,1),value(ysize,1)).
-init(object(pickingStation,1),value(at,(1,1))). init(object(robot,1),value(at,(4,1))).
-init(object(shelf,1),value(at,(2,1))). init(object(shelf,2),value(at,(3,1))).
-init(object(product,1),value(on,(2,1))).
-init(object(order,1),value(line,(1,1))). init(object(order,1),value(pickingStation,1)).
-"""
 
 
 @pytest.mark.parametrize("isolate", [False, True])

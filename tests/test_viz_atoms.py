@@ -9,7 +9,8 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
 from helpers import OUTCOME  # noqa: E402
-from PyQt5.QtCore import QSettings, Qt  # noqa: E402
+from helpers.viewer import shown_window  # noqa: E402
+from PyQt5.QtCore import Qt  # noqa: E402
 from PyQt5.QtGui import QTextCursor  # noqa: E402
 from PyQt5.QtWidgets import QMessageBox  # noqa: E402
 
@@ -17,7 +18,6 @@ from asprilo.checker import check  # noqa: E402
 from asprilo.reader import read_instance, read_plan  # noqa: E402
 from asprilo.visualizer import style  # noqa: E402
 from asprilo.visualizer.atoms import about, instance_lines  # noqa: E402
-from asprilo.visualizer.window import MainWindow  # noqa: E402
 
 pytestmark = pytest.mark.gui
 FIRST = "occurs(object(robot,1),action(move,(1,0)),1)."  # robot 1 starts at (1,6) and moves right
@@ -25,11 +25,7 @@ FIRST = "occurs(object(robot,1),action(move,(1,0)),1)."  # robot 1 starts at (1,
 
 @pytest.fixture
 def window(qtbot, tmp_path_factory, monkeypatch):
-    settings = QSettings(str(tmp_path_factory.mktemp("settings") / "viz.ini"), QSettings.IniFormat)
-    window = MainWindow(settings)
-    qtbot.addWidget(window)
-    window.show()
-    qtbot.waitExposed(window)
+    window = shown_window(qtbot, tmp_path_factory)
     monkeypatch.setattr(QMessageBox, "question", lambda *args: QMessageBox.Discard)
     window.open_files([str(OUTCOME)])
     window.docks["atoms"].show()

@@ -14,12 +14,12 @@ import threading  # noqa: E402
 
 import pytest  # noqa: E402
 from helpers import SMALL_A  # noqa: E402
-from PyQt5.QtCore import QMimeData, QPoint, QSettings, Qt, QUrl  # noqa: E402
+from helpers.viewer import shown_window  # noqa: E402
+from PyQt5.QtCore import QMimeData, QPoint, Qt, QUrl  # noqa: E402
 from PyQt5.QtGui import QDropEvent  # noqa: E402
 from PyQt5.QtWidgets import QMessageBox  # noqa: E402
 
 from asprilo.visualizer import network  # noqa: E402
-from asprilo.visualizer.window import MainWindow  # noqa: E402
 
 pytestmark = pytest.mark.gui
 WAIT_MS = 30_000
@@ -28,11 +28,7 @@ NODE = "init(object(node,1),value(at,(1,1))).\n"
 
 @pytest.fixture
 def window(qtbot, tmp_path_factory, monkeypatch):
-    settings = QSettings(str(tmp_path_factory.mktemp("settings") / "viz.ini"), QSettings.IniFormat)
-    window = MainWindow(settings)
-    qtbot.addWidget(window)
-    window.show()
-    qtbot.waitExposed(window)
+    window = shown_window(qtbot, tmp_path_factory)
     window.questions = []  # "discard unsaved edits?" must not be asked for a file that cannot be read
     monkeypatch.setattr(QMessageBox, "question", lambda *args: window.questions.append(args[2]) or QMessageBox.Discard)
     return window

@@ -9,7 +9,8 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
 from helpers import OUTCOME  # noqa: E402
-from PyQt5.QtCore import QSettings, Qt  # noqa: E402
+from helpers.viewer import shown_window  # noqa: E402
+from PyQt5.QtCore import Qt  # noqa: E402
 
 from asprilo.domain import Domain  # noqa: E402
 from asprilo.reader import read_instance, read_plan  # noqa: E402
@@ -17,7 +18,6 @@ from asprilo.sources import Source  # noqa: E402
 from asprilo.visualizer import style  # noqa: E402
 from asprilo.visualizer.goals import Goal, goals_at  # noqa: E402
 from asprilo.visualizer.track import Track  # noqa: E402
-from asprilo.visualizer.window import MainWindow  # noqa: E402
 
 pytestmark = pytest.mark.gui
 
@@ -88,12 +88,7 @@ def test_a_goals_are_the_shelves_open_lines_need_with_their_stations():
 
 @pytest.fixture
 def window(qtbot, tmp_path_factory):
-    settings = QSettings(str(tmp_path_factory.mktemp("settings") / "viz.ini"), QSettings.IniFormat)
-    window = MainWindow(settings)
-    qtbot.addWidget(window)
-    window.show()
-    qtbot.waitExposed(window)
-    return window
+    return shown_window(qtbot, tmp_path_factory)
 
 
 def marks(window) -> dict[tuple[int, int], tuple[str, bool, str, str]]:

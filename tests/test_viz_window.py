@@ -9,8 +9,9 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import pytest  # noqa: E402
 from helpers import OUTCOME, SMALL_A, WRONG_OUTCOME  # noqa: E402
+from helpers.viewer import shown_window  # noqa: E402
 from PIL import Image  # noqa: E402
-from PyQt5.QtCore import QMimeData, QPoint, QSettings, Qt, QUrl  # noqa: E402
+from PyQt5.QtCore import QMimeData, QPoint, Qt, QUrl  # noqa: E402
 from PyQt5.QtGui import QDropEvent  # noqa: E402
 from PyQt5.QtWidgets import QAction  # noqa: E402
 
@@ -23,13 +24,7 @@ pytestmark = pytest.mark.gui
 
 @pytest.fixture
 def window(qtbot, tmp_path_factory):
-    settings = QSettings(str(tmp_path_factory.mktemp("settings") / "viz.ini"), QSettings.IniFormat)
-    window = MainWindow(settings)
-    qtbot.addWidget(window)
-    window.resize(1366, 768)  # a laptop's screen (the offscreen one is 800x600)
-    window.show()
-    qtbot.waitExposed(window)
-    return window
+    return shown_window(qtbot, tmp_path_factory, (1366, 768))  # a laptop's screen (offscreen: 800x600)
 
 
 def robot_cells(window) -> dict[int, tuple[float, float]]:
