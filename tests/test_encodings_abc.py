@@ -106,6 +106,19 @@ def test_assigned_plans_follow_the_assignment():
     assert sorted(r for r, _ in picked) == sorted(carriers.values())
 
 
+def test_a_plan_along_the_assignment_is_tightened_without_it():
+    # read as C, the small A example's assignment leads to a plan of 15 steps, above the lower
+    # bound (14); one step shorter is then tried without the assignment, and refuted.  The
+    # upward search without assignment, a separate path, agrees: 14 refuted, 15 found.
+    instance = read_instance(SMALL_A)
+    plain = solve(instance, Domain.C, time_limit=120)
+    assert [(a.horizon, a.result) for a in plain.horizons_tried] == [(14, "unsat"), (15, "sat")]
+    outcome = solve(instance, Domain.C, assign=True, time_limit=120)
+    assert [(a.horizon, a.result, a.note) for a in outcome.horizons_tried] == [
+        (15, "sat", ""), (14, "unsat", "without assignment")]
+    assert (outcome.lower_bound, outcome.horizon, outcome.minimal, outcome.check.valid) == (14, 15, True, True)
+
+
 def test_assignment_bound_chains_the_tasks_of_each_robot(write):
     from asprilo.encodings.bounds import assignment_bound
     two = read_instance(write("two.lp", TWO_SHELVES))
