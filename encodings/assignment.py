@@ -54,7 +54,20 @@ def distance_facts(instance: Instance, domain: Domain, floor: Floor | None = Non
         table = floor.distances(sources, targets)
         for (i, j) in zip(*np.nonzero(np.isfinite(table)), strict=True):
             facts.append(f"distance({_cell(sources[i])},{_cell(targets[j])},{int(table[i, j])})")
+    if domain.delivers:
+        facts.extend(_set_down_facts(instance, floor))
     return facts
+
+
+def _set_down_facts(instance: Instance, floor: Floor) -> list[str]:
+    """``set_down(PS,D)``: D moves from station PS to the nearest storage cell no shelf starts on."""
+    free = sorted(instance.storage_cells - {shelf.at for shelf in instance.shelves.values()})
+    stations = sorted(instance.stations.items())
+    if not free or not stations:
+        return []
+    table = floor.distances([station.at for _, station in stations], free)
+    return [f"set_down({number},{int(row.min())})" for (number, _), row in zip(stations, table, strict=True)
+            if np.isfinite(row.min())]
 
 
 def _cell(cell: Cell) -> str:
