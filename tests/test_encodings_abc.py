@@ -19,6 +19,9 @@ TINY = {  # instance -> minimal makespan per domain, by brute force (tests/test_
 CASES = [(name, domain, style, makespan) for name, spans in TINY.items()
          for domain, makespan in spans.items() for style in STYLES[domain]]
 
+#: the highways of the 11x2 floor below: every cell but the station's and the two shelves'
+HIGHWAYS_11X2 = [(x, y) for x in range(1, 12) for y in (1, 2) if (x, y) not in {(1, 1), (3, 1), (2, 2)}]
+
 #: one robot that has to fetch two shelves in turn: the bound (8, C: 7) is far below 14
 TWO_SHELVES = """
 init(object(grid,1),value(xsize,4)). init(object(grid,1),value(ysize,3)).
@@ -89,6 +92,29 @@ def test_assignment_for_b_uses_fewest_shelves():
     shelves = sorted({fact.split("shelf(")[1].split(")")[0] for fact in assignment.facts})
     assert len(shelves) == 3 and "1" in shelves  # shelf 1 serves three lines at station 2
     assert assignment.cost[0] == 3
+
+
+def test_a_robot_with_two_shelves_pays_for_putting_the_first_away(write):
+    # 11x2, station (1,1), shelf 1 on (3,1) and shelf 2 on (2,2), every other cell a highway (no
+    # free storage cell: a shelf goes back where it came from, 2 moves for both).  Robot 1 on
+    # (3,2) is 1 move from each shelf, robot 2 on (11,1) 8 from shelf 1 and 10 from shelf 2.
+    # Robot 1 with both: 1 + 1 fetch, 2 + 2 bring, 3 + 3 lift/deliver/set down, 2 to put the
+    # first away = 14; robot 1 with shelf 2 and robot 2 with shelf 1: max(1+2+3, 8+2+3) = 13.
+    # (Without the putting away, robot 1 with both would cost 12 and win.)
+    highways = " ".join(f"init(object(highway,{k}),value(at,({x},{y})))." for k, (x, y) in enumerate(HIGHWAYS_11X2, 1))
+    instance = read_instance(write("chain.lp", f"""
+    init(object(grid,1),value(xsize,11)). init(object(grid,1),value(ysize,2)). {highways}
+    init(object(pickingStation,1),value(at,(1,1))).
+    init(object(robot,1),value(at,(3,2))). init(object(robot,2),value(at,(11,1))).
+    init(object(shelf,1),value(at,(3,1))). init(object(shelf,2),value(at,(2,2))).
+    init(object(product,1),value(on,(1,1))). init(object(product,2),value(on,(2,1))).
+    init(object(order,1),value(line,(1,1))). init(object(order,1),value(line,(2,1))).
+    init(object(order,1),value(pickingStation,1)).
+    """))
+    assignment = assign_tasks(instance, Domain.B)
+    assert assignment.optimal and assignment.cost == [2, 13, 13]  # shelves, largest workload, trips
+    assert sorted(assignment.facts) == ["assign(robot(1),shelf(2),pickingStation(1))",
+                                        "assign(robot(2),shelf(1),pickingStation(1))"]
 
 
 def test_assigned_plans_follow_the_assignment():
