@@ -159,8 +159,10 @@ def test_assignment_bound_chains_the_tasks_of_each_robot(write):
 
 def test_distance_facts_are_floor_distances():
     instance = read_instance(EXAMPLES / "encodings-repo/x3_y3_n9_r1_s1_ps1_pr1_u1_o1_N1.lp")
+    # no highways: every cell but the station's (1,3) and the shelf's (3,1) is a free storage
+    # cell, the nearest one a step from the station
     assert sorted(distance_facts(instance, Domain.B)) == [
-        "distance((2,3),(3,1),3)", "distance((3,1),(1,3),4)"]
+        "distance((2,3),(3,1),3)", "distance((3,1),(1,3),4)", "set_down(1,1)"]
 
 
 @pytest.mark.parametrize("domain, style", [(d, s) for d, styles in STYLES.items() for s in styles])
