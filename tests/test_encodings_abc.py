@@ -19,9 +19,6 @@ TINY = {  # instance -> minimal makespan per domain, by brute force (tests/test_
 CASES = [(name, domain, style, makespan) for name, spans in TINY.items()
          for domain, makespan in spans.items() for style in STYLES[domain]]
 
-#: the highways of the 11x2 floor below: every cell but the station's and the two shelves'
-HIGHWAYS_11X2 = [(x, y) for x in range(1, 12) for y in (1, 2) if (x, y) not in {(1, 1), (3, 1), (2, 2)}]
-
 #: one robot that has to fetch two shelves in turn: the bound (8, C: 7) is far below 14
 TWO_SHELVES = """
 init(object(grid,1),value(xsize,4)). init(object(grid,1),value(ysize,3)).
@@ -101,7 +98,8 @@ def test_a_robot_with_two_shelves_pays_for_putting_the_first_away(write):
     # Robot 1 with both: 1 + 1 fetch, 2 + 2 bring, 3 + 3 lift/deliver/set down, 2 to put the
     # first away = 14; robot 1 with shelf 2 and robot 2 with shelf 1: max(1+2+3, 8+2+3) = 13.
     # (Without the putting away, robot 1 with both would cost 12 and win.)
-    highways = " ".join(f"init(object(highway,{k}),value(at,({x},{y})))." for k, (x, y) in enumerate(HIGHWAYS_11X2, 1))
+    cells = [(x, y) for x in range(1, 12) for y in (1, 2) if (x, y) not in {(1, 1), (3, 1), (2, 2)}]
+    highways = " ".join(f"init(object(highway,{k}),value(at,({x},{y})))." for k, (x, y) in enumerate(cells, 1))
     instance = read_instance(write("chain.lp", f"""
     init(object(grid,1),value(xsize,11)). init(object(grid,1),value(ysize,2)). {highways}
     init(object(pickingStation,1),value(at,(1,1))).
