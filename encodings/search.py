@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from enum import Enum
 from pathlib import Path
@@ -142,7 +142,8 @@ def solve(instance: Instance | str | Path, domain: Domain | str | None = None, e
           method: str = "asp", on_progress: Progress | None = None,
           cancel: threading.Event | None = None, max_horizon: int | None = None,
           on_phase: PhaseListener | None = None, isolate: bool = False,
-          memory_limit: int | None = None, tighten: bool = True) -> Outcome:
+          memory_limit: int | None = None, tighten: bool = True,
+          assignment: Sequence[str] | None = None) -> Outcome:
     """Find a plan for ``instance`` (an :class:`Instance` or a path).
 
     ``domain``: a|b|c|m|md or a :class:`Domain` (default: detected).  ``encoding``: a name
@@ -150,6 +151,8 @@ def solve(instance: Instance | str | Path, domain: Domain | str | None = None, e
     without it, search the minimal makespan upwards from a lower bound, up to
     ``max_horizon``.  ``assign``: compute a task assignment first and make the planner
     follow it; then (unless ``tighten`` is false) try shorter plans without it for a while.
+    ``assignment``: follow these ``assign`` facts (an earlier outcome's
+    ``assignment.facts``) instead of computing them; implies ``assign``.
     ``method="flow"``: the exact max-flow solver of M/Md; ``method="anytime"``: a checked
     plan fast, then better ones until ``time_limit`` (default 60 s) or the lower bound
     (:mod:`.anytime`).  ``on_progress`` is
@@ -160,9 +163,11 @@ def solve(instance: Instance | str | Path, domain: Domain | str | None = None, e
     if not isinstance(instance, Instance):
         instance = read_instance(instance)
     domain = detect_domain(instance) if domain is None else Domain.parse(domain)
+    assign = assign or assignment is not None
     _check_request(instance, domain, horizon, assign, method)
+    given = None if assignment is None else _given_assignment(instance, domain, assignment)
     program = find_encoding(domain, encoding) if method == "asp" else None
-    request = _Request(horizon, assign, tighten, time_limit, max_horizon)
+    request = _Request(horizon, assign, tighten, time_limit, max_horizon, given)
     if isolate:
         return _solve_isolated(instance, domain, program, request, method, on_progress, on_phase, cancel,
                                memory_limit)
@@ -178,6 +183,7 @@ class _Request:
     tighten: bool
     time_limit: float | None
     max_horizon: int | None
+    assignment: Assignment | None = None  # given by the caller: followed, not computed
 
 
 def ground(instance: Instance, domain: Domain | str, horizon: int, encoding: str = "plain") -> Solver:
@@ -187,6 +193,25 @@ def ground(instance: Instance, domain: Domain | str, horizon: int, encoding: str
     watch = _Watch(None, None, None, None)
     return _Search(instance, domain, find_encoding(domain, encoding), _Request(horizon, False, False, None, None),
                    watch).grounded(horizon)[0]
+
+
+def _given_assignment(instance: Instance, domain: Domain, facts: Sequence[str]) -> Assignment:
+    """A caller's assignment facts, each checked to name this instance's robots and goals."""
+    shapes = [["robot", "shelf", "pickingStation"]] if domain.delivers else [["robot", "shelf"], ["robot", "destination"]]
+    tables = {"robot": instance.robots, "shelf": instance.shelves, "pickingStation": instance.stations,
+              "destination": instance.destinations}
+    for fact in facts:
+        try:
+            term = clingo.parse_term(fact)
+            names = [(argument.name, argument.arguments[0].number) for argument in term.arguments]
+        except (RuntimeError, IndexError, AttributeError):
+            raise InputError(f"not an assignment fact: {fact!r}") from None
+        if term.name != "assign" or [kind for kind, _ in names] not in shapes:
+            raise InputError(f"not an assignment fact of domain {domain.label}: {fact}")
+        for kind, number in names:
+            if number not in tables[kind]:
+                raise InputError(f"the assignment names {kind} {number}, which the instance lacks")
+    return Assignment(sorted(facts))
 
 
 def _check_request(instance: Instance, domain: Domain, horizon: int | None, assign: bool, method: str) -> None:
@@ -422,7 +447,7 @@ class _Search:
     def __init__(self, instance: Instance, domain: Domain, encoding: Encoding, request: _Request, watch: _Watch):
         self.instance, self.domain, self.encoding = instance, domain, encoding
         self.horizon, self.assign, self.watch = request.horizon, request.assign, watch
-        self.tighten = request.tighten
+        self.tighten, self.given = request.tighten, request.assignment
         self.floor = Floor(instance.cells)
         self.facts = format_instance(instance, [])
         self.outcome = Outcome(SolveStatus.LIMIT, domain, "asp", encoding.name)
@@ -469,6 +494,9 @@ class _Search:
     def _assign(self) -> bool:
         """Compute the task assignment the planner will follow; whether there is one."""
         outcome, watch = self.outcome, self.watch
+        if self.given is not None:
+            outcome.assignment, self.follow_assignment = self.given, True
+            return True
         budget = watch.remaining()
         budget = ASSIGNMENT_SECONDS if budget is None else min(ASSIGNMENT_SECONDS, ASSIGNMENT_SHARE * budget)
         watch.phase("assigning", 0)
@@ -524,7 +552,8 @@ class _Search:
         if self.domain.delivers:
             solver.add(self._station_distances())
         if horizon is not None and self.domain.delivers:
-            schedule = delivery_schedule(self.instance, self.domain, self.floor, horizon)
+            carriers = self._carriers() if self.follow_assignment else None
+            schedule = delivery_schedule(self.instance, self.domain, self.floor, horizon, carriers)
             solver.add("".join(f"hint_serve({o},{p},{t}).\n" for o, p, t in schedule))
             hinted = bool(schedule)
         solver.load(self.encoding.program)
