@@ -197,7 +197,10 @@ def ground(instance: Instance, domain: Domain | str, horizon: int, encoding: str
 
 def _given_assignment(instance: Instance, domain: Domain, facts: Sequence[str]) -> Assignment:
     """A caller's assignment facts, each checked to name this instance's robots and goals."""
-    shapes = [["robot", "shelf", "pickingStation"]] if domain.delivers else [["robot", "shelf"], ["robot", "destination"]]
+    if not facts:
+        raise InputError("the given assignment is empty")
+    shapes = [["robot", "shelf", "pickingStation"]] if domain.delivers else [["robot", "shelf"],
+                                                                              ["robot", "destination"]]
     tables = {"robot": instance.robots, "shelf": instance.shelves, "pickingStation": instance.stations,
               "destination": instance.destinations}
     for fact in facts:

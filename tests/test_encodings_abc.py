@@ -8,6 +8,7 @@ from helpers import EXAMPLES, SMALL_A
 from asprilo.domain import Domain
 from asprilo.encodings import ENCODINGS, SolveStatus, solve
 from asprilo.encodings.assignment import assign_tasks, distance_facts
+from asprilo.errors import InputError
 from asprilo.reader import read_instance
 
 STYLES = {d: [e.name for e in ENCODINGS if e.domain is d] for d in (Domain.A, Domain.B, Domain.C)}
@@ -129,6 +130,37 @@ def test_assigned_plans_follow_the_assignment():
         carriers[int(fact.split("shelf(")[1].split(")")[0])] = robot
     picked = [(a.robot, a.step) for a in outcome.plan.actions if a.name == "pickup"]
     assert sorted(r for r, _ in picked) == sorted(carriers.values())
+
+
+def test_a_given_assignment_is_followed_not_computed():
+    # the small A example read as B: shelf 2 serves both stations (O1's products 2 and 4, O2's
+    # 4 and 5), shelf 1 O3's product 3 and shelf 9 O3's product 1, each with another robot
+    instance = read_instance(SMALL_A)
+    given = ["assign(robot(2),shelf(2),pickingStation(1))", "assign(robot(2),shelf(2),pickingStation(2))",
+             "assign(robot(3),shelf(1),pickingStation(2))", "assign(robot(1),shelf(9),pickingStation(2))"]
+    outcome = solve(instance, Domain.B, assignment=given, tighten=False, time_limit=120)
+    assert outcome.found and outcome.check.valid and outcome.assignment.facts == sorted(given)
+    cells = {robot.id: robot.at for robot in instance.robots.values()}
+    lifted = {}
+    for action in sorted(outcome.plan.actions):
+        if action.name == "move":
+            x, y = cells[action.robot]
+            cells[action.robot] = (x + action.args[0], y + action.args[1])
+        elif action.name == "pickup":
+            lifted.setdefault(action.robot, cells[action.robot])
+    assert lifted == {1: instance.shelves[9].at, 2: instance.shelves[2].at, 3: instance.shelves[1].at}
+
+
+@pytest.mark.parametrize("facts, message", [
+    (["assign(robot(7),shelf(1),pickingStation(1))"], "the assignment names robot 7, which the instance lacks"),
+    (["assign(robot(1),shelf(1))"], "not an assignment fact of domain B: assign(robot(1),shelf(1))"),
+    (["assign(robot(1"], "not an assignment fact: 'assign(robot(1'"),
+    ([], "the given assignment is empty"),
+])
+def test_a_given_assignment_that_does_not_fit_is_bad_input(facts, message):
+    with pytest.raises(InputError) as raised:
+        solve(read_instance(SMALL_A), Domain.B, assignment=facts)
+    assert str(raised.value) == message
 
 
 def test_a_plan_along_the_assignment_is_tightened_without_it():

@@ -5,6 +5,8 @@ Output folder::
 
     DIR/instances/<batch>/...     instances made from the suite's gen batch files
     DIR/makespans.json            minimal makespan per instance and domain (null: unknown)
+    DIR/assignments.json          the task assignment each makespan search with assignment
+                                  followed: the runs follow the same one (as in the paper)
     DIR/results.jsonl             one line per finished run (see asprilo.bench.results)
 
 Rerunning resumes: instances that exist are kept, known makespans are reused and finished
@@ -47,6 +49,7 @@ from .results import (
 from .suite import RunSpec, Suite, existing_files
 
 MAKESPANS = "makespans.json"
+ASSIGNMENTS = "assignments.json"
 
 
 @dataclass(frozen=True)
@@ -74,9 +77,14 @@ def new_record(instance: SuiteInstance, spec: RunSpec, horizon: int | None, time
     return record
 
 
-def run_job(path: Path, spec: RunSpec, horizon: int) -> dict:
-    return {"kind": "run", "instance": str(path), "domain": spec.domain.value, "encoding": spec.encoding,
-            "assign": spec.assign, "horizon": horizon}
+def run_job(path: Path, spec: RunSpec, horizon: int, assignment: list[str] | None = None) -> dict:
+    """A run at ``horizon``; with assignment, along ``assignment`` (the facts its makespan search
+    followed) when known, else along one computed in the run."""
+    job = {"kind": "run", "instance": str(path), "domain": spec.domain.value, "encoding": spec.encoding,
+           "assign": spec.assign, "horizon": horizon}
+    if spec.assign and assignment:
+        job["assignment"] = assignment
+    return job
 
 
 def complete(record: dict, path: Path, status: str, wall: float, report: dict, detail: str = "") -> dict:
@@ -143,6 +151,21 @@ def read_makespans(path: Path, stream: TextIO) -> dict[str, dict[str, int | None
     return known
 
 
+def read_assignments(path: Path) -> dict[str, dict[str, list[str]]]:
+    """The assignments the makespan searches followed (instance -> label -> facts); an unreadable
+    file counts as empty: the runs then compute their own, which the assignment's conflict budget
+    makes the same."""
+    try:
+        known = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    if not isinstance(known, dict):
+        return {}
+    return {name: {label: facts for label, facts in labels.items()
+                   if isinstance(facts, list) and all(isinstance(fact, str) for fact in facts)}
+            for name, labels in known.items() if isinstance(labels, dict)}
+
+
 def forget_unknown_makespans(folder: Path) -> None:
     """Drop the makespans not found before (null), so that they are searched again."""
     path = folder / MAKESPANS
@@ -192,6 +215,7 @@ class Runner:
         self.time_limit = time_limit or suite.time_limit
         self.memory_limit = memory_limit if memory_limit is not None else suite.memory_limit
         self.stream = stream
+        self.assignments: dict[str, dict[str, list[str]]] = {}
 
     # --- instances -----------------------------------------------------------------------
 
@@ -226,6 +250,7 @@ class Runner:
         """Minimal makespan of every instance for every domain (and assignment) the runs use."""
         path = self.folder / MAKESPANS
         known = read_makespans(path, self.stream)
+        self.assignments = read_assignments(self.folder / ASSIGNMENTS)
         todo = list(dict.fromkeys(
             (instance, spec.domain, spec.assign, spec.label) for instance in instances
             for spec in self.suite.runs
@@ -238,11 +263,14 @@ class Runner:
                 search = run_limited({"kind": "makespan", "instance": str(instance.path), "domain": domain.value,
                                       "assign": assign}, self.suite.makespan_time_limit, self.memory_limit)
                 status = makespan_status(search)
-                return item, search.report["horizon"] if status == SOLVED else None, status
+                return item, search.report["horizon"] if status == SOLVED else None, status, search.report
 
-            for (instance, _d, _a, label), minimal, status in self._parallel(compute, todo):
+            for (instance, _d, _a, label), minimal, status, report in self._parallel(compute, todo):
                 known.setdefault(instance.name, {})[label] = minimal
                 write_text(path, json.dumps(known, indent=1, sort_keys=True) + "\n")
+                if report.get("assignment"):
+                    self.assignments.setdefault(instance.name, {})[label] = report["assignment"]
+                    write_text(self.folder / ASSIGNMENTS, json.dumps(self.assignments, indent=1, sort_keys=True) + "\n")
                 progress.update(status)
         return known
 
@@ -275,7 +303,8 @@ class Runner:
             return complete_anytime(record, instance.path, run_limited(job, self.time_limit, self.memory_limit))
         if horizon is None:
             return record
-        outcome = run_limited(run_job(instance.path, spec, horizon), self.time_limit, self.memory_limit)
+        assignment = self.assignments.get(instance.name, {}).get(spec.label)
+        outcome = run_limited(run_job(instance.path, spec, horizon, assignment), self.time_limit, self.memory_limit)
         return complete(record, instance.path, outcome.status, outcome.wall, outcome.report, outcome.detail)
 
     def _parallel(self, work: Callable, items: Iterable) -> Iterable:

@@ -26,15 +26,18 @@ from asprilo.writer import write_text
 from .btool import makespan_cache, read_makespan_cache
 from .limits import DONE, LimitedRun
 from .results import SOLVED
-from .runner import SuiteInstance, complete, complete_anytime, makespan_status, new_record
+from .runner import SuiteInstance, complete, complete_anytime, makespan_status, new_record, run_job
 from .suite import RunSpec
 from .worker import run
 
 
-def minimal_makespan(instance: Path, spec: RunSpec, time_limit: float) -> int | None:
-    """The cached minimal makespan of ``instance`` for ``spec``'s label, or search it and cache it."""
+def minimal_makespan(instance: Path, spec: RunSpec, time_limit: float) -> tuple[int | None, list[str] | None]:
+    """The cached minimal makespan of ``instance`` for ``spec``'s label, or search it and cache it;
+    and, when searched here with assignment, the assignment it followed (a cached makespan's run
+    computes the assignment again: its conflict budget makes it the same)."""
     cache = makespan_cache(instance)
     known = read_makespan_cache(cache)
+    assignment = None
     if spec.label not in known:
         print(f"{instance.name}: finding the minimal makespan for {spec.label} (at most {time_limit:g} s)",
               file=sys.stderr, flush=True)
@@ -45,7 +48,8 @@ def minimal_makespan(instance: Path, spec: RunSpec, time_limit: float) -> int | 
         known = {**read_makespan_cache(cache),  # another run may have cached another label meanwhile
                  spec.label: report["horizon"] if makespan_status(search) == SOLVED else None}
         write_text(cache, json.dumps(known, sort_keys=True) + "\n")
-    return known[spec.label]
+        assignment = report.get("assignment")
+    return known[spec.label], assignment
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -61,16 +65,14 @@ def main(argv: list[str] | None = None) -> int:
     if args.method == "anytime":
         return _anytime(args)
     spec = RunSpec(Domain.parse(args.domain), args.encoding, args.assign)
-    horizon = minimal_makespan(args.instance, spec, args.makespan_time_limit)
+    horizon, assignment = minimal_makespan(args.instance, spec, args.makespan_time_limit)
     robots = len(read_instance(args.instance).robots)
     record = new_record(SuiteInstance(args.instance.parent.name, args.instance, args.instance.name, robots),
                         spec, horizon, args.time_limit)
     print(json.dumps(record, sort_keys=True), flush=True)
     if horizon is not None:
         started = time.perf_counter()
-        report = run({"kind": "run", "instance": str(args.instance), "domain": spec.domain.value,
-                      "encoding": spec.encoding, "assign": spec.assign, "horizon": horizon,
-                      "time_limit": args.time_limit})
+        report = run({**run_job(args.instance, spec, horizon, assignment), "time_limit": args.time_limit})
         record = complete(record, args.instance, DONE, time.perf_counter() - started, report)
         print(json.dumps(record, sort_keys=True), flush=True)
     return 0

@@ -5,8 +5,8 @@ line: what the solver found, its statistics, the plan, and its own peak memory. 
 
 - ``{"kind": "makespan", ...}``: the minimal makespan of an instance in a domain: the flow
   solver for M/Md, else the horizon search; with task assignment, the shortest plan along
-  the assignment (the horizon the assigned runs are given);
-- ``{"kind": "run", ...}``: one benchmark run at a given horizon;
+  the assignment (the horizon the assigned runs are given), and that assignment;
+- ``{"kind": "run", ...}``: one benchmark run at a given horizon (along ``assignment`` if given);
 - ``{"kind": "anytime", ...}``: one run of the anytime planner for the whole time limit.
 """
 
@@ -45,7 +45,7 @@ def run(job: dict) -> dict:
     else:
         outcome = solve(job["instance"], domain=job["domain"], encoding=job["encoding"],
                         horizon=job["horizon"], assign=job.get("assign", False),
-                        time_limit=job["time_limit"])
+                        time_limit=job["time_limit"], assignment=job.get("assignment"))
     seconds = time.perf_counter() - started
     return {
         "status": outcome.status.value,
@@ -56,6 +56,7 @@ def run(job: dict) -> dict:
         "stats": outcome.stats,
         "memory_mb": _peak_mb(),
         "message": outcome.message,
+        "assignment": outcome.assignment.facts if outcome.assignment is not None else None,
         **({"history": outcome.history, "lower_bound": outcome.lower_bound} if job["kind"] == "anytime" else {}),
     }
 
