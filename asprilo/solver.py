@@ -213,8 +213,9 @@ class Solver:
     def solve(self, time_limit: float | None = None,
               assumptions: Sequence[tuple[clingo.Symbol, bool]] = (),
               on_model: Callable[[clingo.Model], None] | None = None,
-              shown: bool = True) -> Result:
-        """Solve the grounded program; stop after ``time_limit`` seconds of wall-clock time.
+              shown: bool = True, conflicts: int | None = None) -> Result:
+        """Solve the grounded program; stop after ``time_limit`` seconds of wall-clock time
+        or ``conflicts`` conflicts (a budget that is the same on every machine).
 
         The result holds the last model found (the best one when optimising), its shown
         atoms (all atoms with ``shown=False``) and the theory assignment.
@@ -223,6 +224,7 @@ class Solver:
             self.theory.prepare(self.control)
             self._prepared = True
         result = Result(Status.UNKNOWN)
+        self.control.configuration.solve.solve_limit = "umax" if conflicts is None else str(conflicts)
 
         def record(model: clingo.Model) -> None:
             if self.theory is not None:

@@ -19,7 +19,8 @@ import numpy as np
 
 from asprilo.bounds import Floor, goal_cells
 from asprilo.domain import Domain
-from asprilo.model import Cell, Instance
+from asprilo.model import Cell, Instance, Plan
+from asprilo.simulate import simulate
 from asprilo.solver import Solver, Statistics, Status
 from asprilo.writer import format_instance
 
@@ -32,7 +33,11 @@ CONFLICTS = 20_000
 
 @dataclass
 class Assignment:
-    """The assignment facts, the optimisation costs and whether they are proven optimal."""
+    """The assignment facts, the optimisation costs and whether they are proven optimal.
+
+    ``origin`` says where the facts come from: ``optimised`` (:func:`assign_tasks`),
+    ``given`` (by the caller) or ``read off a plan`` (:func:`assignment_of_plan`).
+    """
 
     facts: list[str]
     status: Status = Status.SAT  # UNSAT: no assignment exists; UNKNOWN: none found in time
@@ -40,6 +45,7 @@ class Assignment:
     optimal: bool = False
     seconds: float = 0.0
     stats: Statistics = field(default_factory=Statistics)
+    origin: str = "optimised"
 
     def text(self) -> str:
         return "".join(f"{fact}.\n" for fact in self.facts)
@@ -92,14 +98,32 @@ def assign_tasks(instance: Instance, domain: Domain, time_limit: float | None = 
     started = time.perf_counter()
     program = HERE / "assign" / ("abc.lp" if domain.delivers else "m.lp")
     constants = {"domain": domain.value} if domain.delivers else {}
-    solver = Solver(options=["--opt-strategy=bb,hier", f"--solve-limit={conflicts}"], constants=constants)
+    solver = Solver(options=["--opt-strategy=bb,hier"], constants=constants)
     solver.add(format_instance(instance, []))
     solver.add("".join(f"{fact}.\n" for fact in distance_facts(instance, domain)))
     solver.load(program)
     solver.ground()
     if watch is not None:
         watch(solver)
-    result = solver.solve(time_limit=time_limit)
+    result = solver.solve(time_limit=time_limit, conflicts=conflicts)
     facts = sorted(str(symbol) for symbol in result.symbols)
     return Assignment(facts, result.status, result.cost, result.optimal,
                       time.perf_counter() - started, solver.stats)
+
+
+def assignment_of_plan(instance: Instance, domain: Domain, plan: Plan) -> tuple[Assignment, bool]:
+    """The assignment of an A/B/C plan's deliveries (which robot brings which shelf to which
+    station), and whether the plan follows it exactly (abc/assigned.lp): it does not when it
+    also lifts a shelf that serves no delivery or hands a shelf from one robot to another."""
+    history = simulate(instance, plan, domain).history
+    carries = [history.snapshot(step).carries for step in range(plan.horizon + 1)]
+    carried = {(robot, shelf) for now in carries for robot, shelf in now.items()}
+    facts, delivering = set(), set()
+    for action in plan.actions:
+        shelf = carries[action.step - 1].get(action.robot)
+        if action.name == "deliver" and shelf is not None:
+            robot, order = action.robot, instance.orders[action.args[0]]
+            delivering.add((robot, shelf))
+            facts.add(f"assign(robot({robot}),shelf({shelf}),pickingStation({order.station}))")
+    exact = carried == delivering and len({shelf for _, shelf in carried}) == len(carried)
+    return Assignment(sorted(facts), origin="read off a plan"), exact

@@ -147,9 +147,10 @@ def _summary(outcome: Outcome) -> None:
     lines = [f"domain {outcome.domain.label}, method {outcome.method}, encoding {outcome.encoding}, "
              f"lower bound {outcome.lower_bound:g}"]
     if outcome.assignment is not None:
-        state = "optimal" if outcome.assignment.optimal else "best found"
-        lines.append(f"assignment ({state}, cost {outcome.assignment.cost}): "
-                     + " ".join(outcome.assignment.facts))
+        assignment = outcome.assignment
+        state = assignment.origin if assignment.origin != "optimised" else (
+            f"{'optimal' if assignment.optimal else 'best found'}, cost {assignment.cost}")
+        lines.append(f"assignment ({state}): " + " ".join(assignment.facts))
     if outcome.found:
         proof = "proven minimal" if outcome.minimal else "not proven minimal"
         lines.append(f"plan: horizon {outcome.horizon} ({proof}), {len(outcome.plan)} actions, checked: valid")

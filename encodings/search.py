@@ -35,7 +35,7 @@ from asprilo.reader import plan_from_atoms, read_instance
 from asprilo.solver import Result, Solver, Statistics, Status
 from asprilo.writer import format_instance
 
-from .assignment import Assignment, assign_tasks
+from .assignment import Assignment, assign_tasks, assignment_of_plan
 from .bounds import assignment_bound, unusable_goals
 from .flow import flow_plan
 from .registry import Encoding, find_encoding
@@ -45,6 +45,12 @@ ASSIGNMENT_SHARE = 0.2
 ASSIGNMENT_SECONDS = 10.0
 #: after a plan along an assignment, how long to look for shorter plans without it
 TIGHTEN_SECONDS = 10.0
+#: before an A/B/C task assignment, the probe without one: its conflict budget, smaller for
+#: big programs (at most PROBE_WORK / (robots x cells x horizon): about 4,000 conflicts on the
+#: medium paper instances, 10,000 on the small ones)
+PROBE_CONFLICTS = 10_000
+PROBE_WORK = 250_000_000
+WITHOUT_ASSIGNMENT = "without assignment"
 #: M/Md instances with this many robots get ruled_out/2 hints (they ground big programs faster)
 HINTED_ROBOTS = 20
 #: the A/B/C searches use the domain heuristics of abc/hints.lp (while use_hints is true)
@@ -66,8 +72,10 @@ class SolveStatus(str, Enum):
 class Attempt:
     """One horizon tried: ``sat``, ``unsat`` or ``unknown`` (stopped), and how long it took.
 
-    ``note`` is ``"without assignment"`` for the tries that follow a plan found along a task
-    assignment, looking for a shorter plan or the proof that there is none.  The anytime
+    ``note`` is ``"without assignment"`` (:data:`WITHOUT_ASSIGNMENT`) for the tries that do
+    not follow the task assignment of a search with one: the probe before the assignment, and
+    the tries after a plan along it, looking for a shorter plan or the proof that there is
+    none; ``"along the plan's assignment"`` for the probe's plan found again.  The anytime
     method reports each better plan as ``improved`` at its makespan, the plan itself in
     ``plan`` (so that a search stopped from outside still has its best plan).
     """
@@ -121,7 +129,7 @@ class Outcome:
     def refuted(self) -> list[int]:
         """The horizons proven to have no plan (with an assignment: only those tried without)."""
         return sorted({a.horizon for a in self.horizons_tried
-                       if a.result == "unsat" and (a.note or self.assignment is None)})
+                       if a.result == "unsat" and (a.note == WITHOUT_ASSIGNMENT or self.assignment is None)})
 
     @property
     def proven_bound(self) -> float:
@@ -214,7 +222,7 @@ def _given_assignment(instance: Instance, domain: Domain, facts: Sequence[str]) 
         for kind, number in names:
             if number not in tables[kind]:
                 raise InputError(f"the assignment names {kind} {number}, which the instance lacks")
-    return Assignment(sorted(facts))
+    return Assignment(sorted(facts), origin="given")
 
 
 def _check_request(instance: Instance, domain: Domain, horizon: int | None, assign: bool, method: str) -> None:
@@ -456,6 +464,7 @@ class _Search:
         self.outcome = Outcome(SolveStatus.LIMIT, domain, "asp", encoding.name)
         self.max_horizon = request.max_horizon
         self.follow_assignment = False
+        self.bound = 0.0  # every horizon below is refuted (the lower bound, or more after a probe)
         self.options = ABC_OPTIONS if domain.delivers else ()
         self._distances: str | None = None
 
@@ -466,6 +475,11 @@ class _Search:
             outcome.status, outcome.minimal = SolveStatus.NONE, True
             outcome.message = "some goal or order line can never be reached"
             return outcome
+        if self.assign and self.given is None and self.horizon is None and self.domain.delivers:
+            bound = self._probe(int(bound))
+            if outcome.plan is not None or self._stopped():
+                return outcome
+        self.bound = bound
         if self.assign and not self._assign():
             return outcome
         first, last = self._horizons(bound)
@@ -475,7 +489,8 @@ class _Search:
             self._single_shot(first, last)
         if outcome.plan is not None:
             outcome.horizon = outcome.plan.horizon
-            searched_up = self.horizon is None and all(a.result == "unsat" for a in outcome.horizons_tried[:-1])
+            along = [attempt for attempt in outcome.horizons_tried if not attempt.note]  # not the probe's
+            searched_up = self.horizon is None and all(a.result == "unsat" for a in along[:-1])
             outcome.minimal = outcome.horizon <= bound or (searched_up and not self.assign)
             outcome.minimal_along_assignment = self.assign and (searched_up or outcome.minimal)
             if self.assign and self.tighten and self.horizon is None and not outcome.minimal:
@@ -493,6 +508,51 @@ class _Search:
                 first = int(assigned_bound(self.instance, self.domain, self.floor, self._carriers(), first))
         last = self.max_horizon if self.max_horizon is not None else self._largest_horizon(first)
         return first, last
+
+    def _probe(self, bound: int) -> int:
+        """Before a task assignment: look for a plan without one from the lower bound up, within
+        a conflict budget; return the first horizon not refuted.
+
+        A refuted horizon is refuted for every assignment.  A plan found is minimal, and the
+        assignment read off it costs no makespan at all (where the whole problem is easy at
+        its bound, an optimised assignment can only make it longer or harder).  A plan that
+        moves more shelves than it delivers from is found again along its assignment.
+        """
+        outcome, horizon = self.outcome, bound
+        cells = len(self.instance.robots) * len(self.floor.cells)
+        budget = allowance = min(PROBE_CONFLICTS, PROBE_WORK // max(1, cells * bound))
+        while budget > 0 and not self.watch.cancelled and not self.watch.expired:
+            result, used = self._probe_at(horizon, budget)
+            budget -= used
+            if result.status is Status.UNSAT:
+                horizon += 1
+                continue
+            if result.status is Status.SAT:
+                plan = self._plan(result)
+                outcome.assignment, exact = assignment_of_plan(self.instance, self.domain, plan)
+                self.follow_assignment = True
+                if not exact:
+                    result, _ = self._probe_at(horizon, allowance)
+                    plan = self._plan(result) if result.status is Status.SAT else None
+                if plan is not None:
+                    outcome.status, outcome.plan, outcome.horizon = SolveStatus.FOUND, plan, plan.horizon
+                    outcome.minimal = outcome.minimal_along_assignment = True
+                else:
+                    outcome.assignment, self.follow_assignment = None, False
+            return horizon
+        return horizon
+
+    def _probe_at(self, horizon: int, conflicts: int) -> tuple[Result, int]:
+        """One try of the probe (along the assignment when one is followed): the result and
+        the conflicts it used."""
+        started = time.perf_counter()
+        solver, hinted = self.grounded(horizon)
+        solver.assign_external("use_hints", hinted)
+        self.watch.phase("solving", horizon)
+        result = solver.solve(time_limit=self.watch.remaining(), conflicts=conflicts)
+        note = "along the plan's assignment" if self.follow_assignment else WITHOUT_ASSIGNMENT
+        self._record(Attempt(horizon, result.status.value, time.perf_counter() - started, note))
+        return result, max(1, solver.stats.conflicts)
 
     def _assign(self) -> bool:
         """Compute the task assignment the planner will follow; whether there is one."""
@@ -521,7 +581,7 @@ class _Search:
         outcome, watch = self.outcome, self.watch
         self.follow_assignment = False
         budget_end = time.perf_counter() + TIGHTEN_SECONDS
-        while outcome.horizon > outcome.lower_bound and not watch.cancelled and not watch.expired:
+        while outcome.horizon > self.bound and not watch.cancelled and not watch.expired:
             limit = budget_end - time.perf_counter()
             if limit <= 0:
                 return
@@ -529,14 +589,14 @@ class _Search:
             started = time.perf_counter()
             result = self._solve_at(horizon, limit)
             self._record(Attempt(horizon, result.status.value, time.perf_counter() - started,
-                                 "without assignment"))
+                                 WITHOUT_ASSIGNMENT))
             if result.status is Status.UNSAT:
                 outcome.minimal = True
                 return
             if result.status is not Status.SAT:
                 return
             outcome.plan, outcome.horizon = self._plan(result), horizon
-            outcome.minimal = horizon <= outcome.lower_bound
+            outcome.minimal = horizon <= self.bound
 
     def _largest_horizon(self, first: int) -> int:
         """Where an upward search gives up: no plan needs this many steps in practice."""

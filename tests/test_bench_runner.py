@@ -211,16 +211,14 @@ def test_an_output_folder_that_is_a_file_is_bad_input(write, tmp_path, capsys):
 def test_the_runs_with_assignment_follow_the_one_of_their_makespan_search(write, tmp_path, monkeypatch):
     """As in the paper, the assignment is computed once (with the makespan) and every run
     follows it; it is kept in assignments.json for resumed runs."""
-    from asprilo.domain import Domain
-    from asprilo.encodings.assignment import assign_tasks
-    from asprilo.reader import read_instance
+    from asprilo.encodings import solve
 
     jobs = []
     real = runner_module.run_limited
     monkeypatch.setattr(runner_module, "run_limited", lambda job, *limits: jobs.append(job) or real(job, *limits))
     suite = load_suite(suite_file(write, [SMALL], "[{domain: c, assign: true}]"))
     records = Runner(suite, tmp_path / "out").run()
-    facts = assign_tasks(read_instance(SMALL), Domain.C).facts
+    facts = solve(SMALL, "c", assign=True, tighten=False).assignment.facts
     assert len(facts) == 2  # two robots, two order lines
     assert json.loads((tmp_path / "out/assignments.json").read_text()) == {str(SMALL): {"C_a": facts}}
     assert [(job["kind"], job.get("assignment")) for job in jobs] == [("makespan", None), ("run", facts)]

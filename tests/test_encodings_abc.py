@@ -6,8 +6,10 @@ import pytest
 from helpers import EXAMPLES, SMALL_A
 
 from asprilo.domain import Domain
-from asprilo.encodings import ENCODINGS, SolveStatus, solve
-from asprilo.encodings.assignment import assign_tasks, distance_facts
+from asprilo.checker import check
+from asprilo.encodings import ENCODINGS, SolveStatus, search, solve
+from asprilo.encodings.assignment import assign_tasks, assignment_of_plan, distance_facts
+from asprilo.model import Action, Plan
 from asprilo.errors import InputError
 from asprilo.reader import read_instance
 
@@ -117,7 +119,13 @@ def test_a_robot_with_two_shelves_pays_for_putting_the_first_away(write):
                                         "assign(robot(2),shelf(1),pickingStation(1))"]
 
 
-def test_assigned_plans_follow_the_assignment():
+@pytest.fixture
+def no_probe(monkeypatch):
+    """Searches with assignment go straight to the optimised assignment (no probe without it)."""
+    monkeypatch.setattr(search, "PROBE_CONFLICTS", 0)
+
+
+def test_assigned_plans_follow_the_assignment(no_probe):
     instance = read_instance(SMALL_A)
     outcome = solve(instance, Domain.B, assign=True, time_limit=120)
     assert outcome.found and outcome.check.valid and outcome.horizon == 16
@@ -163,7 +171,7 @@ def test_a_given_assignment_that_does_not_fit_is_bad_input(facts, message):
     assert str(raised.value) == message
 
 
-def test_a_plan_along_the_assignment_is_tightened_without_it():
+def test_a_plan_along_the_assignment_is_tightened_without_it(no_probe):
     # read as C, the small A example's assignment leads to a plan of 15 steps, above the lower
     # bound (14); one step shorter is then tried without the assignment, and refuted.  The
     # upward search without assignment, a separate path, agrees: 14 refuted, 15 found.
@@ -174,6 +182,53 @@ def test_a_plan_along_the_assignment_is_tightened_without_it():
     assert [(a.horizon, a.result, a.note) for a in outcome.horizons_tried] == [
         (15, "sat", ""), (14, "unsat", "without assignment")]
     assert (outcome.lower_bound, outcome.horizon, outcome.minimal, outcome.check.valid) == (14, 15, True, True)
+
+
+def test_a_search_with_assignment_probes_without_one_first():
+    # read as C, the small A example has no plan of 14 steps and one of 15 (the upward search
+    # without assignment above); the probe finds both before any assignment is computed, and
+    # the plan it returns follows the assignment read off it: each robot lifts only its shelves
+    outcome = solve(read_instance(SMALL_A), Domain.C, assign=True, time_limit=120)
+    assert [(a.horizon, a.result, a.note) for a in outcome.horizons_tried] == [
+        (14, "unsat", "without assignment"), (15, "sat", "without assignment")]
+    assert (outcome.horizon, outcome.minimal, outcome.check.valid, outcome.refuted) == (15, True, True, [14])
+    assert outcome.assignment.origin == "read off a plan"
+    carriers = {int(f.split("shelf(")[1].split(")")[0]): int(f.split("robot(")[1].split(")")[0])
+                for f in outcome.assignment.facts}
+    cells = {robot.id: robot.at for robot in read_instance(SMALL_A).robots.values()}
+    shelves = {shelf.at: shelf.id for shelf in read_instance(SMALL_A).shelves.values()}
+    for action in sorted(outcome.plan.actions):
+        if action.name == "move":
+            x, y = cells[action.robot]
+            cells[action.robot] = (x + action.args[0], y + action.args[1])
+        elif action.name == "pickup":
+            assert carriers[shelves[cells[action.robot]]] == action.robot
+
+
+ONE_SHELF = """
+init(object(grid,1),value(xsize,3)). init(object(grid,1),value(ysize,2)).
+init(object(pickingStation,1),value(at,(1,1))).
+init(object(robot,1),value(at,(3,1))). init(object(robot,2),value(at,(1,2))).
+init(object(shelf,1),value(at,(3,1))).
+init(object(product,1),value(on,(1,1))).
+init(object(order,1),value(line,(1,1))). init(object(order,1),value(pickingStation,1)).
+"""
+
+
+def test_the_assignment_read_off_a_plan(write):
+    instance = read_instance(write("one.lp", ONE_SHELF))
+    direct = Plan([Action(1, 1, "pickup"), Action(2, 1, "move", (-1, 0)), Action(3, 1, "move", (-1, 0)),
+                   Action(4, 1, "deliver", (1, 1))])
+    assignment, exact = assignment_of_plan(instance, Domain.B, direct)
+    assert (assignment.facts, exact) == (["assign(robot(1),shelf(1),pickingStation(1))"], True)
+    # robot 1 moves the shelf one cell and puts it down; robot 2 brings it: the deliveries'
+    # assignment names robot 2 only, and the plan, in which robot 1 lifts it too, does not follow it
+    relay = Plan([Action(1, 1, "pickup"), Action(2, 1, "move", (-1, 0)), Action(3, 1, "putdown"),
+                  Action(4, 1, "move", (1, 0)), Action(4, 2, "move", (1, 0)), Action(5, 2, "move", (0, -1)),
+                  Action(6, 2, "pickup"), Action(7, 2, "move", (-1, 0)), Action(8, 2, "deliver", (1, 1))])
+    assert check(instance, relay, Domain.B).valid
+    assignment, exact = assignment_of_plan(instance, Domain.B, relay)
+    assert (assignment.facts, exact) == (["assign(robot(2),shelf(1),pickingStation(1))"], False)
 
 
 def test_assignment_bound_chains_the_tasks_of_each_robot(write):
