@@ -5,12 +5,12 @@ from __future__ import annotations
 import pytest
 from helpers import EXAMPLES, SMALL_A
 
-from asprilo.domain import Domain
 from asprilo.checker import check
+from asprilo.domain import Domain
 from asprilo.encodings import ENCODINGS, SolveStatus, search, solve
 from asprilo.encodings.assignment import assign_tasks, assignment_of_plan, distance_facts
-from asprilo.model import Action, Plan
 from asprilo.errors import InputError
+from asprilo.model import Action, Plan
 from asprilo.reader import read_instance
 
 STYLES = {d: [e.name for e in ENCODINGS if e.domain is d] for d in (Domain.A, Domain.B, Domain.C)}
