@@ -45,7 +45,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="reference encoding (default: plain; --list shows them)")
     parser.add_argument("--horizon", type=int, metavar="H", help="solve at this makespan only")
     parser.add_argument("--assign", action="store_true",
-                        help="compute a task assignment first and plan along it")
+                        help="compute a task assignment first and plan along it (A/B/C: after a short "
+                             "try without one from the lower bound up)")
     parser.add_argument("--time-limit", type=seconds_argument, metavar="S",
                         help=f"stop after S seconds, grounding included (default {DEFAULT_TIME_LIMIT:g}; "
                              f"anytime: {ANYTIME_SECONDS:g})")

@@ -46,8 +46,8 @@ ASSIGNMENT_SECONDS = 10.0
 #: after a plan along an assignment, how long to look for shorter plans without it
 TIGHTEN_SECONDS = 10.0
 #: before an A/B/C task assignment, the probe without one: its conflict budget, smaller for
-#: big programs (at most PROBE_WORK / (robots x cells x horizon): about 4,000 conflicts on the
-#: medium paper instances, 10,000 on the small ones)
+#: big programs (at most PROBE_WORK / (robots x cells x horizon): 2,500 to 10,000 conflicts on
+#: the medium paper instances, 10,000 on the small ones)
 PROBE_CONFLICTS = 10_000
 PROBE_WORK = 250_000_000
 WITHOUT_ASSIGNMENT = "without assignment"
@@ -56,8 +56,9 @@ HINTED_ROBOTS = 20
 #: the A/B/C searches use the domain heuristics of abc/hints.lp (while use_hints is true)
 ABC_OPTIONS = ("--heuristic=Domain",)
 #: with hints, a horizon is searched in turns with and without them, each turn twice as long
-#: as the turn before last, starting with this many seconds; learned clauses are kept
-FIRST_TURN = 1.0
+#: as the turn before last, starting with this many conflicts (counted, not timed, so that a
+#: search takes the same path on every machine and under any load); learned clauses are kept
+FIRST_TURN = 2_000
 
 
 class SolveStatus(str, Enum):
@@ -519,8 +520,8 @@ class _Search:
         moves more shelves than it delivers from is found again along its assignment.
         """
         outcome, horizon = self.outcome, bound
-        cells = len(self.instance.robots) * len(self.floor.cells)
-        budget = allowance = min(PROBE_CONFLICTS, PROBE_WORK // max(1, cells * bound))
+        size = len(self.instance.robots) * len(self.floor.cells) * bound
+        budget = allowance = min(PROBE_CONFLICTS, PROBE_WORK // max(1, size))
         while budget > 0 and not self.watch.cancelled and not self.watch.expired:
             result, used = self._probe_at(horizon, budget)
             budget -= used
@@ -683,14 +684,15 @@ class _Search:
         return self._solve_in_turns(solver, remaining)
 
     def _solve_in_turns(self, solver: Solver, limit: float | None) -> Result:
-        """Search with and without hints in turns on one grounding (turns of 1, 1, 2, 2, 4, ... s)."""
+        """Search with and without hints in turns on one grounding (turns of 2,000, 2,000,
+        4,000, 4,000, ... conflicts)."""
         end = None if limit is None else time.perf_counter() + limit
         turn, hints = FIRST_TURN, True
         while True:
-            left = None if end is None else end - time.perf_counter()
+            left = None if end is None else max(end - time.perf_counter(), 0.0)
             solver.assign_external("use_hints", hints)
-            result = solver.solve(time_limit=turn if left is None else min(turn, max(left, 0.0)))
-            if result.status is not Status.UNKNOWN or self.watch.cancelled or (left is not None and left <= turn):
+            result = solver.solve(time_limit=left, conflicts=turn)
+            if result.status is not Status.UNKNOWN or result.timed_out or self.watch.cancelled:
                 return result
             if not hints:
                 turn *= 2
