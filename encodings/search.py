@@ -58,7 +58,7 @@ ABC_OPTIONS = ("--heuristic=Domain",)
 #: with hints, a horizon is searched in turns with and without them, each turn twice as long
 #: as the turn before last, starting with this many conflicts (counted, not timed, so that a
 #: search takes the same path on every machine and under any load); learned clauses are kept
-FIRST_TURN = 2_000
+FIRST_TURN = 1_000
 
 
 class SolveStatus(str, Enum):
@@ -684,8 +684,8 @@ class _Search:
         return self._solve_in_turns(solver, remaining)
 
     def _solve_in_turns(self, solver: Solver, limit: float | None) -> Result:
-        """Search with and without hints in turns on one grounding (turns of 2,000, 2,000,
-        4,000, 4,000, ... conflicts)."""
+        """Search with and without hints in turns on one grounding (turns of 1,000, 1,000,
+        2,000, 2,000, ... conflicts)."""
         end = None if limit is None else time.perf_counter() + limit
         turn, hints = FIRST_TURN, True
         while True:

@@ -231,6 +231,16 @@ def test_the_assignment_read_off_a_plan(write):
     assert (assignment.facts, exact) == (["assign(robot(2),shelf(1),pickingStation(1))"], False)
 
 
+def test_a_hinted_search_takes_the_same_path_every_time():
+    # the paper's small N001 (11 robots) read as C at its minimal makespan 28 needs more
+    # conflicts than the first hint turn (1,000): the turns are counted in conflicts, so two
+    # searches switch hints on and off at the same points and agree conflict for conflict
+    instance = read_instance(EXAMPLES / "paper-m/1x2x4/x11_y6_n66_r11_s16_ps1_pr16_u16_o11_N001.lp")
+    first, second = (solve(instance, Domain.C, horizon=28, time_limit=120) for _ in range(2))
+    assert first.found and first.stats["conflicts"] > search.FIRST_TURN
+    assert (second.stats["conflicts"], second.plan) == (first.stats["conflicts"], first.plan)
+
+
 def test_assignment_bound_chains_the_tasks_of_each_robot(write):
     from asprilo.encodings.bounds import assignment_bound
     two = read_instance(write("two.lp", TWO_SHELVES))
