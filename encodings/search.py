@@ -4,8 +4,9 @@ Without a horizon, the search starts at an admissible lower bound (:func:`aspril
 makespan_bound`) and goes up one step at a time.  Every horizon is grounded afresh (the
 encodings prune with distances to the horizon); incremental encodings instead ground one
 more ``step(t)`` part and move the ``query(t)`` external.  The first horizon with a plan
-is the minimal makespan when every horizon below it was refuted.  Every plan is checked
-before it is returned.
+is the minimal makespan when every horizon below it was refuted.  With a task assignment
+(``assign``) in A/B/C, a short probe without it comes first (``_Search._probe``).  Every plan
+is checked before it is returned.
 
 clingo cannot be interrupted while it grounds, so ``solve(..., isolate=True)`` runs the
 whole search in a child process that is killed at the time limit: the limit then holds in
