@@ -223,3 +223,17 @@ def test_the_runs_with_assignment_follow_the_one_of_their_makespan_search(write,
     assert json.loads((tmp_path / "out/assignments.json").read_text()) == {str(SMALL): {"C_a": facts}}
     assert [(job["kind"], job.get("assignment")) for job in jobs] == [("makespan", None), ("run", facts)]
     assert [(r["status"], r["label"]) for r in records] == [("solved", "C_a")]
+
+
+def test_a_makespan_with_assignment_is_known_only_with_its_assignment():
+    from asprilo.bench.runner import needs_search
+    from asprilo.bench.suite import RunSpec
+    from asprilo.domain import Domain
+
+    plain, assigned = RunSpec(Domain.C, "plain", False), RunSpec(Domain.C, "plain", True)
+    facts = {"C_a": ["assign(robot(1),shelf(1),pickingStation(1))"]}
+    assert needs_search({}, {}, plain) and needs_search({}, facts, assigned)
+    assert not needs_search({"C": 14}, {}, plain)
+    assert needs_search({"C_a": 14}, {}, assigned)  # its runs could not follow the same assignment
+    assert not needs_search({"C_a": 14}, facts, assigned)
+    assert not needs_search({"C_a": None}, {}, assigned)  # not found: nothing to follow

@@ -12,12 +12,14 @@ bench``) and writes into DIR::
     templates/single.dist         the Slurm script of the dist job
     resultparsers/asprilo.py      reads a run's JSON record and runlim's report for btool eval
     benchmarks/<set>/*.lp         the instances; <name>.makespans.json beside an instance caches
-                                  its minimal makespans
+                                  its minimal makespans, <name>.assignments.json the assignments
+                                  the searches with assignment followed (the runs follow them)
 
 Minimal makespans are not computed here: each run finds its instance's minimal makespan
 (under the suite's makespan_time_limit) unless the cache beside the instance knows it, and
-caches it for the runs after it; makespans that a local run of the suite found
-(``DIR/prepared/makespans.json``) are copied into the caches.  Each run's record (as in
+caches it (with its assignment) for the runs after it; makespans and assignments that a
+local run of the suite found (``DIR/prepared/{makespans,assignments}.json``) are copied into
+the caches.  Each run's record (as in
 results.jsonl) is the last JSON line of its output; ``btool eval`` collects the records as
 measures and ``asprilo bench report RESULTS.xml`` reads them.
 """
@@ -37,7 +39,7 @@ from asprilo.writer import write_text
 
 from .btool_files import PARSER, SLURM, TEMPLATE
 from .results import run_key
-from .runner import Runner, SuiteInstance, read_makespans
+from .runner import ASSIGNMENTS, Runner, SuiteInstance, fact_lists, read_assignments, read_json_object, read_makespans
 from .suite import RunSpec, Suite
 
 SYSTEM = "asprilo"
@@ -56,16 +58,20 @@ def makespan_cache(instance: Path) -> Path:
     return instance.with_name(instance.name + ".makespans.json")
 
 
+def assignment_cache(instance: Path) -> Path:
+    """The file beside an exported instance that caches the assignments its makespans follow."""
+    return instance.with_name(instance.name + ".assignments.json")
+
+
 def read_makespan_cache(path: Path) -> dict[str, int | None]:
     """The minimal makespans cached beside an exported instance (domain label -> makespan, None:
     its search ran out of time); an unreadable cache is empty (the makespans are searched again)."""
-    try:
-        spans = json.loads(path.read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        return {}
-    if not isinstance(spans, dict):
-        return {}
-    return {label: span for label, span in spans.items() if span is None or type(span) is int}
+    return {label: span for label, span in read_json_object(path).items() if span is None or type(span) is int}
+
+
+def read_assignment_cache(path: Path) -> dict[str, list[str]]:
+    """The assignments cached beside an exported instance (domain label -> facts)."""
+    return fact_lists(read_json_object(path))
 
 
 def export(suite: Suite, folder: str | Path, runner: Runner, jobs: int = 1) -> Path:
@@ -73,7 +79,8 @@ def export(suite: Suite, folder: str | Path, runner: Runner, jobs: int = 1) -> P
     folder = Path(folder).resolve()
     instances = runner.instances()
     known = read_makespans(runner.folder / "makespans.json", runner.stream)
-    files = _copy_instances(instances, folder, known)
+    runner.assignments = read_assignments(runner.folder / ASSIGNMENTS)
+    files = _copy_instances(instances, folder, known, runner)
     program = folder / "programs" / f"{SYSTEM}-{__version__}"
     write_text(program, f"#!/bin/sh\nexec {sys.executable} -m asprilo.bench.single \"$@\"\n")
     runlim = folder / "programs" / "runlim"
@@ -89,8 +96,10 @@ def export(suite: Suite, folder: str | Path, runner: Runner, jobs: int = 1) -> P
     return runscript
 
 
-def _copy_instances(instances: list[SuiteInstance], folder: Path, known: dict) -> dict[str, list[str]]:
-    """Copy the instances to benchmarks/<set>/ with their makespan caches; set -> file names."""
+def _copy_instances(instances: list[SuiteInstance], folder: Path, known: dict,
+                    runner: Runner) -> dict[str, list[str]]:
+    """Copy the instances to benchmarks/<set>/ with their makespan and assignment caches;
+    set -> file names."""
     files: dict[str, list[str]] = {}
     for instance in instances:
         name = Path(instance.name).name
@@ -105,6 +114,9 @@ def _copy_instances(instances: list[SuiteInstance], folder: Path, known: dict) -
                  **{label: span for label, span in known.get(instance.name, {}).items() if span is not None}}
         if spans:
             write_text(cache, json.dumps(spans, sort_keys=True) + "\n")
+        facts = {**read_assignment_cache(assignment_cache(target)), **runner.assignments.get(instance.name, {})}
+        if facts:
+            write_text(assignment_cache(target), json.dumps(facts, sort_keys=True) + "\n")
     return files
 
 

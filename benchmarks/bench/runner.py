@@ -151,19 +151,35 @@ def read_makespans(path: Path, stream: TextIO) -> dict[str, dict[str, int | None
     return known
 
 
-def read_assignments(path: Path) -> dict[str, dict[str, list[str]]]:
-    """The assignments the makespan searches followed (instance -> label -> facts); an unreadable
-    file counts as empty: the runs then compute their own, which the assignment's conflict budget
-    makes the same."""
+def read_json_object(path: Path) -> dict:
+    """The JSON object in ``path``; ``{}`` when the file is missing, unreadable or holds
+    something else (a cache: what it lacks is computed again)."""
     try:
-        known = json.loads(path.read_text(encoding="utf-8"))
+        value = json.loads(path.read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return {}
-    if not isinstance(known, dict):
-        return {}
-    return {name: {label: facts for label, facts in labels.items()
-                   if isinstance(facts, list) and all(isinstance(fact, str) for fact in facts)}
-            for name, labels in known.items() if isinstance(labels, dict)}
+    return value if isinstance(value, dict) else {}
+
+
+def fact_lists(labels: dict) -> dict[str, list[str]]:
+    """The entries of ``labels`` (domain label -> assignment facts) that are lists of strings."""
+    return {label: facts for label, facts in labels.items()
+            if isinstance(facts, list) and all(isinstance(fact, str) for fact in facts)}
+
+
+def read_assignments(path: Path) -> dict[str, dict[str, list[str]]]:
+    """The assignments the makespan searches followed (instance -> label -> facts); an unreadable
+    file counts as empty: the makespans with assignment are then searched again."""
+    return {name: fact_lists(labels) for name, labels in read_json_object(path).items()
+            if isinstance(labels, dict)}
+
+
+def needs_search(spans: dict, assignments: dict, spec: RunSpec) -> bool:
+    """Whether the minimal makespan for ``spec`` must be searched: not known, or found along an
+    assignment that is not known (a run must follow the very assignment of its makespan)."""
+    if spec.label not in spans:
+        return True
+    return spec.assign and spans[spec.label] is not None and spec.label not in assignments
 
 
 def forget_unknown_makespans(folder: Path) -> None:
@@ -254,7 +270,8 @@ class Runner:
         todo = list(dict.fromkeys(
             (instance, spec.domain, spec.assign, spec.label) for instance in instances
             for spec in self.suite.runs
-            if not spec.anytime and spec.runs_on(instance.set) and spec.label not in known.get(instance.name, {})))
+            if not spec.anytime and spec.runs_on(instance.set)
+            and needs_search(known.get(instance.name, {}), self.assignments.get(instance.name, {}), spec)))
         if todo:
             progress = BenchProgress(len(todo), "makespans", self.stream)
 

@@ -6,7 +6,8 @@
 
 The horizon is the instance's minimal makespan, from ``INSTANCE.makespans.json`` beside it,
 or else searched here (at most ``--makespan-time-limit`` seconds, not counted in the run's
-time) and cached there for the runs after this one.  Prints the run's record (as in
+time) and cached there for the runs after this one; a run with assignment follows the
+assignment of that search, cached in ``INSTANCE.assignments.json``.  Prints the run's record (as in
 results.jsonl) as a JSON line before the run and again, complete, after it; a run that runlim
 stops leaves the first.
 """
@@ -23,22 +24,19 @@ from asprilo.domain import Domain
 from asprilo.reader import read_instance
 from asprilo.writer import write_text
 
-from .btool import makespan_cache, read_makespan_cache
+from .btool import assignment_cache, makespan_cache, read_assignment_cache, read_makespan_cache
 from .limits import DONE, LimitedRun
 from .results import SOLVED
-from .runner import SuiteInstance, complete, complete_anytime, makespan_status, new_record, run_job
+from .runner import SuiteInstance, complete, complete_anytime, makespan_status, needs_search, new_record, run_job
 from .suite import RunSpec
 from .worker import run
 
 
 def minimal_makespan(instance: Path, spec: RunSpec, time_limit: float) -> tuple[int | None, list[str] | None]:
     """The cached minimal makespan of ``instance`` for ``spec``'s label, or search it and cache it;
-    and, when searched here with assignment, the assignment it followed (a cached makespan's run
-    computes the assignment again: its conflict budget makes it the same)."""
-    cache = makespan_cache(instance)
-    known = read_makespan_cache(cache)
-    assignment = None
-    if spec.label not in known:
+    with assignment also the assignment that search followed (cached beside it too)."""
+    cache, facts_cache = makespan_cache(instance), assignment_cache(instance)
+    if needs_search(read_makespan_cache(cache), read_assignment_cache(facts_cache), spec):
         print(f"{instance.name}: finding the minimal makespan for {spec.label} (at most {time_limit:g} s)",
               file=sys.stderr, flush=True)
         started = time.perf_counter()
@@ -47,9 +45,11 @@ def minimal_makespan(instance: Path, spec: RunSpec, time_limit: float) -> tuple[
         search = LimitedRun(DONE, time.perf_counter() - started, report)
         known = {**read_makespan_cache(cache),  # another run may have cached another label meanwhile
                  spec.label: report["horizon"] if makespan_status(search) == SOLVED else None}
+        if report.get("assignment"):
+            facts = {**read_assignment_cache(facts_cache), spec.label: report["assignment"]}
+            write_text(facts_cache, json.dumps(facts, sort_keys=True) + "\n")
         write_text(cache, json.dumps(known, sort_keys=True) + "\n")
-        assignment = report.get("assignment")
-    return known[spec.label], assignment
+    return read_makespan_cache(cache)[spec.label], read_assignment_cache(facts_cache).get(spec.label)
 
 
 def main(argv: list[str] | None = None) -> int:
