@@ -4,6 +4,7 @@
 - On random small ones, the previous identity-based encoding (tests/oracles/identity-abc/).
 - Each pruning technique switched off (-c bands=0, -c deadlines=0) gives the same minimum.
 - The makespan bound never exceeds the minimum.
+- A shelf that serves lines at two stations keeps its name until its last delivery.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from oracles.brute_force import minimal_makespan as brute_force
 from asprilo.bounds import makespan_bound
 from asprilo.domain import Domain
 from asprilo.encodings import solve
+from asprilo.model import Instance, Order, PickingStation, Product, Robot, Shelf
 from asprilo.reader import read_instance
 
 DOMAINS = [Domain.A, Domain.B, Domain.C]
@@ -31,6 +33,34 @@ def test_the_example_minima_equal_brute_force(name, domain):
     outcome = solve(instance, domain)
     assert (outcome.horizon, outcome.minimal, outcome.check.valid) == (expected, True, True)
     assert makespan_bound(instance, domain) <= expected
+
+
+def one_shelf_for_two_stations(same_station: bool) -> Instance:
+    """A 3x2 floor: stations on (1,1) and (3,1), one robot on (2,1), one shelf on (2,2)
+    holding one unit each of products 1 and 2; order 1 wants product 1 at station 1, order 2
+    product 2 at station 2 (or at station 1 too, with ``same_station``)."""
+    instance = Instance()
+    for ident, cell in enumerate([(x, y) for y in (1, 2) for x in (1, 2, 3)], 1):
+        instance.nodes[ident] = cell
+    instance.stations = {1: PickingStation(1, (1, 1)), 2: PickingStation(2, (3, 1))}
+    instance.robots[1] = Robot(1, (2, 1))
+    instance.shelves[1] = Shelf(1, (2, 2))
+    instance.products = {1: Product(1, {1: 1}), 2: Product(2, {1: 1})}
+    instance.orders = {1: Order(1, {1: 1}, 1), 2: Order(2, {2: 1}, 1 if same_station else 2)}
+    return instance
+
+
+# by hand: step 1 walk under the shelf, 2 lift it, 3-4 carry it to (1,1), 5 deliver; then
+# 6-7 carry it to (3,1) and 8 deliver -- or, both lines at (1,1), deliver again at 6 (A, B)
+# or close both lines with the one delivery at 5 (C)
+@pytest.mark.parametrize(("same_station", "domain", "expected"), [
+    (False, Domain.A, 8), (False, Domain.B, 8), (False, Domain.C, 8),
+    (True, Domain.A, 6), (True, Domain.B, 6), (True, Domain.C, 5)])
+def test_a_shelf_stays_named_until_its_last_delivery(same_station, domain, expected):
+    instance = one_shelf_for_two_stations(same_station)
+    assert brute_force(instance, domain.value) == expected
+    outcome = solve(instance, domain)
+    assert (outcome.horizon, outcome.minimal, outcome.check.valid) == (expected, True, True)
 
 
 @pytest.mark.parametrize("seed", range(8))
