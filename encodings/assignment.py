@@ -36,7 +36,8 @@ class Assignment:
     """The assignment facts, the optimisation costs and whether they are proven optimal.
 
     ``origin`` says where the facts come from: ``optimised`` (:func:`assign_tasks`),
-    ``given`` (by the caller) or ``read off a plan`` (:func:`assignment_of_plan`).
+    ``given`` (by the caller) or ``read off a plan`` (:func:`assignment_of_plan`; ``read off a
+    plan that also moves other shelves`` when the plan returned does not follow it exactly).
     """
 
     facts: list[str]

@@ -18,7 +18,7 @@ from __future__ import annotations
 import threading
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from enum import Enum
 from pathlib import Path
 from typing import Any
@@ -467,6 +467,8 @@ class _Search:
         self.max_horizon = request.max_horizon
         self.follow_assignment = False
         self.bound = 0.0  # every horizon below is refuted (the lower bound, or more after a probe)
+        # a minimal plan the probe found but could not find again along its own assignment
+        self.probe_plan: tuple[Plan, Assignment] | None = None
         self.options = ABC_OPTIONS if domain.delivers else ()
         self._distances: str | None = None
 
@@ -484,11 +486,15 @@ class _Search:
         self.bound = bound
         if self.assign and not self._assign():
             return outcome
-        first, last = self._horizons(bound)
-        if self.encoding.incremental:
-            self._incremental(first, last)
+        horizons = self._horizons(bound)
+        if horizons is None:
+            outcome.message = "no plan can follow the task assignment (a shelf cannot reach its station)"
+        elif self.encoding.incremental:
+            self._incremental(*horizons)
         else:
-            self._single_shot(first, last)
+            self._single_shot(*horizons)
+        if self.probe_plan is not None and (outcome.plan is None or self.tighten):
+            return self._return_probe_plan()
         if outcome.plan is not None:
             outcome.horizon = outcome.plan.horizon
             along = [attempt for attempt in outcome.horizons_tried if not attempt.note]  # not the probe's
@@ -499,13 +505,16 @@ class _Search:
                 self._tighten()
         return outcome
 
-    def _horizons(self, bound: float) -> tuple[int, int]:
+    def _horizons(self, bound: float) -> tuple[int, int] | None:
+        """The horizons to search; ``None`` when no plan can follow the task assignment."""
         if self.horizon is not None:
             return self.horizon, self.horizon
         first = int(bound)
         if self.assign:
-            facts = self.outcome.assignment.facts
-            first = max(first, int(assignment_bound(self.instance, facts, self.floor)))
+            along = assignment_bound(self.instance, self.outcome.assignment.facts, self.floor)
+            if along == float("inf"):
+                return None
+            first = max(first, int(along))
             if self.domain.delivers:
                 first = int(assigned_bound(self.instance, self.domain, self.floor, self._carriers(), first))
         last = self.max_horizon if self.max_horizon is not None else self._largest_horizon(first)
@@ -518,7 +527,9 @@ class _Search:
         A refuted horizon is refuted for every assignment.  A plan found is minimal, and the
         assignment read off it costs no makespan at all (where the whole problem is easy at
         its bound, an optimised assignment can only make it longer or harder).  A plan that
-        moves more shelves than it delivers from is found again along its assignment.
+        moves more shelves than it delivers from is found again along its assignment; where
+        that fails (some plans must move a shelf out of the way, which no assignment allows),
+        the plan is kept in case no plan along an assignment turns up (``probe_plan``).
         """
         outcome, horizon = self.outcome, bound
         size = len(self.instance.robots) * len(self.floor.cells) * bound
@@ -534,8 +545,11 @@ class _Search:
                 outcome.assignment, exact = assignment_of_plan(self.instance, self.domain, plan)
                 self.follow_assignment = True
                 if not exact:
-                    result, _ = self._probe_at(horizon, allowance)
-                    plan = self._plan(result) if result.status is Status.SAT else None
+                    again, _ = self._probe_at(horizon, allowance)
+                    if again.status is Status.SAT:
+                        plan = self._plan(again)
+                    else:
+                        self.probe_plan, plan = (plan, outcome.assignment), None
                 if plan is not None:
                     outcome.status, outcome.plan, outcome.horizon = SolveStatus.FOUND, plan, plan.horizon
                     outcome.minimal = outcome.minimal_along_assignment = True
@@ -543,6 +557,18 @@ class _Search:
                     outcome.assignment, self.follow_assignment = None, False
             return horizon
         return horizon
+
+    def _return_probe_plan(self) -> Outcome:
+        """The probe's plan, when no plan along an assignment was found, or (``tighten``) one
+        was but the probe's is shorter: it is minimal, though it also moves shelves (or hands
+        them over) beyond the assignment read off its deliveries, so it is not minimal *along*
+        an assignment."""
+        outcome = self.outcome
+        outcome.plan, assignment = self.probe_plan
+        outcome.assignment = replace(assignment, origin="read off a plan that also moves other shelves")
+        outcome.status, outcome.horizon, outcome.message = SolveStatus.FOUND, outcome.plan.horizon, ""
+        outcome.minimal, outcome.minimal_along_assignment = True, False
+        return outcome
 
     def _probe_at(self, horizon: int, conflicts: int) -> tuple[Result, int]:
         """One try of the probe (along the assignment when one is followed): the result and

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 from helpers import EXAMPLES, SMALL_A
+from oracles.brute_force import minimal_makespan as brute_force
 
 from asprilo.checker import check
 from asprilo.domain import Domain
@@ -203,6 +204,40 @@ def test_a_search_with_assignment_probes_without_one_first():
             cells[action.robot] = (x + action.args[0], y + action.args[1])
         elif action.name == "pickup":
             assert carriers[shelves[cells[action.robot]]] == action.robot
+
+
+#: shelf 1 on (3,2) is walled in by shelves 2 (2,2) and 3 (3,1), which no order needs
+WALLED = """
+init(object(grid,1),value(xsize,3)). init(object(grid,1),value(ysize,2)).
+init(object(pickingStation,1),value(at,(1,1))).
+init(object(robot,1),value(at,(1,2))).
+init(object(shelf,1),value(at,(3,2))). init(object(shelf,2),value(at,(2,2))).
+init(object(shelf,3),value(at,(3,1))).
+init(object(product,1),value(on,(1,1))). init(object(product,2),value(on,(2,1))).
+init(object(product,2),value(on,(3,1))).
+init(object(order,1),value(line,(1,1))). init(object(order,1),value(pickingStation,1)).
+"""
+
+
+def test_a_minimal_plan_that_no_assignment_allows_is_kept(write):
+    # by hand: walk under shelf 2, lift it, set it down on (2,1) (or (1,2)), walk to shelf 1,
+    # lift it, carry it past (2,2) and (1,2) (or (2,1)) to the station, deliver: 11 steps.
+    # An assignment lets only shelf 1 move, so no plan follows one; the probe's plan stays.
+    instance = read_instance(write("walled.lp", WALLED))
+    assert brute_force(instance, "b") == 11
+    outcome = solve(instance, Domain.B, assign=True, time_limit=120)
+    assert (outcome.horizon, outcome.minimal, outcome.check.valid) == (11, True, True)
+    assert outcome.minimal_along_assignment is False
+    assert outcome.assignment.origin == "read off a plan that also moves other shelves"
+    assert [(a.horizon, a.result) for a in outcome.horizons_tried[-2:]] == [(11, "sat"), (11, "unsat")]
+    assert outcome.refuted == [7, 8, 9, 10]
+    assert sorted(a.step for a in outcome.plan.actions if a.name == "pickup") == [2, 7]
+
+
+def test_no_plan_follows_an_assignment_that_leaves_a_shelf_walled_in(write, no_probe):
+    outcome = solve(read_instance(write("walled.lp", WALLED)), Domain.B, assign=True, time_limit=120)
+    assert (outcome.status, outcome.plan, outcome.horizons_tried) == (SolveStatus.LIMIT, None, [])
+    assert outcome.message == "no plan can follow the task assignment (a shelf cannot reach its station)"
 
 
 ONE_SHELF = """
