@@ -473,6 +473,13 @@ class _Search:
         self._distances: str | None = None
 
     def run(self) -> Outcome:
+        outcome = self._search()
+        kept = self.probe_plan
+        if kept is not None and (outcome.plan is None or (self.tighten and outcome.plan.horizon > kept[0].horizon)):
+            return self._return_probe_plan()
+        return outcome
+
+    def _search(self) -> Outcome:
         outcome = self.outcome
         outcome.lower_bound = bound = makespan_bound(self.instance, self.domain, self.floor)
         if bound == float("inf") and self.horizon is None:
@@ -493,15 +500,13 @@ class _Search:
             self._incremental(*horizons)
         else:
             self._single_shot(*horizons)
-        if self.probe_plan is not None and (outcome.plan is None or self.tighten):
-            return self._return_probe_plan()
         if outcome.plan is not None:
             outcome.horizon = outcome.plan.horizon
             along = [attempt for attempt in outcome.horizons_tried if not attempt.note]  # not the probe's
             searched_up = self.horizon is None and all(a.result == "unsat" for a in along[:-1])
             outcome.minimal = outcome.horizon <= bound or (searched_up and not self.assign)
             outcome.minimal_along_assignment = self.assign and (searched_up or outcome.minimal)
-            if self.assign and self.tighten and self.horizon is None and not outcome.minimal:
+            if self.assign and self.tighten and self.horizon is None and not outcome.minimal and not self.probe_plan:
                 self._tighten()
         return outcome
 
