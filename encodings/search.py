@@ -474,9 +474,10 @@ class _Search:
 
     def run(self) -> Outcome:
         outcome = self._search()
-        kept = self.probe_plan
-        if kept is not None and (outcome.plan is None or (self.tighten and outcome.plan.horizon > kept[0].horizon)):
-            return self._return_probe_plan()
+        if self.probe_plan is not None:
+            kept, _ = self.probe_plan
+            if outcome.plan is None or (self.tighten and outcome.plan.horizon > kept.horizon):
+                return self._return_probe_plan()
         return outcome
 
     def _search(self) -> Outcome:

@@ -120,6 +120,19 @@ def test_a_robot_with_two_shelves_pays_for_putting_the_first_away(write):
                                         "assign(robot(2),shelf(1),pickingStation(1))"]
 
 
+def pickup_cells(instance, plan: Plan) -> list[tuple[int, tuple[int, int]]]:
+    """(robot, cell) of every pickup of ``plan``, in step order, following the robots' moves."""
+    cells = {robot.id: robot.at for robot in instance.robots.values()}
+    pickups = []
+    for action in sorted(plan.actions):
+        if action.name == "move":
+            x, y = cells[action.robot]
+            cells[action.robot] = (x + action.args[0], y + action.args[1])
+        elif action.name == "pickup":
+            pickups.append((action.robot, cells[action.robot]))
+    return pickups
+
+
 @pytest.fixture
 def no_probe(monkeypatch):
     """Searches with assignment go straight to the optimised assignment (no probe without it)."""
@@ -149,14 +162,9 @@ def test_a_given_assignment_is_followed_not_computed():
              "assign(robot(3),shelf(1),pickingStation(2))", "assign(robot(1),shelf(9),pickingStation(2))"]
     outcome = solve(instance, Domain.B, assignment=given, tighten=False, time_limit=120)
     assert outcome.found and outcome.check.valid and outcome.assignment.facts == sorted(given)
-    cells = {robot.id: robot.at for robot in instance.robots.values()}
     lifted = {}
-    for action in sorted(outcome.plan.actions):
-        if action.name == "move":
-            x, y = cells[action.robot]
-            cells[action.robot] = (x + action.args[0], y + action.args[1])
-        elif action.name == "pickup":
-            lifted.setdefault(action.robot, cells[action.robot])
+    for robot, cell in pickup_cells(instance, outcome.plan):
+        lifted.setdefault(robot, cell)
     assert lifted == {1: instance.shelves[9].at, 2: instance.shelves[2].at, 3: instance.shelves[1].at}
 
 
@@ -196,14 +204,10 @@ def test_a_search_with_assignment_probes_without_one_first():
     assert outcome.assignment.origin == "read off a plan"
     carriers = {int(f.split("shelf(")[1].split(")")[0]): int(f.split("robot(")[1].split(")")[0])
                 for f in outcome.assignment.facts}
-    cells = {robot.id: robot.at for robot in read_instance(SMALL_A).robots.values()}
-    shelves = {shelf.at: shelf.id for shelf in read_instance(SMALL_A).shelves.values()}
-    for action in sorted(outcome.plan.actions):
-        if action.name == "move":
-            x, y = cells[action.robot]
-            cells[action.robot] = (x + action.args[0], y + action.args[1])
-        elif action.name == "pickup":
-            assert carriers[shelves[cells[action.robot]]] == action.robot
+    instance = read_instance(SMALL_A)
+    shelves = {shelf.at: shelf.id for shelf in instance.shelves.values()}
+    for robot, cell in pickup_cells(instance, outcome.plan):
+        assert carriers[shelves[cell]] == robot
 
 
 #: shelf 1 on (3,2) is walled in by shelves 2 (2,2) and 3 (3,1), which no order needs
