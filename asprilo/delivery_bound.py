@@ -8,8 +8,10 @@ can happen.  A station serves one robot at a time, and a robot that delivers has
 before the next one comes in, so deliveries of different shelves at one station are at
 least two steps apart (:func:`station_bound`).  Where every shelf serves one line at most
 (the paper's M-aligned instances), a scheduling relaxation in ASP also takes into account
-that a robot delivers one line at a time (:func:`schedule_bound`).  Nothing here is ever
-more than a valid plan needs.
+that a robot delivers one line at a time (:func:`schedule_bound`); where shelves serve
+several lines, :mod:`asprilo.trip_bound` places the delivery actions themselves.  In A, a
+product ordered beyond its stock leaves no plan at all.  Nothing here is ever more than a
+valid plan needs.
 """
 
 from __future__ import annotations
@@ -236,14 +238,14 @@ def _schedule_facts(facts: Deliveries) -> str:
         out.append(f"line({index}). station_of({index},{stations[line.station]}).")
         for position, robot in enumerate(facts.robots):
             shelves = [s for s in line.holders if facts.carriers.get(s, robot) == robot]
-            release = min((_robot_release(facts, robot, position, s, line.station) for s in shelves), default=INFINITE)
+            release = min((robot_release(facts, robot, position, s, line.station) for s in shelves), default=INFINITE)
             if math.isfinite(release):
                 out.append(f"release({index},{robot},{int(release)}).")
     out.append(f"gap({int(min(_cycle(facts), 10**6))}).")
     return "\n".join(out)
 
 
-def _robot_release(facts: Deliveries, robot: int, position: int, shelf: int, station: Cell) -> float:
+def robot_release(facts: Deliveries, robot: int, position: int, shelf: int, station: Cell) -> float:
     """When ``robot`` can deliver from ``shelf`` at ``station`` first: after walking to it,
     lifting it and carrying it there (and no earlier than any robot could)."""
     carrier = facts.instance.robots[robot].carries
@@ -277,9 +279,25 @@ def delivery_bound(instance: Instance, domain: Domain, floor) -> float:
     facts = Deliveries(instance, domain, floor)
     if not facts.lines:
         return 0.0
-    if not all(math.isfinite(facts.release(line)) for line in facts.lines):
+    if not all(math.isfinite(facts.release(line)) for line in facts.lines) or _short_of_stock(facts):
         return INFINITE
     bound = station_bound(facts)
     if schedulable(facts):
-        bound = schedule_bound(facts, bound)
-    return bound
+        return schedule_bound(facts, bound)
+    from .trip_bound import trip_bound
+    return trip_bound(facts, bound)
+
+
+def _short_of_stock(facts: Deliveries) -> bool:
+    """A: whether some product is ordered more often than the shelves hold it (no plan at all)."""
+    if facts.domain is not Domain.A:
+        return False
+    ordered: dict[int, int] = {}
+    for order in facts.instance.orders.values():
+        for product, units in order.lines.items():
+            ordered[product] = ordered.get(product, 0) + (1 if units is None else units)
+    for product, units in ordered.items():
+        stock = facts.instance.products[product].stock if product in facts.instance.products else {}
+        if units > sum(1 if held is None else held for shelf, held in stock.items() if shelf in facts.shelves):
+            return True
+    return False

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import pytest
 from helpers import EXAMPLES, ROOT
-from helpers.warehouses import minimal_makespan, random_warehouse
+from helpers.warehouses import minimal_makespan, random_two_station_warehouse, random_warehouse
 from oracles.brute_force import minimal_makespan as brute_force
 
 from asprilo.bounds import makespan_bound
@@ -52,13 +52,16 @@ def one_shelf_for_two_stations(same_station: bool) -> Instance:
 
 # by hand: step 1 walk under the shelf, 2 lift it, 3-4 carry it to (1,1), 5 deliver; then
 # 6-7 carry it to (3,1) and 8 deliver -- or, both lines at (1,1), deliver again at 6 (A, B)
-# or close both lines with the one delivery at 5 (C)
+# or close both lines with the one delivery at 5 (C).  The makespan bound reaches these
+# minima: the trip relaxation (asprilo/trip_bound.lp) knows that one shelf serves both
+# stations, two cells apart, where each station alone is served at 5.
 @pytest.mark.parametrize(("same_station", "domain", "expected"), [
     (False, Domain.A, 8), (False, Domain.B, 8), (False, Domain.C, 8),
     (True, Domain.A, 6), (True, Domain.B, 6), (True, Domain.C, 5)])
 def test_a_shelf_stays_named_until_its_last_delivery(same_station, domain, expected):
     instance = one_shelf_for_two_stations(same_station)
     assert brute_force(instance, domain.value) == expected
+    assert makespan_bound(instance, domain) == expected
     outcome = solve(instance, domain)
     assert (outcome.horizon, outcome.minimal, outcome.check.valid) == (expected, True, True)
 
@@ -95,3 +98,25 @@ def test_many_more_random_minima_agree(seed, domain):
     expected = minimal_makespan(instance, domain, program=ORACLE / f"{domain.value}.lp", limit=20)
     assert minimal_makespan(instance, domain, limit=20) == expected
     assert expected is None or makespan_bound(instance, domain) <= expected
+
+
+def no_plan_shorter_than(bound: float, instance: Instance, domain: Domain) -> bool:
+    """Whether the exact encoding has no plan one step below ``bound`` (robots may wait, so
+    a plan of any shorter makespan would be one too)."""
+    return bound == float("inf") or bound < 1 or minimal_makespan(instance, domain, start=int(bound) - 1,
+                                                                  limit=int(bound) - 1) is None
+
+
+@pytest.mark.parametrize("seed", range(10))
+@pytest.mark.parametrize("domain", DOMAINS, ids=lambda d: d.value)
+def test_the_bound_with_two_stations_and_shared_shelves_is_admissible(seed, domain):
+    instance = random_two_station_warehouse(seed)
+    assert no_plan_shorter_than(makespan_bound(instance, domain), instance, domain)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(10, 80))
+@pytest.mark.parametrize("domain", DOMAINS, ids=lambda d: d.value)
+def test_the_bound_with_two_stations_and_shared_shelves_is_admissible_on_many_more(seed, domain):
+    instance = random_two_station_warehouse(seed, robots=3, shelves=4, height=4)
+    assert no_plan_shorter_than(makespan_bound(instance, domain), instance, domain)

@@ -110,6 +110,13 @@ def test_a_line_that_needs_two_shelves_needs_two_visits():
     assert makespan_bound(instance, Domain.B) == 6
 
 
+def test_a_product_ordered_beyond_its_stock_has_no_plan_in_a_only():
+    # two orders want product 1, one unit each, and the one shelf holds one unit
+    short = _row_world(5, 1, {1: (1, 1)}, {1: (3, 1)}, (5, 1), {1: 1, 2: 1})
+    assert makespan_bound(short, Domain.A) == math.inf
+    assert makespan_bound(short, Domain.B) < math.inf
+
+
 def test_no_line_or_an_unreachable_line():
     assert makespan_bound(_row_world(5, 1, {1: (1, 1)}, {1: (3, 1)}, (5, 1), {}), Domain.B) == 0
     missing = _row_world(5, 1, {1: (1, 1)}, {1: (3, 1)}, (5, 1), {1: 7})

@@ -124,7 +124,7 @@ def test_the_anytime_planner_replans_when_an_order_arrives():
 
 
 def test_anytime_replanning_answers_within_its_time_limit_with_the_best_plan():
-    instance = read_instance(SMALL_A)  # no plan meets its lower bound (17): the search runs to the limit
+    instance = read_instance(SMALL_A)  # no plan meets its lower bound (21): the search runs to the limit
     online = OnlinePlanner(anytime_planner(time_limit=2.0))
     plan, seconds = run_online(online, Schedule(instance, {3: 2}))
     assert check(instance, plan).valid

@@ -276,7 +276,8 @@ class JobRunner(QObject):
                     job.better.emit(attempt)
 
             return solve(instance, domain, encoding=encoding, method=method, time_limit=time_limit,
-                         cancel=job.cancel, on_progress=heard)
+                         cancel=job.cancel, on_progress=heard,
+                         on_phase=lambda phase: job.progress.emit(doing(phase)))
 
         def better(attempt) -> None:
             if document.scenario is scenario:
@@ -337,6 +338,13 @@ class JobRunner(QObject):
         agree = "agrees with" if replay == {v.atom for v in violations} else "differs from"
         verdict = "valid plan" if report.valid else f"{len(violations)} violation{'s' if len(violations) != 1 else ''}"
         self.state.say(f"ASP checker: {verdict}; it {agree} the viewer's replay", 10000)
+
+
+def doing(phase) -> str:
+    """What the progress line says while the search grounds or solves one horizon."""
+    if phase.horizon == 0:
+        return f"{phase.name}…"
+    return f"horizon {phase.horizon}: {phase.name}…"
 
 
 def tried(attempt) -> str:

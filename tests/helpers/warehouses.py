@@ -70,3 +70,36 @@ def minimal_makespan(instance: Instance, domain: Domain, constants: dict[str, in
             assert report.valid, [error.message for error in report.errors]
             return horizon
     return None
+
+
+def random_two_station_warehouse(seed: int, width: int = 5, height: int = 3, robots: int = 2,
+                                 shelves: int = 3, orders: int = 2) -> Instance:
+    """A full grid with two picking stations in the top row, some highways in the row under
+    them, three products on one or two shelves each (so shelves often hold several ordered
+    products), and ``orders`` orders of one or two lines with quantities at random stations."""
+    rng = random.Random(seed)
+    instance = Instance()
+    cells = [(x, y) for y in range(1, height + 1) for x in range(1, width + 1)]
+    for ident, cell in enumerate(cells, 1):
+        instance.nodes[ident] = cell
+        if cell[1] == 2 and rng.random() < 0.3:
+            instance.highways[ident] = cell
+    columns = rng.sample(range(1, width + 1), 2)
+    instance.stations = {k: PickingStation(k, (x, 1)) for k, x in enumerate(columns, 1)}
+    free = [c for c in cells if c[1] != 1 or c[0] not in columns]
+    rng.shuffle(free)
+    storage = [c for c in free if c not in instance.highways.values()]
+    for ident in range(1, shelves + 1):
+        cell = storage.pop()
+        free.remove(cell)
+        instance.shelves[ident] = Shelf(ident, cell)
+    for ident in range(1, robots + 1):
+        instance.robots[ident] = Robot(ident, free.pop())
+    for product in range(1, 4):
+        holders = rng.sample(range(1, shelves + 1), rng.randint(1, 2))
+        instance.products[product] = Product(product, {s: rng.randint(1, 2) for s in holders})
+    for ident in range(1, orders + 1):
+        products = rng.sample(sorted(instance.products), rng.randint(1, 2))
+        lines = {p: rng.randint(1, sum(instance.products[p].stock.values())) for p in products}
+        instance.orders[ident] = Order(ident, lines, rng.randint(1, 2))
+    return instance

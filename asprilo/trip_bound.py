@@ -1,0 +1,129 @@
+"""A makespan bound for A, B and C when shelves serve several order lines (see trip_bound.lp).
+
+:mod:`asprilo.delivery_bound` schedules lines when each shelf serves one line at most; here a
+shelf may serve several lines at several stations, a robot may bring several shelves, and
+the relaxation decides the delivery actions themselves.  Its facts are floor distances, all
+no longer than real paths, so every horizon it refutes is one that no valid plan has.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from .delivery_bound import Deliveries, robot_release
+from .domain import Domain
+
+#: the conflicts per horizon (a deterministic budget: "unknown" refutes nothing), the
+#: horizons tried, and the largest program tried: candidate delivery actions per step,
+#: squared, times the longest gap (a measure of the pairs the robot constraints ground)
+TRIP_CONFLICTS = 20_000
+TRIP_STEPS = 64
+TRIP_WORK = 2_000_000
+_PROGRAM = Path(__file__).resolve().parent / "trip_bound.lp"
+
+
+def trip_bound(facts: Deliveries, start: float) -> float:
+    """The first horizon from ``start`` on that the relaxation does not refute (``start``
+    itself when the program would be too big to try)."""
+    stations = sorted({line.station for line in facts.lines})
+    gaps = _gaps(facts, stations)
+    longest = max((g for g in gaps.values() if math.isfinite(g)), default=1)
+    actions = len(facts.robots) * sum(len(line.holders) for line in facts.lines)
+    if actions * actions * longest > TRIP_WORK:
+        return start
+    text = _trip_facts(facts, stations, gaps)
+    horizon = int(start)
+    for _ in range(TRIP_STEPS):
+        if not _refuted(text, horizon):
+            return float(horizon)
+        horizon += 1
+    return float(horizon)
+
+
+def _refuted(text: str, horizon: int) -> bool:
+    import clingo
+
+    control = clingo.Control(["--warn=none", f"-c horizon={horizon}", f"--solve-limit={TRIP_CONFLICTS}"])
+    control.load(str(_PROGRAM))
+    control.add("base", [], text)
+    control.ground([("base", [])])
+    return bool(control.solve().unsatisfiable)
+
+
+def _gaps(facts: Deliveries, stations: list) -> dict:
+    """``(P, Q) -> steps`` between a robot's deliveries at P and Q from different shelves
+    (through the best storage cell), and ``(P, S, Q) -> steps`` when shelf S is still where
+    it started: deliver, walk to a storage cell, put down, walk to the shelf, lift, carry,
+    deliver."""
+    storage = sorted(facts.instance.storage_cells)
+    shelves = sorted({s for line in facts.lines for s in line.holders})
+    gaps: dict = {}
+    if not storage:
+        return gaps
+    to_storage = facts.floor.distances(stations, storage)
+    to_shelves = facts.floor.distances(storage, [facts.shelves[s] for s in shelves])
+    for i, p in enumerate(stations):
+        for j, q in enumerate(stations):
+            gaps[p, q] = float((to_storage[i] + to_storage[j]).min()) + 3
+        via = (to_storage[i][:, None] + to_shelves).min(axis=0)
+        for k, shelf in enumerate(shelves):
+            for q in stations:
+                gaps[p, shelf, q] = float(via[k]) + facts.carry(shelf, q) + 3
+    return gaps
+
+
+def _trip_facts(facts: Deliveries, stations: list, gaps: dict) -> str:
+    index = {cell: k for k, cell in enumerate(stations)}
+    shelves = sorted({s for line in facts.lines for s in line.holders})
+    out = _line_facts(facts, index)
+    for position, robot in enumerate(facts.robots):
+        out.extend(_robot_facts(facts, robot, position, shelves, stations))
+    for shelf in shelves:
+        for q, station in enumerate(stations):
+            # put down on the way and lifted again: two steps more than a straight carry
+            handled = max(facts.arrival(shelf, station) + 1, facts.lifted[shelf] + facts.carry(shelf, station) + 3)
+            if math.isfinite(handled):
+                out.append(f"handled({shelf},{q},{int(handled)}).")
+    for key, steps in gaps.items():
+        if math.isfinite(steps):
+            names = ",".join(str(index.get(part, part)) for part in key)
+            out.append(f"gap_{'any' if len(key) == 2 else 'fresh'}({names},{int(steps)}).")
+    distances = facts.floor.distances(stations, stations)
+    out.extend(f"apart({i},{j},{int(distances[i][j])})." for i in range(len(stations)) for j in range(len(stations)))
+    out.append(f"#const domain = {facts.domain.value}.")
+    return "\n".join(out)
+
+
+def _line_facts(facts: Deliveries, index: dict) -> list[str]:
+    """The lines, their stations and holders, and in A the units ordered and held."""
+    out = []
+    for number, line in enumerate(facts.lines):
+        out.append(f"line({number}). station_of({number},{index[line.station]}). product_of({number},{line.product}).")
+        out.extend(f"holder({number},{s})." for s in line.holders)
+        if facts.domain is Domain.A:
+            units = facts.instance.orders[line.order].lines[line.product]
+            out.append(f"demand({number},{1 if units is None else units}).")
+    for shelf, products in facts.stock.items():
+        out.extend(f"stock({shelf},{product},{1 if units is None else units})." for product, units in products.items())
+    return out
+
+
+def _robot_facts(facts: Deliveries, robot: int, position: int, shelves: list[int], stations: list) -> list[str]:
+    """When ``robot`` can deliver from each shelf at each station at the earliest, and, if it
+    can carry the shelf from where it starts (a shelf carried from the start only by its
+    carrier), when that first delivery can be."""
+    out = [f"robot({robot})."]
+    start = facts.instance.robots[robot]
+    lift = 0 if start.carries is not None else 1
+    walks = facts.floor.distances([start.at], stations)[0]
+    carrier = {r.carries: r.id for r in facts.instance.robots.values() if r.carries is not None}
+    for shelf in shelves:
+        for q, station in enumerate(stations):
+            earliest = max(facts.arrival(shelf, station) + 1, walks[q] + lift + 1)
+            if math.isfinite(earliest):
+                out.append(f"earliest({robot},{shelf},{q},{int(earliest)}).")
+            own = robot_release(facts, robot, position, shelf, station)
+            if carrier.get(shelf, robot) == robot and math.isfinite(own):
+                out.append(f"own({robot},{shelf},{q},{int(own)}).")
+    return out
