@@ -21,23 +21,9 @@ def random_warehouse(seed: int, width: int = 4, height: int = 3, robots: int = 2
     shelves on distinct other cells, one product per shelf (some products on two shelves) and
     ``lines`` order lines over them (A: with small quantities when ``units``)."""
     rng = random.Random(seed)
-    instance = Instance()
-    cells = [(x, y) for y in range(1, height + 1) for x in range(1, width + 1)]
-    for ident, cell in enumerate(cells, 1):
-        instance.nodes[ident] = cell
-        if cell[1] == 2 and rng.random() < 0.5:
-            instance.highways[ident] = cell
-    station = (rng.randint(1, width), 1)
-    instance.stations[1] = PickingStation(1, station)
-    free = [c for c in cells if c != station]
-    rng.shuffle(free)
-    storage = [c for c in free if c not in instance.highways.values()]
-    for ident in range(1, shelves + 1):
-        cell = storage.pop()
-        free.remove(cell)
-        instance.shelves[ident] = Shelf(ident, cell)
-    for ident in range(1, robots + 1):
-        instance.robots[ident] = Robot(ident, free.pop())
+    instance = _grid(rng, width, height, highway_share=0.5)
+    instance.stations[1] = PickingStation(1, (rng.randint(1, width), 1))
+    _place(rng, instance, robots, shelves)
     for ident in range(1, shelves + 1):
         stock = {ident: rng.randint(1, 2) if units else None}
         if ident > 1 and rng.random() < 0.3:
@@ -49,6 +35,31 @@ def random_warehouse(seed: int, width: int = 4, height: int = 3, robots: int = 2
         amount = rng.randint(1, available) if units else None
         instance.orders[number] = Order(number, {product: amount}, 1)
     return instance
+
+
+def _grid(rng: random.Random, width: int, height: int, highway_share: float) -> Instance:
+    """A full ``width`` x ``height`` grid; each cell of row 2 a highway with ``highway_share``."""
+    instance = Instance()
+    cells = [(x, y) for y in range(1, height + 1) for x in range(1, width + 1)]
+    for ident, cell in enumerate(cells, 1):
+        instance.nodes[ident] = cell
+        if cell[1] == 2 and rng.random() < highway_share:
+            instance.highways[ident] = cell
+    return instance
+
+
+def _place(rng: random.Random, instance: Instance, robots: int, shelves: int) -> None:
+    """Shelves on random storage cells, then robots on random other cells (never a station)."""
+    stations = {station.at for station in instance.stations.values()}
+    free = [cell for cell in instance.nodes.values() if cell not in stations]
+    rng.shuffle(free)
+    storage = [c for c in free if c not in instance.highways.values()]
+    for ident in range(1, shelves + 1):
+        cell = storage.pop()
+        free.remove(cell)
+        instance.shelves[ident] = Shelf(ident, cell)
+    for ident in range(1, robots + 1):
+        instance.robots[ident] = Robot(ident, free.pop())
 
 
 def minimal_makespan(instance: Instance, domain: Domain, constants: dict[str, int] | None = None,
@@ -78,23 +89,10 @@ def random_two_station_warehouse(seed: int, width: int = 5, height: int = 3, rob
     them, three products on one or two shelves each (so shelves often hold several ordered
     products), and ``orders`` orders of one or two lines with quantities at random stations."""
     rng = random.Random(seed)
-    instance = Instance()
-    cells = [(x, y) for y in range(1, height + 1) for x in range(1, width + 1)]
-    for ident, cell in enumerate(cells, 1):
-        instance.nodes[ident] = cell
-        if cell[1] == 2 and rng.random() < 0.3:
-            instance.highways[ident] = cell
+    instance = _grid(rng, width, height, highway_share=0.3)
     columns = rng.sample(range(1, width + 1), 2)
     instance.stations = {k: PickingStation(k, (x, 1)) for k, x in enumerate(columns, 1)}
-    free = [c for c in cells if c[1] != 1 or c[0] not in columns]
-    rng.shuffle(free)
-    storage = [c for c in free if c not in instance.highways.values()]
-    for ident in range(1, shelves + 1):
-        cell = storage.pop()
-        free.remove(cell)
-        instance.shelves[ident] = Shelf(ident, cell)
-    for ident in range(1, robots + 1):
-        instance.robots[ident] = Robot(ident, free.pop())
+    _place(rng, instance, robots, shelves)
     for product in range(1, 4):
         holders = rng.sample(range(1, shelves + 1), rng.randint(1, 2))
         instance.products[product] = Product(product, {s: rng.randint(1, 2) for s in holders})
