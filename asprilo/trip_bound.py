@@ -20,6 +20,8 @@ from .domain import Domain
 TRIP_CONFLICTS = 20_000
 TRIP_STEPS = 64
 TRIP_WORK = 2_000_000
+#: clingo's integers are 32 bits: A's unit sums are left out beyond this
+LARGEST_SUM = 2**31 - 1
 _PROGRAM = Path(__file__).resolve().parent / "trip_bound.lp"
 
 
@@ -27,12 +29,13 @@ def trip_bound(facts: Deliveries, start: float) -> float:
     """The first horizon from ``start`` on that the relaxation does not refute (``start``
     itself when the program would be too big to try)."""
     stations = sorted({line.station for line in facts.lines})
-    gaps = _gaps(facts, stations)
+    shelves = sorted({s for line in facts.lines for s in line.holders})
+    gaps = _gaps(facts, stations, shelves)
     longest = max((g for g in gaps.values() if math.isfinite(g)), default=1)
     actions = len(facts.robots) * sum(len(line.holders) for line in facts.lines)
     if actions * actions * longest > TRIP_WORK:
         return start
-    text = _trip_facts(facts, stations, gaps)
+    text = _trip_facts(facts, stations, shelves, gaps)
     horizon = int(start)
     for _ in range(TRIP_STEPS):
         if not _refuted(text, horizon):
@@ -51,13 +54,12 @@ def _refuted(text: str, horizon: int) -> bool:
     return bool(control.solve().unsatisfiable)
 
 
-def _gaps(facts: Deliveries, stations: list) -> dict:
+def _gaps(facts: Deliveries, stations: list, shelves: list[int]) -> dict:
     """``(P, Q) -> steps`` between a robot's deliveries at P and Q from different shelves
     (through the best storage cell), and ``(P, S, Q) -> steps`` when shelf S is still where
     it started: deliver, walk to a storage cell, put down, walk to the shelf, lift, carry,
     deliver."""
     storage = sorted(facts.instance.storage_cells)
-    shelves = sorted({s for line in facts.lines for s in line.holders})
     gaps: dict = {}
     if not storage:
         return gaps
@@ -73,12 +75,12 @@ def _gaps(facts: Deliveries, stations: list) -> dict:
     return gaps
 
 
-def _trip_facts(facts: Deliveries, stations: list, gaps: dict) -> str:
+def _trip_facts(facts: Deliveries, stations: list, shelves: list[int], gaps: dict) -> str:
     index = {cell: k for k, cell in enumerate(stations)}
-    shelves = sorted({s for line in facts.lines for s in line.holders})
     out = _line_facts(facts, index)
+    carrier = {r.carries: r.id for r in facts.instance.robots.values() if r.carries is not None}
     for position, robot in enumerate(facts.robots):
-        out.extend(_robot_facts(facts, robot, position, shelves, stations))
+        out.extend(_robot_facts(facts, robot, position, shelves, stations, carrier))
     for shelf in shelves:
         for q, station in enumerate(stations):
             # put down on the way and lifted again: two steps more than a straight carry
@@ -96,28 +98,35 @@ def _trip_facts(facts: Deliveries, stations: list, gaps: dict) -> str:
 
 
 def _line_facts(facts: Deliveries, index: dict) -> list[str]:
-    """The lines, their stations and holders, and in A the units ordered and held."""
+    """The lines, their stations and holders, and in A the units ordered and held (left out
+    where clingo's sums over them could overflow: then every line only needs a delivery)."""
     out = []
     for number, line in enumerate(facts.lines):
         out.append(f"line({number}). station_of({number},{index[line.station]}). product_of({number},{line.product}).")
         out.extend(f"holder({number},{s})." for s in line.holders)
-        if facts.domain is Domain.A:
-            units = facts.instance.orders[line.order].lines[line.product]
-            out.append(f"demand({number},{1 if units is None else units}).")
-    for shelf, products in facts.stock.items():
-        out.extend(f"stock({shelf},{product},{1 if units is None else units})." for product, units in products.items())
+    demand = [_units(facts.instance.orders[line.order].lines[line.product]) for line in facts.lines]
+    stock = [(shelf, product, _units(units)) for shelf, products in facts.stock.items()
+             for product, units in products.items()]
+    if facts.domain is Domain.A and sum(demand) + sum(units for *_, units in stock) <= LARGEST_SUM:
+        out.extend(f"demand({number},{units})." for number, units in enumerate(demand))
+        out.extend(f"stock({shelf},{product},{units})." for shelf, product, units in stock)
     return out
 
 
-def _robot_facts(facts: Deliveries, robot: int, position: int, shelves: list[int], stations: list) -> list[str]:
+def _units(units: int | None) -> int:
+    """A quantity-free fact counts as one unit."""
+    return 1 if units is None else units
+
+
+def _robot_facts(facts: Deliveries, robot: int, position: int, shelves: list[int], stations: list,
+                 carrier: dict[int, int]) -> list[str]:
     """When ``robot`` can deliver from each shelf at each station at the earliest, and, if it
     can carry the shelf from where it starts (a shelf carried from the start only by its
-    carrier), when that first delivery can be."""
+    ``carrier``), when that first delivery can be."""
     out = [f"robot({robot})."]
     start = facts.instance.robots[robot]
     lift = 0 if start.carries is not None else 1
     walks = facts.floor.distances([start.at], stations)[0]
-    carrier = {r.carries: r.id for r in facts.instance.robots.values() if r.carries is not None}
     for shelf in shelves:
         for q, station in enumerate(stations):
             earliest = max(facts.arrival(shelf, station) + 1, walks[q] + lift + 1)

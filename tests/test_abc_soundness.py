@@ -66,6 +66,17 @@ def test_a_shelf_stays_named_until_its_last_delivery(same_station, domain, expec
     assert (outcome.horizon, outcome.minimal, outcome.check.valid) == (expected, True, True)
 
 
+@pytest.mark.parametrize("units", [10**8, 10**9])
+def test_huge_quantities_bound_as_single_units_do(units):
+    # the shelf holds every unit both orders want, so only the trips count: 8, as above.  The
+    # relaxation sums units instead of choosing amounts (which would ground 10**8 atoms); with
+    # 10**9 its sums would overflow clingo's 32-bit integers, so it only counts deliveries
+    instance = one_shelf_for_two_stations(same_station=False)
+    instance.products = {1: Product(1, {1: units}), 2: Product(2, {1: units})}
+    instance.orders = {1: Order(1, {1: units}, 1), 2: Order(2, {2: units}, 2)}
+    assert makespan_bound(instance, Domain.A) == 8
+
+
 @pytest.mark.parametrize("seed", range(8))
 @pytest.mark.parametrize("domain", DOMAINS, ids=lambda d: d.value)
 def test_random_tiny_minima_equal_brute_force(seed, domain):
