@@ -55,10 +55,11 @@ def _refuted(text: str, horizon: int) -> bool:
 
 
 def _gaps(facts: Deliveries, stations: list, shelves: list[int]) -> dict:
-    """``(P, Q) -> steps`` between a robot's deliveries at P and Q from different shelves
-    (through the best storage cell), and ``(P, S, Q) -> steps`` when shelf S is still where
-    it started: deliver, walk to a storage cell, put down, walk to the shelf, lift, carry,
-    deliver."""
+    """Steps a robot needs between two actions, keyed by the fact that states them:
+    ``("gap_any", P, Q)`` between deliveries at P and Q from different shelves (through the
+    best storage cell); ``("gap_fresh", P, S, Q)`` when the second shelf S is still where it
+    started (deliver, walk to a storage cell, put down, walk to S, lift, carry, deliver);
+    ``("fetch", P, S)`` from a delivery at P to lifting S where it started."""
     storage = sorted(facts.instance.storage_cells)
     gaps: dict = {}
     if not storage:
@@ -67,11 +68,12 @@ def _gaps(facts: Deliveries, stations: list, shelves: list[int]) -> dict:
     to_shelves = facts.floor.distances(storage, [facts.shelves[s] for s in shelves])
     for i, p in enumerate(stations):
         for j, q in enumerate(stations):
-            gaps[p, q] = float((to_storage[i] + to_storage[j]).min()) + 3
+            gaps["gap_any", p, q] = float((to_storage[i] + to_storage[j]).min()) + 3
         via = (to_storage[i][:, None] + to_shelves).min(axis=0)
         for k, shelf in enumerate(shelves):
+            gaps["fetch", p, shelf] = float(via[k]) + 2
             for q in stations:
-                gaps[p, shelf, q] = float(via[k]) + facts.carry(shelf, q) + 3
+                gaps["gap_fresh", p, shelf, q] = float(via[k]) + facts.carry(shelf, q) + 3
     return gaps
 
 
@@ -84,17 +86,31 @@ def _trip_facts(facts: Deliveries, stations: list, shelves: list[int], gaps: dic
     for shelf in shelves:
         for q, station in enumerate(stations):
             # put down on the way and lifted again: two steps more than a straight carry
-            handled = max(facts.arrival(shelf, station) + 1, facts.lifted[shelf] + facts.carry(shelf, station) + 3)
+            carry = facts.carry(shelf, station)
+            handled = max(facts.arrival(shelf, station) + 1, facts.lifted[shelf] + carry + 3)
             if math.isfinite(handled):
-                out.append(f"handled({shelf},{q},{int(handled)}).")
-    for key, steps in gaps.items():
+                out.append(f"handled({shelf},{q},{int(handled)}). carry({shelf},{q},{int(carry)}).")
+    out.extend(f"carried({shelf})." for shelf in shelves if shelf in facts.carried)
+    out.extend(_shelf_gaps(facts, shelves))
+    for (name, *key), steps in gaps.items():
         if math.isfinite(steps):
-            names = ",".join(str(index.get(part, part)) for part in key)
-            out.append(f"gap_{'any' if len(key) == 2 else 'fresh'}({names},{int(steps)}).")
+            out.append(f"{name}({','.join(str(index.get(part, part)) for part in key)},{int(steps)}).")
     distances = facts.floor.distances(stations, stations)
     out.extend(f"apart({i},{j},{int(distances[i][j])})." for i in range(len(stations)) for j in range(len(stations)))
-    out.append(f"#const domain = {facts.domain.value}.")
+    on_station = any(cell in stations for cell in facts.shelves.values())
+    out.append(f"aside({5 if on_station else 6}). #const domain = {facts.domain.value}.")
     return "\n".join(out)
+
+
+def _shelf_gaps(facts: Deliveries, shelves: list[int]) -> list[str]:
+    """``between(S,S2,G)``: a robot that lifts S where it started lifts S2 where S2 started G
+    steps later at the earliest (carry S somewhere else, put it down, walk to S2: at least a
+    step each, and never less than the distance between the two)."""
+    cells = [facts.shelves[s] for s in shelves]
+    distances = facts.floor.distances(cells, cells)
+    return [f"between({s},{s2},{int(max(4, distances[i][j] + 2))})."
+            for i, s in enumerate(shelves) for j, s2 in enumerate(shelves)
+            if i != j and math.isfinite(distances[i][j])]
 
 
 def _line_facts(facts: Deliveries, index: dict) -> list[str]:
@@ -128,6 +144,10 @@ def _robot_facts(facts: Deliveries, robot: int, position: int, shelves: list[int
     lift = 0 if start.carries is not None else 1
     walks = facts.floor.distances([start.at], stations)[0]
     for shelf in shelves:
+        # lifting a shelf where it started: walk there (after putting down a carried one), lift
+        reach = float(facts.walk[shelf][position]) + 1 + (start.carries is not None)
+        if shelf not in facts.carried and math.isfinite(reach):
+            out.append(f"reach_shelf({robot},{shelf},{int(reach)}).")
         for q, station in enumerate(stations):
             earliest = max(facts.arrival(shelf, station) + 1, walks[q] + lift + 1)
             if math.isfinite(earliest):
