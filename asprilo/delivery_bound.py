@@ -256,16 +256,15 @@ def robot_release(facts: Deliveries, robot: int, position: int, shelf: int, stat
 
 def _cycle(facts: Deliveries) -> float:
     """The fewest steps between two deliveries of one robot from different shelves: carry
-    the first shelf to a storage cell, put it down, walk to the next, lift it, bring it,
-    deliver."""
+    the first shelf to a storage cell (not the one where the next shelf stands), put it
+    down, walk to the next, lift it, bring it, deliver."""
     storage = sorted(facts.instance.storage_cells)
     if not storage:
         return INFINITE
     stations = sorted({line.station for line in facts.lines})
     shelves = sorted({s for line in facts.lines for s in line.holders})
     to_storage = facts.floor.distances(stations, storage).min(axis=0)  # nearest station per cell
-    shelf_cells = [facts.shelves[s] for s in shelves]
-    via = (facts.floor.distances(shelf_cells, storage) + to_storage[np.newaxis, :]).min(axis=1)
+    via = (storage_to_shelves(facts, storage, shelves) + to_storage[:, np.newaxis]).min(axis=0)
     best = INFINITE
     for line in facts.lines:
         for shelf in line.holders:
@@ -301,3 +300,16 @@ def _short_of_stock(facts: Deliveries) -> bool:
         if units > sum(1 if held is None else held for shelf, held in stock.items() if shelf in facts.shelves):
             return True
     return False
+
+
+def storage_to_shelves(facts: Deliveries, storage: list, shelves: list[int]) -> np.ndarray:
+    """``len(storage) x len(shelves)`` distances from each storage cell to where each shelf
+    started, except from the shelf's own cell (infinite: nothing is put down there while it
+    stands there)."""
+    cells = [facts.shelves[s] for s in shelves]
+    distances = facts.floor.distances(storage, cells)
+    row = {cell: i for i, cell in enumerate(storage)}
+    for k, cell in enumerate(cells):
+        if cell in row:
+            distances[row[cell], k] = INFINITE
+    return distances

@@ -8,11 +8,16 @@ no longer than real paths, so every horizon it refutes is one that no valid plan
 
 from __future__ import annotations
 
+import heapq
 import math
 from pathlib import Path
 
-from .delivery_bound import Deliveries, robot_release
+import numpy as np
+
+from .bounds import INFINITE
+from .delivery_bound import Deliveries, robot_release, storage_to_shelves
 from .domain import Domain
+from .model import DIRECTIONS
 
 #: the conflicts per horizon (a deterministic budget: "unknown" refutes nothing), the
 #: horizons tried, and the largest program tried: candidate delivery actions per step,
@@ -56,25 +61,64 @@ def _refuted(text: str, horizon: int) -> bool:
 
 def _gaps(facts: Deliveries, stations: list, shelves: list[int]) -> dict:
     """Steps a robot needs between two actions, keyed by the fact that states them:
-    ``("gap_any", P, Q)`` between deliveries at P and Q from different shelves (through the
-    best storage cell); ``("gap_fresh", P, S, Q)`` when the second shelf S is still where it
-    started (deliver, walk to a storage cell, put down, walk to S, lift, carry, deliver);
-    ``("fetch", P, S)`` from a delivery at P to lifting S where it started."""
+    ``("gap_any", P, Q)`` between deliveries at P and Q from different shelves (put the first
+    down on a storage cell, walk to the second, lift it, bring it, deliver);
+    ``("gap_hand", P, Q)`` between deliveries of one shelf by two robots (the first puts it
+    down, moves off the cell as the second moves on, who lifts it, brings it, delivers);
+    ``("gap_fresh", P, S, Q)`` when the second shelf S is still where it started;
+    ``("fetch", P, S)`` from a delivery at P to lifting S where it started; ``("aside", S, Q)``
+    from lifting S where it started to delivering another shelf at Q (put S down elsewhere,
+    walk to the other shelf, lift it, bring it, deliver); ``("detour", S, Q)`` the moves of S
+    from where it started to Q through another storage cell.
+
+    A shelf is never put down where another one rests: not on the cell of the shelf the robot
+    fetches next (while it still stands there), and the robot that leaves a shelf on a cell
+    lifts the next one elsewhere, or walks away and back."""
     storage = sorted(facts.instance.storage_cells)
     gaps: dict = {}
     if not storage:
         return gaps
     to_storage = facts.floor.distances(stations, storage)
-    to_shelves = facts.floor.distances(storage, [facts.shelves[s] for s in shelves])
+    to_shelves = storage_to_shelves(facts, storage, shelves)
+    resting = set(storage) | set(facts.shelves.values())
+    onward = {q: _onward(facts, storage, resting, q) for q in stations}
     for i, p in enumerate(stations):
         for j, q in enumerate(stations):
-            gaps["gap_any", p, q] = float((to_storage[i] + to_storage[j]).min()) + 3
+            gaps["gap_any", p, q] = float((to_storage[i] + onward[q]).min()) + 3
+            gaps["gap_hand", p, q] = float((to_storage[i] + to_storage[j]).min()) + 4
         via = (to_storage[i][:, None] + to_shelves).min(axis=0)
         for k, shelf in enumerate(shelves):
             gaps["fetch", p, shelf] = float(via[k]) + 2
             for q in stations:
                 gaps["gap_fresh", p, shelf, q] = float(via[k]) + facts.carry(shelf, q) + 3
+    for j, q in enumerate(stations):
+        for k, shelf in enumerate(shelves):
+            gaps["aside", shelf, q] = float((to_shelves[:, k] + onward[q]).min()) + 3
+            gaps["detour", shelf, q] = float((to_shelves[:, k] + to_storage[j]).min())
     return gaps
+
+
+def _onward(facts: Deliveries, storage: list, resting: set, station) -> np.ndarray:
+    """For each storage cell C: the fewest moves from C, where a robot has just put a shelf
+    down, to ``station`` with another shelf: walk to a cell where that shelf rests (leaving C
+    and coming back when it is C itself), then carry it there.  A multi-source search whose
+    sources are the cells a shelf may rest on, each starting at its distance to the station."""
+    cells = facts.floor.cells
+    near = facts.floor.distances([station], cells)[0]
+    best = {cell: float(near[k]) for k, cell in enumerate(cells) if cell in resting and math.isfinite(near[k])}
+    queue = [(steps, cell) for cell, steps in best.items()]
+    heapq.heapify(queue)
+    while queue:
+        steps, (x, y) = heapq.heappop(queue)
+        if steps > best[(x, y)]:
+            continue
+        for dx, dy in DIRECTIONS:
+            cell = (x + dx, y + dy)
+            if cell in facts.floor.index and steps + 1 < best.get(cell, INFINITE):
+                best[cell] = steps + 1
+                heapq.heappush(queue, (steps + 1, cell))
+    return np.array([1 + min((best.get((x + dx, y + dy), INFINITE) for dx, dy in DIRECTIONS), default=INFINITE)
+                     for x, y in storage])
 
 
 def _trip_facts(facts: Deliveries, stations: list, shelves: list[int], gaps: dict) -> str:
@@ -85,9 +129,9 @@ def _trip_facts(facts: Deliveries, stations: list, shelves: list[int], gaps: dic
         out.extend(_robot_facts(facts, robot, position, shelves, stations, carrier))
     for shelf in shelves:
         for q, station in enumerate(stations):
-            # put down on the way and lifted again: two steps more than a straight carry
-            carry = facts.carry(shelf, station)
-            handled = max(facts.arrival(shelf, station) + 1, facts.lifted[shelf] + carry + 3)
+            # put down on the way and lifted again: a put-down and a lift more than the detour
+            carry, detour = facts.carry(shelf, station), gaps.get(("detour", shelf, station), INFINITE)
+            handled = max(facts.arrival(shelf, station) + 1, facts.lifted[shelf] + detour + 3)
             if math.isfinite(handled):
                 out.append(f"handled({shelf},{q},{int(handled)}). carry({shelf},{q},{int(carry)}).")
     out.extend(f"carried({shelf})." for shelf in shelves if shelf in facts.carried)
@@ -97,20 +141,22 @@ def _trip_facts(facts: Deliveries, stations: list, shelves: list[int], gaps: dic
             out.append(f"{name}({','.join(str(index.get(part, part)) for part in key)},{int(steps)}).")
     distances = facts.floor.distances(stations, stations)
     out.extend(f"apart({i},{j},{int(distances[i][j])})." for i in range(len(stations)) for j in range(len(stations)))
-    on_station = any(cell in stations for cell in facts.shelves.values())
-    out.append(f"aside({5 if on_station else 6}). #const domain = {facts.domain.value}.")
+    out.append(f"#const domain = {facts.domain.value}.")
     return "\n".join(out)
 
 
 def _shelf_gaps(facts: Deliveries, shelves: list[int]) -> list[str]:
     """``between(S,S2,G)``: a robot that lifts S where it started lifts S2 where S2 started G
-    steps later at the earliest (carry S somewhere else, put it down, walk to S2: at least a
-    step each, and never less than the distance between the two)."""
-    cells = [facts.shelves[s] for s in shelves]
-    distances = facts.floor.distances(cells, cells)
-    return [f"between({s},{s2},{int(max(4, distances[i][j] + 2))})."
-            for i, s in enumerate(shelves) for j, s2 in enumerate(shelves)
-            if i != j and math.isfinite(distances[i][j])]
+    steps later at the earliest: it carries S to a storage cell where neither shelf stands,
+    puts it down, walks to S2 and lifts it."""
+    storage = sorted(facts.instance.storage_cells)
+    to_shelves = storage_to_shelves(facts, storage, shelves)
+    out = []
+    for i, s in enumerate(shelves):
+        through = (to_shelves[:, i:i + 1] + to_shelves).min(axis=0, initial=INFINITE) + 2
+        out.extend(f"between({s},{s2},{int(through[j])})." for j, s2 in enumerate(shelves)
+                   if i != j and math.isfinite(through[j]))
+    return out
 
 
 def _line_facts(facts: Deliveries, index: dict) -> list[str]:

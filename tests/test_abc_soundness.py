@@ -138,6 +138,22 @@ def test_the_bound_counts_the_robot_that_moves_a_shelf_aside(seed, size, domain)
     assert minimal_makespan(instance, domain, start=int(bound) - 1, limit=int(bound)) == bound
 
 
+# Instances where the steps between two actions are longer than floor distances say: a shelf
+# is never set down where another one stands (asprilo/trip_bound.py, _gaps; seed 242: the
+# robot's cycle in asprilo/delivery_bound.py).  The bound is the minimum the exact encoding
+# finds (one or two steps more than before).
+@pytest.mark.parametrize(("seed", "size", "domain"), [
+    (178, (2, 5, 4), Domain.A), (352, (2, 3, 3), Domain.A),
+    pytest.param(214, (2, 5, 4), Domain.A, marks=pytest.mark.slow),
+    pytest.param(242, (2, 5, 4), Domain.C, marks=pytest.mark.slow),
+    pytest.param(268, (2, 3, 3), Domain.A, marks=pytest.mark.slow)])
+def test_the_bound_sets_shelves_down_only_on_free_cells(seed, size, domain):
+    robots, shelves, height = size
+    instance = random_two_station_warehouse(seed, robots=robots, shelves=shelves, height=height)
+    bound = makespan_bound(instance, domain)
+    assert minimal_makespan(instance, domain, start=int(bound) - 1, limit=int(bound)) == bound
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", range(10, 80))
 @pytest.mark.parametrize("domain", DOMAINS, ids=lambda d: d.value)

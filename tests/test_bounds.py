@@ -9,10 +9,12 @@ import pytest
 from helpers import EXAMPLES
 
 from asprilo.bounds import Floor, bottleneck_assignment, makespan_bound, mapf_bounds, min_cost_assignment
+from asprilo.delivery_bound import Deliveries
 from asprilo.domain import Domain
 from asprilo.model import Instance, Robot
 from asprilo.reader import read_instance
 from asprilo.sources import Source
+from asprilo.trip_bound import _gaps, _shelf_gaps
 
 
 def test_distances_around_a_wall():
@@ -121,6 +123,45 @@ def test_no_line_or_an_unreachable_line():
     assert makespan_bound(_row_world(5, 1, {1: (1, 1)}, {1: (3, 1)}, (5, 1), {}), Domain.B) == 0
     missing = _row_world(5, 1, {1: (1, 1)}, {1: (3, 1)}, (5, 1), {1: 7})
     assert makespan_bound(missing, Domain.B) == math.inf
+
+
+def test_the_trip_steps_follow_the_cells_a_robot_must_use():
+    # 3x3: highways in rows 1 and 2 except the station P (2,1); storage row 3 with shelf 1 on
+    # (2,3) and shelf 2 on (1,3), both holding the ordered product.  P's neighbours are all
+    # highway, so a shelf goes down two cells from P at the nearest, on (2,3).
+    facts = """
+        init(object(grid,1),value(xsize,3)). init(object(grid,1),value(ysize,3)).
+        init(object(highway,1),value(at,(1,1))). init(object(highway,2),value(at,(3,1))).
+        init(object(highway,3),value(at,(1,2))). init(object(highway,4),value(at,(2,2))).
+        init(object(highway,5),value(at,(3,2))). init(object(pickingStation,1),value(at,(2,1))).
+        init(object(robot,1),value(at,(3,3))).
+        init(object(shelf,1),value(at,(2,3))). init(object(shelf,2),value(at,(1,3))).
+        init(object(product,1),value(on,(1,1))). init(object(product,1),value(on,(2,1))).
+        init(object(order,1),value(line,(1,1))). init(object(order,1),value(pickingStation,1)).
+    """
+    instance = read_instance(Source("<world>", facts))
+    station = (2, 1)
+    gaps = _gaps(Deliveries(instance, Domain.B, Floor(instance.cells)), [station], [1, 2])
+    # deliver, 2 moves to (2,3), put down, 1 move to (1,3), lift, 3 moves back, deliver: 9
+    # (with the next shelf on (2,3) itself: 2 moves off and back, lift, 2 moves: 9 as well)
+    assert gaps["gap_any", station, station] == 9
+    # the same shelf to another robot: put down on (2,3), the first robot moves off as the
+    # second moves on, lift, 2 moves, deliver: 8
+    assert gaps["gap_hand", station, station] == 8
+    # after a delivery, lift shelf 1 where it stands: never put down on its own cell, so on
+    # (1,3) or (3,3): 3 moves, put down, 1 move, lift: 6; shelf 2: via (2,3): 2 + 1 + 1 + 1 = 5
+    assert (gaps["fetch", station, 1], gaps["fetch", station, 2]) == (6, 5)
+    # ...then carry it and deliver: shelf 1: 4 + 2 moves + 3 = 9; shelf 2: 3 + 3 moves + 3 = 9
+    assert (gaps["gap_fresh", station, 1, station], gaps["gap_fresh", station, 2, station]) == (9, 9)
+    # shelf 1 lifted where it stands, 1 move to (1,3), put down; the next shelf on (2,3) at
+    # best: 1 move, lift, 2 moves, deliver: 7.  Shelf 2: 1 move to (2,3), put down; the next
+    # shelf 1 move off and 3 from P (or on (2,3): 2 moves off and back, then 2): 8
+    assert (gaps["aside", 1, station], gaps["aside", 2, station]) == (7, 8)
+    # the way of a shelf through another storage cell: (2,3)->(1,3)->P 4, (1,3)->(2,3)->P 3
+    assert (gaps["detour", 1, station], gaps["detour", 2, station]) == (4, 3)
+    # lift one, put it down on the third cell (3,3) or through it, walk to the other, lift: 5
+    assert _shelf_gaps(Deliveries(instance, Domain.B, Floor(instance.cells)), [1, 2]) == \
+        ["between(1,2,5).", "between(2,1,5)."]
 
 
 @pytest.mark.parametrize("name, domain, minimal", [
