@@ -304,12 +304,13 @@ def _short_of_stock(facts: Deliveries) -> bool:
 
 def storage_to_shelves(facts: Deliveries, storage: list, shelves: list[int]) -> np.ndarray:
     """``len(storage) x len(shelves)`` distances from each storage cell to where each shelf
-    started, except from the shelf's own cell (infinite: nothing is put down there while it
-    stands there)."""
+    started, except from the cell of a shelf resting there (infinite: nothing is put down
+    there while it stands there; a shelf carried from the start may be set down under its
+    robot and lifted again)."""
     cells = [facts.shelves[s] for s in shelves]
-    distances = facts.floor.distances(storage, cells)
+    distances = facts.floor.distances(cells, storage).T.copy()  # fewer searches: one per shelf
     row = {cell: i for i, cell in enumerate(storage)}
-    for k, cell in enumerate(cells):
-        if cell in row:
+    for k, (shelf, cell) in enumerate(zip(shelves, cells, strict=True)):
+        if cell in row and shelf not in facts.carried:
             distances[row[cell], k] = INFINITE
     return distances

@@ -162,6 +162,12 @@ def test_the_trip_steps_follow_the_cells_a_robot_must_use():
     # lift one, put it down on the third cell (3,3) or through it, walk to the other, lift: 5
     assert _shelf_gaps(Deliveries(instance, Domain.B, Floor(instance.cells)), [1, 2]) == \
         ["between(1,2,5).", "between(2,1,5)."]
+    # a robot that starts under shelf 1 carrying it may set it down right there and lift it
+    # again: its detour is the plain way, 2
+    carried = read_instance(Source("<world>", facts.replace("value(at,(3,3))", "value(at,(2,3))")
+                                   + "init(object(robot,1),value(carries,1))."))
+    gaps = _gaps(Deliveries(carried, Domain.B, Floor(carried.cells)), [station], [1, 2])
+    assert (gaps["detour", 1, station], gaps["detour", 2, station]) == (2, 3)
 
 
 @pytest.mark.parametrize("name, domain, minimal", [
