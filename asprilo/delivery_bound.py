@@ -36,11 +36,13 @@ SCHEDULE_STEPS = 64
 _PROGRAM = Path(__file__).resolve().parent / "delivery_bound.lp"
 
 
-def carry_arrivals(cells: set[Cell], start: Cell, lifted: float, free_at: dict[Cell, float]) -> dict[Cell, float]:
-    """The earliest step a shelf lifted on ``start`` at step ``lifted`` can be on each cell,
-    when a cell in ``free_at`` can be entered no earlier than the step given there."""
-    best = {start: lifted}
-    queue = [(lifted, start)]
+def carry_arrivals(cells: set[Cell], starts: dict[Cell, float], free_at: dict[Cell, float]) -> dict[Cell, float]:
+    """The earliest step something that can be on each cell of ``starts`` at the step given
+    there (a shelf lifted there, say) can be on each cell, moving one cell per step, when a
+    cell in ``free_at`` can be entered no earlier than the step given there."""
+    best = dict(starts)
+    queue = [(step, cell) for cell, step in best.items()]
+    heapq.heapify(queue)
     while queue:
         step, (x, y) = heapq.heappop(queue)
         if step > best[(x, y)]:
@@ -128,8 +130,8 @@ class Deliveries:
         if shelf not in self._arrivals:
             free_at = {cell: self.lifted[other] + 1 for other, cell in self.shelves.items()
                        if other != shelf and other not in self.carried}
-            self._arrivals[shelf] = carry_arrivals(self.instance.cells, self.shelves[shelf],
-                                                   self.lifted[shelf], free_at)
+            self._arrivals[shelf] = carry_arrivals(self.instance.cells, {self.shelves[shelf]: self.lifted[shelf]},
+                                                   free_at)
         return self._arrivals[shelf].get(station, INFINITE)
 
     def release(self, line: Line) -> float:

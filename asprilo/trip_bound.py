@@ -8,14 +8,13 @@ no longer than real paths, so every horizon it refutes is one that no valid plan
 
 from __future__ import annotations
 
-import heapq
 import math
 from pathlib import Path
 
 import numpy as np
 
 from .bounds import INFINITE
-from .delivery_bound import Deliveries, robot_release, storage_to_shelves
+from .delivery_bound import Deliveries, carry_arrivals, robot_release, storage_to_shelves
 from .domain import Domain
 from .model import DIRECTIONS
 
@@ -105,18 +104,8 @@ def _onward(facts: Deliveries, storage: list, resting: set, station) -> np.ndarr
     sources are the cells a shelf may rest on, each starting at its distance to the station."""
     cells = facts.floor.cells
     near = facts.floor.distances([station], cells)[0]
-    best = {cell: float(near[k]) for k, cell in enumerate(cells) if cell in resting and math.isfinite(near[k])}
-    queue = [(steps, cell) for cell, steps in best.items()]
-    heapq.heapify(queue)
-    while queue:
-        steps, (x, y) = heapq.heappop(queue)
-        if steps > best[(x, y)]:
-            continue
-        for dx, dy in DIRECTIONS:
-            cell = (x + dx, y + dy)
-            if cell in facts.floor.index and steps + 1 < best.get(cell, INFINITE):
-                best[cell] = steps + 1
-                heapq.heappush(queue, (steps + 1, cell))
+    sources = {cell: float(near[k]) for k, cell in enumerate(cells) if cell in resting and math.isfinite(near[k])}
+    best = carry_arrivals(facts.instance.cells, sources, {})
     return np.array([1 + min((best.get((x + dx, y + dy), INFINITE) for dx, dy in DIRECTIONS), default=INFINITE)
                      for x, y in storage])
 
