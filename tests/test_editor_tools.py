@@ -8,6 +8,7 @@ import os
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import re  # noqa: E402
+import threading  # noqa: E402
 import time  # noqa: E402
 from itertools import pairwise  # noqa: E402
 
@@ -15,9 +16,11 @@ import pytest  # noqa: E402
 from helpers import CORRIDOR, SMALL_A, WRONG_OUTCOME  # noqa: E402
 from helpers.online import TINY, tiny  # noqa: E402
 from helpers.viewer import shown_window  # noqa: E402
-from PyQt5.QtCore import QTimer  # noqa: E402
+from PyQt5 import sip  # noqa: E402
+from PyQt5.QtCore import QSettings, QTimer  # noqa: E402
 from PyQt5.QtWidgets import QMessageBox  # noqa: E402
 
+from asprilo import generator  # noqa: E402
 from asprilo.bounds import makespan_bound  # noqa: E402
 from asprilo.checker import check  # noqa: E402
 from asprilo.domain import Domain  # noqa: E402
@@ -25,6 +28,7 @@ from asprilo.generator import populate  # noqa: E402
 from asprilo.model import PickingStation  # noqa: E402
 from asprilo.reader import read_instance  # noqa: E402
 from asprilo.visualizer import edits  # noqa: E402
+from asprilo.visualizer.window import MainWindow  # noqa: E402
 from asprilo.writer import format_instance  # noqa: E402
 
 pytestmark = pytest.mark.gui
@@ -63,6 +67,24 @@ def test_generate_fills_the_layout_as_one_undoable_edit(window, qtbot):
     window.editor.commands["undo"].trigger()
     assert not window.stage.scene.robots and window.editor.document.instance == template
     assert window.editor.palette.isEnabled() and window.editor.commands["redo"].isEnabled()
+
+
+def test_a_window_closed_after_cancelling_a_generation_leaves_it_to_run_out(qtbot, tmp_path_factory,
+                                                                          monkeypatch):
+    # the generator cannot be interrupted: here it runs until the test releases it
+    release = threading.Event()
+    monkeypatch.setattr(generator, "populate", lambda *args, **options: release.wait(WAIT_MS / 1000))
+    monkeypatch.setattr(QMessageBox, "question", lambda *args: QMessageBox.Discard)
+    window = MainWindow(QSettings(str(tmp_path_factory.mktemp("settings") / "viz.ini"), QSettings.IniFormat))
+    window.editor.new_instance(6, 4)
+    job = window.jobs.generate({"robots": 1}, seed=1)
+    window.jobs.cancel()
+    assert window.statusBar().currentMessage() == "Generate cancelled" and window.jobs.job is None
+    window.close()
+    sip.delete(window)  # with the window its thread went too: Qt aborted the process
+    assert job.isRunning()
+    release.set()
+    assert job.wait(WAIT_MS)
 
 
 def test_solve_loads_and_plays_a_plan_of_minimal_makespan(window, qtbot, write):

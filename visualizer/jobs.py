@@ -5,6 +5,9 @@ what it does (the horizons the solver tries) with a Cancel button.  Editing is l
 while a job runs, so its result always fits the instance shown.  Cancelling a solve
 interrupts clingo at once; the generator cannot be interrupted, so a cancelled generation
 is left to finish in the background (at most its time limit) and its result is dropped.
+A job's thread belongs to no window: closing the window while a job still runs never
+destroys a running thread (Qt would abort the process); the process waits for such jobs
+when it exits.
 
 Solve has two methods (Run > Solve method, kept in the settings like the encoding): a plan
 of minimal makespan with a reference encoding, or the anytime planner, whose better plans
@@ -14,6 +17,8 @@ plan when cancelled.
 
 from __future__ import annotations
 
+import atexit
+import contextlib
 import copy
 import threading
 import time
@@ -75,6 +80,31 @@ class Job(QThread):
         else:
             self.seconds = time.perf_counter() - started
             self.succeeded.emit(result)
+
+
+#: the jobs started, until their threads are seen finished (see the module's docstring)
+_STARTED: list[Job] = []
+
+
+def _keep(job: Job) -> None:
+    """Hold on to ``job`` until its thread has finished (dropping the finished ones)."""
+    _STARTED[:] = [started for started in _STARTED if started.isRunning()]
+    _STARTED.append(job)
+
+
+def _silence(job: Job) -> None:
+    """Disconnect everything ``job`` reports to: its result is no longer wanted."""
+    for signal in (job.progress, job.better, job.succeeded, job.failed):
+        with contextlib.suppress(TypeError):  # TypeError: nothing connected
+            signal.disconnect()
+
+
+@atexit.register
+def _wait_for_jobs() -> None:
+    """Let the jobs still running end (cancelled: a solve stops at once) before Python exits."""
+    for job in _STARTED:
+        job.cancel.set()
+        job.wait()
 
 
 class JobBar(QWidget):
@@ -173,7 +203,8 @@ class JobRunner(QObject):
         a job still answers when cancelled (with its best result)."""
         if self.job is not None or self.state.document.scenario is None:
             return None
-        job = Job(title, work, self)
+        job = Job(title, work)
+        _keep(job)
         job.progress.connect(lambda text: self.bar.label.setText(f"{title}: {text}"))
         if better is not None:
             job.better.connect(better)
@@ -192,7 +223,6 @@ class JobRunner(QObject):
         ``answers``: its result is the best so far also when cancelled).  A draft plan it
         showed goes when its result is not wanted."""
         job.wait()
-        job.deleteLater()
         if self.job is job:
             self._idle()
         if not answers:
@@ -213,9 +243,19 @@ class JobRunner(QObject):
         if job is None:
             return
         job.cancel.set()
-        if job.title == "Generate":  # the generator cannot be interrupted: let it run out unseen
-            self._idle()
+        if job.title == "Generate":  # the generator cannot be interrupted: let it run out unheard
+            self._abandon(job)
             self.state.say("Generate cancelled")
+
+    def close(self) -> None:
+        """The window closes: stop the running job and hear nothing more from it."""
+        if self.job is not None:
+            self.job.cancel.set()
+            self._abandon(self.job)
+
+    def _abandon(self, job: Job) -> None:
+        _silence(job)
+        self._idle()
 
     # --- generate ----------------------------------------------------------------------------------
 

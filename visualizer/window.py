@@ -302,7 +302,7 @@ class MainWindow(QMainWindow):
             return
         self.player.pause()
         self.live.disconnect()
-        self.jobs.cancel()
+        self.jobs.close()
         self.settings.setValue("window/geometry", self.saveGeometry())
         self.settings.setValue("window/state", self.saveState())
         super().closeEvent(event)
