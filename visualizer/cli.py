@@ -104,6 +104,7 @@ def _export(args: argparse.Namespace, scenario) -> int:
 
 
 def _show(args: argparse.Namespace, scenario) -> int:
+    from .jobs import wait_for_jobs
     from .render import application
     from .window import MainWindow
     app = application()
@@ -120,7 +121,9 @@ def _show(args: argparse.Namespace, scenario) -> int:
     window.show()
     if args.solver is not None:
         window.live.connect_to(args.host, args.solver, args.simulator)
-    return app.exec_()
+    code = app.exec_()
+    wait_for_jobs()  # a cancelled generation may still run
+    return code
 
 
 def report_exceptions_to(window):

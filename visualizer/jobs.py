@@ -6,8 +6,8 @@ while a job runs, so its result always fits the instance shown.  Cancelling a so
 interrupts clingo at once; the generator cannot be interrupted, so a cancelled generation
 is left to finish in the background (at most its time limit) and its result is dropped.
 A job's thread belongs to no window: closing the window while a job still runs never
-destroys a running thread (Qt would abort the process); the process waits for such jobs
-when it exits.
+destroys a running thread (Qt would abort the process); the application waits for such
+jobs when its window has gone (:func:`wait_for_jobs`).
 
 Solve has two methods (Run > Solve method, kept in the settings like the encoding): a plan
 of minimal makespan with a reference encoding, or the anytime planner, whose better plans
@@ -17,7 +17,6 @@ plan when cancelled.
 
 from __future__ import annotations
 
-import atexit
 import contextlib
 import copy
 import threading
@@ -99,9 +98,9 @@ def _silence(job: Job) -> None:
             signal.disconnect()
 
 
-@atexit.register
-def _wait_for_jobs() -> None:
-    """Let the jobs still running end (cancelled: a solve stops at once) before Python exits."""
+def wait_for_jobs() -> None:
+    """Cancel the jobs still running and let them end (a solve stops at once); for the
+    application's last moments, before Qt destroys every object it still has."""
     for job in _STARTED:
         job.cancel.set()
         job.wait()
