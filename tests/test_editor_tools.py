@@ -175,9 +175,11 @@ def test_anytime_solve_shows_each_better_plan_then_plays_the_best(window, qtbot,
 def test_cancelling_an_anytime_solve_keeps_its_best_plan(window, qtbot):
     window.open_files([str(SMALL_A)])
     window.jobs.solve(method="anytime", time_limit=600)
-    # no plan the anytime search finds meets the lower bound, so it searches on
-    qtbot.waitUntil(lambda: window.jobs.bar.label.text().startswith("Solve: makespan "), timeout=WAIT_MS)
-    assert len(window.scenario.plan) > 0 and window.editor.document.history.count == 0  # a draft
+    # no plan the anytime search finds meets the lower bound, so it searches on; the progress
+    # line and the plan arrive as two events (the line first): wait for both
+    qtbot.waitUntil(lambda: window.jobs.bar.label.text().startswith("Solve: makespan ")
+                    and len(window.scenario.plan) > 0, timeout=WAIT_MS)
+    assert window.editor.document.history.count == 0  # a draft
     window.jobs.cancel()
     finish(qtbot, window)  # within WAIT_MS, far below the 600 s limit: the cancel stopped it
     outcome = window.jobs.last_outcome
