@@ -125,6 +125,14 @@ def test_the_bound_with_two_stations_and_shared_shelves_is_admissible(seed, doma
     assert no_plan_shorter_than(makespan_bound(instance, domain), instance, domain)
 
 
+def assert_the_bound_is_the_minimum(seed: int, size: tuple[int, int, int], domain: Domain) -> None:
+    """The exact encoding has no plan one step below the bound and has one at the bound."""
+    robots, shelves, height = size
+    instance = random_two_station_warehouse(seed, robots=robots, shelves=shelves, height=height)
+    bound = makespan_bound(instance, domain)
+    assert minimal_makespan(instance, domain, start=int(bound) - 1, limit=int(bound)) == bound
+
+
 # Instances where a robot has to fetch a second shelf or move one out of the way: the
 # relaxation counts that robot's time (touch/3 in asprilo/trip_bound.lp), and its bound is
 # the minimum the exact encoding finds (one or two steps more than before touch/3).
@@ -132,10 +140,7 @@ def test_the_bound_with_two_stations_and_shared_shelves_is_admissible(seed, doma
     (90, (2, 5, 4), Domain.C), (106, (2, 5, 4), Domain.B), (214, (2, 5, 4), Domain.B),
     (212, (2, 3, 3), Domain.A), (255, (3, 5, 5), Domain.A), (459, (3, 5, 5), Domain.A)])
 def test_the_bound_counts_the_robot_that_moves_a_shelf_aside(seed, size, domain):
-    robots, shelves, height = size
-    instance = random_two_station_warehouse(seed, robots=robots, shelves=shelves, height=height)
-    bound = makespan_bound(instance, domain)
-    assert minimal_makespan(instance, domain, start=int(bound) - 1, limit=int(bound)) == bound
+    assert_the_bound_is_the_minimum(seed, size, domain)
 
 
 # Instances where the steps between two actions are longer than floor distances say: a shelf
@@ -148,10 +153,7 @@ def test_the_bound_counts_the_robot_that_moves_a_shelf_aside(seed, size, domain)
     pytest.param(242, (2, 5, 4), Domain.C, marks=pytest.mark.slow),
     pytest.param(268, (2, 3, 3), Domain.A, marks=pytest.mark.slow)])
 def test_the_bound_sets_shelves_down_only_on_free_cells(seed, size, domain):
-    robots, shelves, height = size
-    instance = random_two_station_warehouse(seed, robots=robots, shelves=shelves, height=height)
-    bound = makespan_bound(instance, domain)
-    assert minimal_makespan(instance, domain, start=int(bound) - 1, limit=int(bound)) == bound
+    assert_the_bound_is_the_minimum(seed, size, domain)
 
 
 @pytest.mark.slow
