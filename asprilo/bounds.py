@@ -14,7 +14,7 @@ from functools import cached_property
 
 import numpy as np
 
-from .domain import Domain
+from .domain import Bound, Domain
 from .model import DIRECTIONS, Cell, Instance
 
 INFINITE = float("inf")
@@ -237,7 +237,7 @@ def makespan_bound(instance: Instance, domain: Domain, floor: Floor | None = Non
     a shelf, stations serving one robot at a time, robots one line at a time).
     """
     floor = floor or Floor(instance.cells)
-    if not domain.delivers:
+    if domain.bound is Bound.MAPF:
         return mapf_bounds(instance, floor, total=False)[0]
     from .delivery_bound import delivery_bound
     return delivery_bound(instance, domain, floor)

@@ -23,7 +23,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .domain import Domain
+from .domain import Delivery, Domain
 from .model import DIRECTIONS, Cell, Instance
 
 INFINITE = math.inf
@@ -115,7 +115,7 @@ class Deliveries:
 
     def _deliveries(self, product: int, units: int | None, holders: tuple[int, ...]) -> int:
         """A: the fewest shelves whose stock covers the line (each shelf gives at most once)."""
-        if self.domain is not Domain.A or units is None:
+        if not self.domain.counts_units or units is None:
             return 1
         stocks = sorted((self.stock[s][product] or 1 for s in holders), reverse=True)
         total = 0
@@ -153,7 +153,7 @@ def station_bound(facts: Deliveries) -> float:
             rest = releases[k:]
             # a line that needs d deliveries needs d different shelves, so d visits
             visits = max(math.ceil(len(rest) / per_shelf), max(count for _, count in rest))
-            if facts.domain is Domain.C:
+            if facts.domain.delivery is Delivery.STATION:
                 last = rest[0][0] + 2 * (visits - 1)
             else:
                 last = rest[0][0] + sum(count for _, count in rest) - 1 + visits - 1
@@ -291,7 +291,7 @@ def delivery_bound(instance: Instance, domain: Domain, floor) -> float:
 
 def _short_of_stock(facts: Deliveries) -> bool:
     """A: whether some product is ordered more often than the shelves hold it (no plan at all)."""
-    if facts.domain is not Domain.A:
+    if not facts.domain.counts_units:
         return False
     ordered: dict[int, int] = {}
     for order in facts.instance.orders.values():

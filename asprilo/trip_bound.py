@@ -15,7 +15,6 @@ import numpy as np
 
 from .bounds import INFINITE
 from .delivery_bound import Deliveries, carry_arrivals, robot_release, storage_to_shelves
-from .domain import Domain
 from .model import DIRECTIONS
 
 #: the conflicts per horizon (a deterministic budget: "unknown" refutes nothing), the
@@ -130,7 +129,7 @@ def _trip_facts(facts: Deliveries, stations: list, shelves: list[int], gaps: dic
             out.append(f"{name}({','.join(str(index.get(part, part)) for part in key)},{int(steps)}).")
     distances = facts.floor.distances(stations, stations)
     out.extend(f"apart({i},{j},{int(distances[i][j])})." for i in range(len(stations)) for j in range(len(stations)))
-    out.append(f"#const domain = {facts.domain.value}.")
+    out.append(f"#const delivery = {facts.domain.delivery.value}.")
     return "\n".join(out)
 
 
@@ -158,7 +157,7 @@ def _line_facts(facts: Deliveries, index: dict) -> list[str]:
     demand = [_units(facts.instance.orders[line.order].lines[line.product]) for line in facts.lines]
     stock = [(shelf, product, _units(units)) for shelf, products in facts.stock.items()
              for product, units in products.items()]
-    if facts.domain is Domain.A and sum(demand) + sum(units for *_, units in stock) <= LARGEST_SUM:
+    if facts.domain.counts_units and sum(demand) + sum(units for *_, units in stock) <= LARGEST_SUM:
         out.extend(f"demand({number},{units})." for number, units in enumerate(demand))
         out.extend(f"stock({shelf},{product},{units})." for shelf, product, units in stock)
     return out

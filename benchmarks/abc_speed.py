@@ -41,7 +41,7 @@ from asprilo.domain import Domain
 from asprilo.encodings.search import ground
 from asprilo.reader import read_instance
 instance = read_instance(sys.argv[1])
-horizon = int(makespan_bound(instance, Domain.A))
+horizon = int(makespan_bound(instance, Domain.parse("a")))
 started = time.perf_counter()
 solver = ground(instance, "a", horizon)
 print(json.dumps({"horizon": horizon, "seconds": time.perf_counter() - started,

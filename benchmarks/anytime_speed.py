@@ -43,15 +43,15 @@ SAMPLES = (1, 2, 5, 10, 20, 30, 60, 120, 300)  # seconds at which the plot and t
 
 def run_one(job: dict) -> dict:
     """One anytime run (in its own process): the history and the process's peak memory."""
-    from asprilo.domain import Domain
+    from asprilo.domain import Domain, Goal
     from asprilo.encodings import solve
     from asprilo.encodings.anytime import plan_anytime
     from asprilo.interop.convert import m_to_md
     from asprilo.reader import read_instance
 
     instance = read_instance(job["path"])
-    domain = Domain(job["domain"])
-    if domain is Domain.MD and not instance.destinations:
+    domain = Domain.parse(job["domain"])
+    if domain.goal is Goal.DESTINATIONS and not instance.destinations:
         instance = m_to_md(instance)
     optimum = None
     if job.get("flow"):

@@ -1,6 +1,7 @@
-"""The checker's logic programs: one per domain (``domains/<domain>.lp``, made of the
-concern files beside this module), fed with an instance and a plan through the solver
-driver; the result is the set of ``err/3`` atoms.
+"""The checker's logic programs: for each domain, the concern files its descriptor names
+(``Domain.checker``: files beside this module, or paths of a domain's own), fed with an
+instance and a plan through the solver driver; the result is the set of ``err/3`` atoms.
+``domains/<domain>.lp`` includes the same files, for running the checker with plain clingo.
 
 Facts reach clingo as text.  Moves, the bulk of any large plan, are handed over packed
 (``packed.lp``: thirteen moves of one robot in one integer), because clingo parses and
@@ -30,9 +31,9 @@ _DIGITS = 13  # moves per packed integer: 5**13 - 1 < 2**31
 PACK_FROM = 2_000
 
 
-def program(domain: Domain) -> Path:
-    """The checker for ``domain``: a file including the concerns it is made of."""
-    return HERE / "domains" / f"{domain.value}.lp"
+def concerns(domain: Domain) -> list[Path]:
+    """The checker's files for ``domain``, in the order its descriptor names them."""
+    return [HERE / f"{name}.lp" if not Path(name).is_absolute() else Path(name) for name in domain.checker]
 
 
 def instance_facts(instance: Instance) -> str:
@@ -77,7 +78,7 @@ def plan_facts(instance: Instance, plan: Plan, packed: bool | None = None) -> st
 def _statements(domain: Domain) -> tuple[clingo.ast.AST, ...]:
     """The checker of ``domain`` and packed.lp, parsed once."""
     statements: list[clingo.ast.AST] = []
-    clingo.ast.parse_files([str(program(domain)), str(HERE / "packed.lp")], statements.append)
+    clingo.ast.parse_files([str(path) for path in (*concerns(domain), HERE / "packed.lp")], statements.append)
     return tuple(statements)
 
 

@@ -11,7 +11,7 @@ import clingo
 import numpy as np
 
 from asprilo.bounds import Floor, makespan_bound, mapf_bounds
-from asprilo.domain import Domain
+from asprilo.domain import Bound, Domain, Goal
 from asprilo.facts import value_of
 from asprilo.model import Instance, Plan
 from asprilo.simulate import Timeline, Violation, simulate, sort_violations
@@ -88,7 +88,7 @@ def metrics(instance: Instance, plan: Plan, domain: Domain, errors: list[Violati
         "sum_of_costs": sum_of_costs,
         "idle_steps": len(robots) * horizon - busy,
     }
-    if domain is Domain.MD:
+    if domain.goal is Goal.DESTINATIONS:
         missed = {e.params[0] for e in errors if e.check == "unoccupiedDestination"}
         result["destinations"] = len(instance.destinations)
         result["destinations_reached"] = len(instance.destinations) - len(missed)
@@ -97,7 +97,7 @@ def metrics(instance: Instance, plan: Plan, domain: Domain, errors: list[Violati
         result["orders"] = len(instance.orders)
         result["orders_fulfilled"] = len(set(instance.orders) - missed)
     floor = Floor(instance.cells)
-    if domain.delivers:
+    if domain.bound is Bound.DELIVERY:
         result["makespan_bound"] = _number(makespan_bound(instance, domain, floor))
     else:
         makespan, total = mapf_bounds(instance, floor)

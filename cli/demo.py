@@ -18,28 +18,27 @@ import time
 from pathlib import Path
 
 from asprilo.arguments import domain_argument
-from asprilo.domain import Domain
+from asprilo.domain import DEFAULT, Domain, domains
 from asprilo.errors import InputError
 from asprilo.writer import format_instance, format_plan, write_text
 
-#: a small scenario per domain that the reference encodings solve in seconds
-SCENARIOS = {
-    Domain.A: dict(width=11, height=6, structured=True, zone_x=4, zone_y=2, stations=2, robots=3,
-                   shelves=8, products=4, units=16, orders=2, ol_min=1, ol_max=1),
-    Domain.B: dict(width=11, height=6, structured=True, zone_x=4, zone_y=2, stations=2, robots=3,
-                   shelves=8, products=4, units=16, orders=2, ol_min=1, ol_max=2),
-    Domain.C: dict(width=11, height=6, structured=True, zone_x=4, zone_y=2, stations=2, robots=3,
-                   shelves=8, products=4, units=16, orders=3, ol_min=1, ol_max=2),
-    Domain.M: dict(width=19, height=9, structured=True, zone_x=5, zone_y=2, stations=3, robots=10,
-                   shelves=60, products=60, units=60, orders=10, prs_min=1, prs_max=1,
-                   domain=Domain.M),
-}
+
+def _demonstrated() -> list[Domain]:
+    """The domains with an exercise-size scenario, which the reference encodings solve in seconds."""
+    return [domain for domain in domains() if domain.generation is not None and domain.generation.exercise]
+
+
+def _scenario(domain: Domain) -> dict:
+    """The generator's options for the domain's exercise-size scenario."""
+    aligned = {"domain": domain} if domain.generation.aligned else {}
+    return {**domain.generation.exercise, **aligned}
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-o", "--output", default="asprilo-demo", metavar="DIR",
                         help="folder for the instance, plan and pictures (default: asprilo-demo)")
-    parser.add_argument("--domain", type=domain_argument, default=Domain.A, help="a|b|c|m (default: a)")
+    parser.add_argument("--domain", type=domain_argument, default=DEFAULT,
+                        help=f"{'|'.join(d.value for d in _demonstrated())} (default: {DEFAULT.value})")
     parser.add_argument("--seed", type=int, default=1, help="generator seed (default: 1)")
     parser.add_argument("--time-limit", type=float, default=120, metavar="S",
                         help="seconds the solver may take (default: 120)")
@@ -57,13 +56,15 @@ def run(args: argparse.Namespace) -> int:
     from asprilo.generator import GeneratorConfig, generate
 
     domain: Domain = args.domain
-    if domain not in SCENARIOS:
-        raise InputError(f"the demo covers domains a, b, c and m, not {domain.value}")
+    if domain not in _demonstrated():
+        *others, last = [d.value for d in _demonstrated()]
+        covered = f"{', '.join(others)} and {last}"
+        raise InputError(f"the demo covers domains {covered}, not {domain.value}")
     folder = Path(args.output)
     _check_folder(folder, args.force)
     started = time.perf_counter()
 
-    config = GeneratorConfig(**SCENARIOS[domain])
+    config = GeneratorConfig(**_scenario(domain))
     generated = generate(config, 1, args.seed, command=f"asprilo demo --domain {domain.value} --seed {args.seed}")[0]
     instance = generated.instance
     instance_path = folder / generated.file_name()
@@ -112,7 +113,7 @@ def _check_folder(folder: Path, force: bool) -> None:
 
 def _render(instance, plan, folder: Path, domain: Domain) -> None:
     """Export the final state as PNG and the plan as GIF, without opening a window."""
-    from asprilo.visualizer.render import render
+    from asprilo.visualizer import render
     picture, animation = folder / "final.png", folder / "plan.gif"
     render(instance, plan, picture, domain, step=plan.horizon)
     render(instance, plan, animation, domain, frames=4)

@@ -50,7 +50,7 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps(report, indent=2))
         return 0
     c = report["counts"]
-    domain = Domain(report["domain"]).label + (" (detected)" if report["domain_detected"] else "")
+    domain = Domain.parse(report["domain"]).label + (" (detected)" if report["domain_detected"] else "")
     print(f"instance: {c['x']}x{c['y']} grid, {c['nodes']} nodes, {c['highways']} highways")
     print(f"objects:  {c['robots']} robots, {c['shelves']} shelves, {c['stations']} picking stations, "
           f"{c['destinations']} destinations")

@@ -1,12 +1,12 @@
 """Reference encodings per domain and style, their registry, and the solve front end.
 
-    from asprilo.encodings import solve, ENCODINGS
+    from asprilo.encodings import solve, reference_encodings
     outcome = solve("instance.lp", encoding="plain", time_limit=60)
     outcome.plan, outcome.horizon, outcome.minimal, outcome.stats
 """
 
-from .registry import ENCODINGS, Encoding, encoding_names, find_encoding
+from .registry import Encoding, encoding_names, find_encoding, reference_encodings
 from .search import Attempt, Outcome, Phase, SolveStatus, solve
 
-__all__ = ["ENCODINGS", "Encoding", "encoding_names", "find_encoding",
+__all__ = ["Encoding", "encoding_names", "find_encoding", "reference_encodings",
            "Attempt", "Outcome", "Phase", "SolveStatus", "solve"]

@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from asprilo.bounds import Floor, goal_cells
-from asprilo.domain import Domain
+from asprilo.domain import Domain, Job
 from asprilo.model import Cell, Instance, Plan
 from asprilo.simulate import simulate
 from asprilo.solver import Solver, Statistics, Status
@@ -56,7 +56,7 @@ def distance_facts(instance: Instance, domain: Domain, floor: Floor | None = Non
     """``distance(From,To,D)`` facts for the pairs an assignment program looks at."""
     floor = floor or Floor(instance.cells)
     robots = sorted({robot.at for robot in instance.robots.values()})
-    if domain.delivers:
+    if domain.work is Job.TRIPS:
         stock = instance.shelf_stock()
         ordered = {p for order in instance.orders.values() for p in order.lines}
         shelves = sorted({s.at for s in instance.shelves.values() if ordered & set(stock.get(s.id, {}))})
@@ -68,7 +68,7 @@ def distance_facts(instance: Instance, domain: Domain, floor: Floor | None = Non
         table = floor.distances(sources, targets)
         for (i, j) in zip(*np.nonzero(np.isfinite(table)), strict=True):
             facts.append(f"distance({_cell(sources[i])},{_cell(targets[j])},{int(table[i, j])})")
-    if domain.delivers:
+    if domain.work is Job.TRIPS:
         facts.extend(_set_down_facts(instance, floor))
     return facts
 
@@ -97,8 +97,9 @@ def assign_tasks(instance: Instance, domain: Domain, time_limit: float | None = 
     interrupt it from another thread.
     """
     started = time.perf_counter()
-    program = HERE / "assign" / ("abc.lp" if domain.delivers else "m.lp")
-    constants = {"domain": domain.value} if domain.delivers else {}
+    trips = domain.work is Job.TRIPS
+    program = HERE / "assign" / ("abc.lp" if trips else "m.lp")
+    constants = {"delivery": domain.delivery.value} if trips and domain.delivery else {}
     solver = Solver(options=["--opt-strategy=bb,hier"], constants=constants)
     solver.add(format_instance(instance, []))
     solver.add("".join(f"{fact}.\n" for fact in distance_facts(instance, domain)))

@@ -31,7 +31,7 @@ from asprilo.errors import InputError
 from asprilo.writer import format_action, format_plan, refuse_overwriting, write_text
 
 from .anytime import DEFAULT_SECONDS as ANYTIME_SECONDS
-from .registry import ENCODINGS
+from .registry import reference_encodings
 from .search import Attempt, Outcome, Phase, solve
 
 #: seconds ``asprilo solve`` may take unless told otherwise (the anytime method: its own default)
@@ -62,7 +62,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     if args.list:
-        for encoding in ENCODINGS:
+        for encoding in reference_encodings():
             theory = f" [{encoding.theory}]" if encoding.theory else ""
             print(f"{encoding.domain.value:<3} {encoding.name:<13} {encoding.summary}{theory}")
         return 0

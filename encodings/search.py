@@ -28,7 +28,7 @@ import clingo
 from asprilo.bounds import Floor, makespan_bound
 from asprilo.checker import Report, check
 from asprilo.delivery_bound import assigned_bound, delivery_schedule
-from asprilo.domain import Domain, detect_domain
+from asprilo.domain import Bound, Domain, Job, detect_domain
 from asprilo.errors import InputError
 from asprilo.isolation import run_isolated
 from asprilo.model import Instance, Plan
@@ -54,8 +54,6 @@ PROBE_WORK = 250_000_000
 WITHOUT_ASSIGNMENT = "without assignment"
 #: M/Md instances with this many robots get ruled_out/2 hints (they ground big programs faster)
 HINTED_ROBOTS = 20
-#: the A/B/C searches use the domain heuristics of abc/hints.lp (while use_hints is true)
-ABC_OPTIONS = ("--heuristic=Domain",)
 #: with hints, a horizon is searched in turns with and without them, each turn twice as long
 #: as the turn before last, starting with this many conflicts (counted, not timed, so that a
 #: search takes the same path on every machine and under any load); learned clauses are kept
@@ -209,7 +207,7 @@ def _given_assignment(instance: Instance, domain: Domain, facts: Sequence[str]) 
     """A caller's assignment facts, each checked to name this instance's robots and goals."""
     if not facts:
         raise InputError("the given assignment is empty")
-    shapes = [["robot", "shelf", "pickingStation"]] if domain.delivers else [["robot", "shelf"],
+    shapes = [["robot", "shelf", "pickingStation"]] if domain.work is Job.TRIPS else [["robot", "shelf"],
                                                                               ["robot", "destination"]]
     tables = {"robot": instance.robots, "shelf": instance.shelves, "pickingStation": instance.stations,
               "destination": instance.destinations}
@@ -234,7 +232,7 @@ def _check_request(instance: Instance, domain: Domain, horizon: int | None, assi
         raise InputError(f"unknown method '{method}' (choose asp, flow or anytime)")
     if method == "anytime" and horizon is not None:
         raise InputError("the anytime method searches the makespan itself; leave out --horizon")
-    if method == "flow" and domain.delivers:
+    if method == "flow" and domain.work is not Job.GOALS:
         raise InputError(f"the flow method solves domains M and Md only, not {domain.label}")
     if instance.assignment and method == "flow":
         raise InputError("the instance assigns goals to robots; the flow method solves anonymous "
@@ -469,7 +467,7 @@ class _Search:
         self.bound = 0.0  # every horizon below is refuted (the lower bound, or more after a probe)
         # a minimal plan the probe found but could not find again along its own assignment
         self.probe_plan: tuple[Plan, Assignment] | None = None
-        self.options = ABC_OPTIONS if domain.delivers else ()
+        self.options = encoding.options
         self._distances: str | None = None
 
     def run(self) -> Outcome:
@@ -487,7 +485,7 @@ class _Search:
             outcome.status, outcome.minimal = SolveStatus.NONE, True
             outcome.message = "some goal or order line can never be reached"
             return outcome
-        if self.assign and self.given is None and self.horizon is None and self.domain.delivers:
+        if self.assign and self.given is None and self.horizon is None and self.domain.work is Job.TRIPS:
             bound = self._probe(int(bound))
             if outcome.plan is not None or self._stopped():
                 return outcome
@@ -521,7 +519,7 @@ class _Search:
             if along == float("inf"):
                 return None
             first = max(first, int(along))
-            if self.domain.delivers:
+            if self.domain.bound is Bound.DELIVERY:
                 first = int(assigned_bound(self.instance, self.domain, self.floor, self._carriers(), first))
         last = self.max_horizon if self.max_horizon is not None else self._largest_horizon(first)
         return first, last
@@ -643,12 +641,12 @@ class _Search:
         hinted = False
         if self.follow_assignment:
             solver.add(self.outcome.assignment.text())
-        elif horizon is not None and not self.domain.delivers and len(self.instance.robots) >= HINTED_ROBOTS:
+        elif horizon is not None and self.domain.work is Job.GOALS and len(self.instance.robots) >= HINTED_ROBOTS:
             hints = unusable_goals(self.instance, horizon, self.floor)
             solver.add("".join(f"ruled_out({r},({x},{y})).\n" for r, (x, y) in hints))
-        if self.domain.delivers:
+        if self.domain.work is Job.TRIPS:
             solver.add(self._station_distances())
-        if horizon is not None and self.domain.delivers:
+        if horizon is not None and self.domain.bound is Bound.DELIVERY:
             carriers = self._carriers() if self.follow_assignment else None
             schedule = delivery_schedule(self.instance, self.domain, self.floor, horizon, carriers)
             solver.add("".join(f"hint_serve({o},{p},{t}).\n" for o, p, t in schedule))

@@ -31,10 +31,10 @@ def new_count(total: int, existing: int, flag: str, what: str) -> int:
 
 
 def ranges(c: GeneratorConfig, domain: Domain, shelves: int, robots: int) -> dict[str, Any]:
-    """The ranges and totals after the M alignment, defaults filled in (totals may stay None)."""
+    """The ranges and totals after the domain's alignment, defaults filled in (totals may stay None)."""
     values = {name: getattr(c, name) for name in RANGE_NAMES}
-    if domain is Domain.M:
-        _align_m(values, shelves, robots)
+    if domain.generation is not None and domain.generation.aligned:
+        _align_m(values, shelves, robots, domain)
     for name in RANGE_NAMES:
         if values[name] is None and BY_NAME[name].default is not None:
             values[name] = BY_NAME[name].default
@@ -44,8 +44,8 @@ def ranges(c: GeneratorConfig, domain: Domain, shelves: int, robots: int) -> dic
     return values
 
 
-def _align_m(values: dict[str, Any], shelves: int, robots: int) -> None:
-    """Domain M: one unit of one product per shelf, one line of one unit per order, an order per robot."""
+def _align_m(values: dict[str, Any], shelves: int, robots: int, domain: Domain) -> None:
+    """M's alignment: one unit of one product per shelf, one line of one unit per order, an order per robot."""
     aligned = {"products": shelves, "units": shelves, "orders": robots, "pus_min": 1, "pus_max": 1,
                "prs_min": 1, "prs_max": 1, "spr_min": 1, "spr_max": 1, "ol_min": 1, "ol_max": 1}
     why = {"products": f"as many products as shelves ({shelves})",
@@ -53,7 +53,7 @@ def _align_m(values: dict[str, Any], shelves: int, robots: int) -> None:
     for name, wanted in aligned.items():
         if values[name] is not None and values[name] != wanted:
             reason = why.get(name, "one product per shelf, on one shelf, one unit, one line per order")
-            raise InputError(f"--domain m: {reason}; got {_flag(name)} {values[name]}")
+            raise InputError(f"--domain {domain.value}: {reason}; got {_flag(name)} {values[name]}")
         values[name] = wanted
 
 

@@ -223,8 +223,8 @@ def _paths(value: Any) -> tuple[str, ...] | None:
 
 def _domain(value: Any) -> Domain:
     domain = value if isinstance(value, Domain) else Domain.parse(str(value))
-    if domain is Domain.MD:
-        raise InputError("--domain md is not generated; generate m and convert it")
+    if domain.generation is None:
+        raise InputError(f"--domain {domain.value} is not generated; {domain.made_by}")
     return domain
 
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from asprilo.domain import Domain
+from asprilo.domain import DEFAULT, Domain
 from asprilo.errors import InputError
 from asprilo.model import Instance
 from asprilo.reader import read_instance
@@ -90,7 +90,7 @@ def make_plan(config: GeneratorConfig) -> GenerationPlan:
     floor = plan_floor(config, template)
     existing = template or Instance()
     objects = _objects(config, floor, existing)
-    r = ranges(config, config.domain or Domain.A, objects["shelf_total"], objects["robot_total"])
+    r = ranges(config, config.domain or DEFAULT, objects["shelf_total"], objects["robot_total"])
     stock = inventory(r, existing, objects["shelf_total"])
     lines = orders(config, r, stock, existing, objects["station_total"])
     return GenerationPlan(
@@ -129,10 +129,10 @@ def _objects(c: GeneratorConfig, floor: Floor, existing: Instance) -> dict[str, 
 
 
 def _with_quantities(domain: Domain | None, template: Instance) -> bool:
-    """Whether products and lines are written with quantities: not for B and C, and without
-    --domain not when the template writes its own without them."""
-    if domain is not None:
-        return domain not in (Domain.B, Domain.C)
+    """Whether products and lines are written with quantities: as the domain says (not for B
+    and C), and without --domain not when the template writes its own without them."""
+    if domain is not None and domain.generation is not None:
+        return domain.generation.quantities
     entries = [u for p in template.products.values() for u in p.stock.values()]
     entries += [u for o in template.orders.values() for u in o.lines.values()]
     return None not in entries

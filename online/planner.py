@@ -18,7 +18,7 @@ from collections import defaultdict
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
-from asprilo.domain import Domain, detect_domain
+from asprilo.domain import Domain, Goal, detect_domain
 from asprilo.errors import InputError
 from asprilo.model import Action, Instance, Order, Plan, Product, Robot, Shelf
 from asprilo.simulate import State, simulate
@@ -114,7 +114,7 @@ class OnlinePlanner:
         done = Plan([a for t, actions in self.sent.items() if t <= step for a in actions])
         state = simulate(instance, done, domain).state(step)
         now = world_at(instance, state)
-        if domain.delivers and not now.orders:
+        if domain.goal is Goal.LINES and not now.orders:
             self.planned = {}
             self.log(f"step {step}: every order is complete, nothing to plan")
             return

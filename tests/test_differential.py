@@ -18,7 +18,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from asprilo.checker.programs import err_atoms
-from asprilo.domain import Domain
+from asprilo.domain import Domain, domains
 from asprilo.model import DIRECTIONS, Action, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
 from asprilo.reader import read_instance, read_plan
 from asprilo.simulate import simulate
@@ -234,7 +234,7 @@ def _settings(examples: int):
     return settings(max_examples=examples, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 
-domains, seeds, feeds = st.sampled_from(list(Domain)), st.randoms(use_true_random=True), st.booleans()
+domains, seeds, feeds = st.sampled_from(domains()), st.randoms(use_true_random=True), st.booleans()
 
 
 def check_random_plan(domain, rng, packed):

@@ -8,13 +8,13 @@ from oracles.brute_force import minimal_makespan as brute_force
 
 from asprilo.checker import check
 from asprilo.domain import Domain
-from asprilo.encodings import ENCODINGS, SolveStatus, search, solve
+from asprilo.encodings import SolveStatus, reference_encodings, search, solve
 from asprilo.encodings.assignment import assign_tasks, assignment_of_plan, distance_facts
 from asprilo.errors import InputError
 from asprilo.model import Action, Plan
 from asprilo.reader import read_instance
 
-STYLES = {d: [e.name for e in ENCODINGS if e.domain is d] for d in (Domain.A, Domain.B, Domain.C)}
+STYLES = {d: [e.name for e in reference_encodings(d)] for d in (Domain.A, Domain.B, Domain.C)}
 TINY = {  # instance -> minimal makespan per domain, by brute force (tests/test_brute_force.py)
     "x2_y2_n4_r2_s2_ps1_pr2_u4_o2_N1.lp": {Domain.C: 4, Domain.B: 5, Domain.A: 5},
     "x3_y3_n9_r1_s1_ps1_pr1_u1_o1_N1.lp": {Domain.C: 9, Domain.B: 9, Domain.A: 9},

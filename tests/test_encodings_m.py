@@ -8,12 +8,12 @@ from helpers import EXAMPLES
 from helpers.worlds import WALLED
 
 from asprilo.domain import Domain
-from asprilo.encodings import ENCODINGS, SolveStatus, solve
+from asprilo.encodings import SolveStatus, reference_encodings, solve
 from asprilo.encodings.flow import flow_plan
 from asprilo.reader import read_instance
 from asprilo.writer import format_instance
 
-M_STYLES = [e.name for e in ENCODINGS if e.domain is Domain.M]
+M_STYLES = [e.name for e in reference_encodings(Domain.M)]
 SMALL_PAPER = sorted((EXAMPLES / "paper-m/1x2x4").glob("*.lp"))
 TINY = {  # instance -> minimal makespan in domain M (one robot per shelf holding an ordered product)
     "x2_y2_n4_r2_s2_ps1_pr2_u4_o2_N1.lp": 1,

@@ -146,7 +146,8 @@ def test_command_exit_statuses(tmp_path, capsys):
 def test_command_lists_the_encodings(capsys):
     assert main(["solve", "--list"]) == 0
     lines = capsys.readouterr().out.splitlines()
-    assert lines[0] == "m   plain         positions as cells (paper Listings 1-2)"
+    assert lines[0] == "a   plain         anonymous robots, named shelves in distance bands + the domain's deliveries"
+    assert "m   plain         positions as cells (paper Listings 1-2)" in lines
     assert "a   clingcon      plain, with quantities as clingcon integer variables [clingcon]" in lines
     assert len(lines) == 7 * 2 + 3 + 1  # M and Md: 7 styles each; A, B, C: plain; A: clingcon
 

@@ -40,12 +40,12 @@ from __future__ import annotations
 from ..domain import Domain, detect_domain
 from ..limits import require_plan_fits
 from ..model import Instance, Plan
-from .actions import DOMAIN_ACTIONS, well_formed
+from .actions import well_formed
 from .replay import replay
 from .timeline import Line, State, Stock, Timeline
 from .violations import Violation, sort_violations
 
-__all__ = ["DOMAIN_ACTIONS", "Line", "State", "Stock", "Timeline", "Violation", "simulate", "sort_violations",
+__all__ = ["Line", "State", "Stock", "Timeline", "Violation", "simulate", "sort_violations",
            "well_formed"]
 
 

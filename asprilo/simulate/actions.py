@@ -11,15 +11,6 @@ from typing import Any
 from ..domain import Domain
 from ..model import DIRECTIONS, Action, Instance, Plan
 
-#: the actions each domain knows
-DOMAIN_ACTIONS: dict[Domain, frozenset[str]] = {
-    Domain.A: frozenset({"move", "pickup", "putdown", "deliver"}),
-    Domain.B: frozenset({"move", "pickup", "putdown", "deliver"}),
-    Domain.C: frozenset({"move", "pickup", "putdown", "deliver"}),
-    Domain.M: frozenset({"move"}),
-    Domain.MD: frozenset({"move"}),
-}
-
 _MOVES = frozenset(DIRECTIONS)
 
 #: report(module, check, *params)
@@ -37,7 +28,7 @@ def well_formed(name: str, args: Any, domain: Domain) -> bool:
     if name in ("pickup", "putdown"):
         return args == ()
     if name == "deliver":
-        if domain is Domain.A:
+        if domain.counts_units:
             return _ints(args, (3,)) and args[2] >= 1
         return _ints(args, (2, 3))
     return False
@@ -76,7 +67,7 @@ def _acts(action: Action, instance: Instance, report: Report) -> bool:
 
 def _well_formed(action: Action, domain: Domain, report: Report) -> bool:
     """Whether the action is one of the domain, with the right arguments (else reported)."""
-    if action.name not in DOMAIN_ACTIONS[domain]:
+    if action.name not in domain.actions:
         report("action", "unknownAction", action.robot, action.name, action.step)
     elif not well_formed(action.name, action.args, domain):
         report("action", "badArguments", action.robot, action.name, action.step)

@@ -7,7 +7,7 @@ from collections import defaultdict
 from collections.abc import Iterable
 from dataclasses import dataclass
 
-from ..domain import Domain
+from ..domain import Domain, Goal, Job
 from ..model import Cell, Instance
 from .actions import Report
 from .timeline import History
@@ -102,12 +102,12 @@ def check_goal(instance: Instance, domain: Domain, history: History, report: Rep
     """Labelled goals missed, destinations unoccupied (Md), order lines still open (else)."""
     horizon = history.horizon
     final = history.state(horizon)
-    if instance.assignment and not domain.delivers:
+    if instance.assignment and domain.work is Job.GOALS:
         for robot, (kind, goal) in sorted(instance.assignment.items()):
             cell = final.shelves.get(goal) if kind == "shelf" else instance.destinations[goal].at
             if cell is not None and final.robots[robot] != cell:
                 report("goal", "missedAssignedGoal", robot, cell, horizon)
-    if domain is Domain.MD:
+    if domain.goal is Goal.DESTINATIONS:
         occupied = set(final.robots.values())
         for destination in sorted(instance.destinations.values(), key=lambda d: d.id):
             if destination.at not in occupied:

@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from ..domain import Domain
+from ..domain import Goal
 from ..model import Action
 from ..writer import format_value
 
@@ -133,7 +133,7 @@ _SHAPES = {"move": "(1,0), (-1,0), (0,1) or (0,-1)", "pickup": "()", "putdown": 
 def action_bad_arguments(timeline, robot, name, step):
     args = [a.args for a in timeline.actions_of(robot, step) if a.name == name]
     if name == "deliver":
-        shape = "(Order,Product,Units) with Units >= 1" if timeline.domain is Domain.A else \
+        shape = "(Order,Product,Units) with Units >= 1" if timeline.domain.counts_units else \
             "(Order,Product) or (Order,Product,Units)"
     else:
         shape = _SHAPES.get(name, "other arguments")
@@ -242,7 +242,7 @@ def _delivery(timeline: Timeline, robot: int, step: int) -> tuple[Any, Any, Any,
 
 def _delivers(timeline: Timeline, robot: int, step: int) -> str:
     order, product, units, _shelf = _delivery(timeline, robot, step)
-    amount = f"{_units(units)} of " if units is not None and timeline.domain is Domain.A else ""
+    amount = f"{_units(units)} of " if units is not None and timeline.domain.counts_units else ""
     return f"robot {robot} delivers {amount}product {product} for order {order}"
 
 
@@ -294,10 +294,10 @@ def deliver_line_closed(timeline, robot, step):
 # the goal
 
 def goal_unfilled_order(timeline, order, product, missing, _step):
-    if timeline.domain is Domain.M:
+    if timeline.domain.goal is Goal.SHELVES:
         return f"order {order} is not fulfilled: no robot stands under a shelf holding product " \
                f"{product}", {}
-    if timeline.domain is Domain.A:
+    if timeline.domain.counts_units:
         return f"order {order} still lacks {_units(missing)} of product {product}", {}
     return f"order {order} still waits for product {product}", {}
 

@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-from ..domain import Domain
+from ..domain import Delivery, Domain
 from ..model import Action, Cell, Instance, Plan
 from .actions import Report, effective_actions
 from .checks import Start, check_goal, check_instance, pairs_sharing
@@ -142,13 +142,13 @@ class _ShelfReplay:
         self.history = History(domain, positions, self.now, mapf_lines)
 
     def _initial_stock(self) -> dict[Stock, int | None]:
-        a = self.domain is Domain.A
-        return {(shelf, product.id): (1 if units is None and a else units)
+        counts = self.domain.counts_units
+        return {(shelf, product.id): (1 if units is None and counts else units)
                 for product in self.instance.products.values() for shelf, units in product.stock.items()}
 
     def _initial_lines(self) -> dict[Line, int | None]:
-        a = self.domain is Domain.A
-        return {(order.id, product): (1 if units is None and a else units)
+        counts = self.domain.counts_units
+        return {(order.id, product): (1 if units is None and counts else units)
                 for order in self.instance.orders.values() for product, units in order.lines.items()}
 
     def run(self, effective: dict[int, list[Action]]) -> History:
@@ -251,11 +251,11 @@ class _ShelfReplay:
         listed = shelf is not None and (shelf, action.args[1]) in self.now.stock
         if shelf is not None:
             self._check_shelf(step, action, shelf, listed)
-        return shelf is not None and at_station and (listed or self.domain is Domain.C)
+        return shelf is not None and at_station and (listed or self.domain.delivery is Delivery.STATION)
 
     def _check_line(self, step: int, action: Action) -> None:
         line = (action.args[0], action.args[1])
-        if self.domain is Domain.A:
+        if self.domain.counts_units:
             if action.args[2] > (self.now.lines.get(line) or 0):
                 self.report("deliver", "orderAmount", action.robot, step)
         elif line not in self.now.lines:
@@ -264,13 +264,13 @@ class _ShelfReplay:
     def _check_shelf(self, step: int, action: Action, shelf: int, listed: bool) -> None:
         if not listed:
             self.report("deliver", "notOnShelf", action.robot, step)
-        elif self.domain is Domain.A and action.args[2] > self.now.stock[(shelf, action.args[1])]:
+        elif self.domain.counts_units and action.args[2] > self.now.stock[(shelf, action.args[1])]:
             self.report("deliver", "shelfAmount", action.robot, step)
 
     def deliver(self, shelf: int, action: Action, changes: Changes) -> None:
         order_id, product = action.args[0], action.args[1]
         lines, stock = self.now.lines, self.now.stock
-        if self.domain is Domain.A:
+        if self.domain.counts_units:
             units = action.args[2]
             if (order_id, product) in lines:
                 lines[(order_id, product)] = max(0, lines[(order_id, product)] - units)
@@ -278,7 +278,7 @@ class _ShelfReplay:
             stock[(shelf, product)] = max(0, stock[(shelf, product)] - units)
             changes.stock.append(((shelf, product), stock[(shelf, product)]))
             return
-        if self.domain is Domain.B:
+        if self.domain.delivery is Delivery.LINE:
             closing = [(order_id, product)] if (order_id, product) in lines else []
         else:
             station = self.instance.orders[order_id].station

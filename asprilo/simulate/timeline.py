@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ..domain import Domain
+from ..domain import Domain, Goal
 from ..model import Action, Cell, Instance, Plan
 from .violations import Finding, Violation, explain, sort_violations
 
@@ -167,9 +167,9 @@ class History:
 
     def _open_lines(self, snapshot: Snapshot, robots: dict[int, Cell],
                     shelves: dict[int, Cell]) -> dict[Line, int | None]:
-        if self.domain is Domain.A:
+        if self.domain.counts_units:
             return {line: units for line, units in snapshot.lines.items() if units > 0}
-        if self.domain is Domain.M:
+        if self.domain.goal is Goal.SHELVES:
             occupied = set(robots.values())
             return {line: units for line, units in snapshot.lines.items()
                     if not any(shelves.get(shelf) in occupied for shelf in self.mapf_lines[line])}

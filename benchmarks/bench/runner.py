@@ -118,7 +118,7 @@ def complete_anytime(record: dict, path: Path, run: LimitedRun) -> dict:
 
 def plan_verdict(path: Path, domain: str, plan_text: str) -> dict:
     """Check a run's plan with the ASP checker: ``solved`` with its metrics, or ``invalid``."""
-    report = check(read_instance(path), read_plan(Source("plan", plan_text)), Domain(domain))
+    report = check(read_instance(path), read_plan(Source("plan", plan_text)), Domain.parse(domain))
     if report.valid:
         return {"status": SOLVED, "metrics": report.metrics}
     return {"status": INVALID, "error": "; ".join(error.atom for error in report.errors[:5])}

@@ -134,13 +134,13 @@ def shelf_problem(instance: Instance, grid: Grid, domain: Domain, homes: dict[in
                   nearest: int = NEAREST) -> ShelfProblem:
     """Ground the shelf assignment with each shelf offered to its ``nearest`` robots."""
     stock = instance.shelf_stock()
-    lines = {(o.id, p): (1 if q is None or domain is not Domain.A else q)
+    lines = {(o.id, p): (1 if q is None or not domain.counts_units else q)
              for o in instance.orders.values() for p, q in o.lines.items()}
     wanted = {p for _, p in lines}
     shelves = sorted(s for s in homes if wanted & set(stock.get(s, {})))
     facts = [f"line({o},{p},{q})." for (o, p), q in lines.items()]
     facts += [f"order({o.id},{o.station})." for o in instance.orders.values()]
-    facts += [f"holds({s},{p},{1 if u is None or domain is not Domain.A else u})."
+    facts += [f"holds({s},{p},{1 if u is None or not domain.counts_units else u})."
               for s in shelves for p, u in stock[s].items() if p in wanted]
     haul = _hauls(instance, grid, homes, shelves)
     facts += [f"haul({s},{ps},{d})." for (s, ps), d in haul.items()]
@@ -148,7 +148,7 @@ def shelf_problem(instance: Instance, grid: Grid, domain: Domain, homes: dict[in
     cap = max(1, math.ceil(len(lines) / robots))
     facts += _carriers(instance, grid, homes, shelves, nearest, cap)
     facts.append(f"cap({cap}).")
-    return ShelfProblem(lines, Assigner("assign_shelves.lp", facts, {"domain": domain.value}), haul)
+    return ShelfProblem(lines, Assigner("assign_shelves.lp", facts, {"delivery": domain.delivery.value}), haul)
 
 
 def _hauls(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: list[int]) -> dict[tuple[int, int], int]:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from asprilo import bounds
 from asprilo.bounds import mapf_bounds
-from asprilo.domain import Domain
+from asprilo.domain import Bound, Domain
 from asprilo.model import Instance
 
 
@@ -16,4 +16,4 @@ def makespan_bound(instance: Instance, domain: Domain) -> float:
 
 def sum_of_costs_bound(instance: Instance, domain: Domain) -> float | None:
     """No plan has a smaller sum of costs (M and Md; ``None``: no bound known)."""
-    return None if domain.delivers else mapf_bounds(instance)[1]
+    return mapf_bounds(instance)[1] if domain.bound is Bound.MAPF else None

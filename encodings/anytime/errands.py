@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from asprilo.domain import Domain
+from asprilo.domain import Delivery, Domain
 from asprilo.model import Cell, Instance
 
 #: a line of an order: (order, product)
@@ -122,10 +122,10 @@ def _trip(shelf: int, home: Cell, stations: dict[Cell, list[tuple[Line, int]]], 
     while left:
         station = min(sorted(left), key=lambda cell: _near(at, cell))
         lines = sorted(left.pop(station))
-        if domain is Domain.C:
+        if domain.delivery is Delivery.STATION:
             trip.deliveries.append((station, tuple(line for line, _ in lines), lines[0][0]))
         else:
-            trip.deliveries += [(station, (line,), (*line, units) if domain is Domain.A else line)
+            trip.deliveries += [(station, (line,), (*line, units) if domain.counts_units else line)
                                 for line, units in lines]
         at = station
     return trip

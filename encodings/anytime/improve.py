@@ -19,6 +19,7 @@ from __future__ import annotations
 import random
 from collections.abc import Callable
 
+from asprilo.domain import Job
 from asprilo.model import Cell
 
 from .reservations import Reservations, Track
@@ -49,7 +50,7 @@ class Improver:
         self.work, self.router, self.table = work, router, reservations
         self.random = random.Random(seed)
         self.weights = dict.fromkeys(KINDS, 1.0)
-        if not work.domain.delivers:
+        if work.domain.work is Job.GOALS:
             self.weights["alone"] = 0.2
         self.tried = dict.fromkeys(KINDS, 0)
         self.won = dict.fromkeys(KINDS, 0)

@@ -9,7 +9,7 @@ left out: the robot just waits on the station for that step.
 
 from __future__ import annotations
 
-from asprilo.domain import Domain
+from asprilo.domain import Delivery, Domain
 from asprilo.model import Action, Instance, Plan
 
 from .reservations import Track
@@ -29,7 +29,7 @@ def plan_of(tracks: dict[int, Track], instance: Instance, domain: Domain) -> Pla
                 actions.append(Action(step, robot, task.name, ()))
             elif task.name == "deliver":
                 actions.append(Action(step, robot, "deliver", task.args))
-    if domain is Domain.C:
+    if domain.delivery is Delivery.STATION:
         actions = _named_deliveries(actions, tracks, instance)
     return Plan(actions)
 

@@ -13,7 +13,7 @@ from collections.abc import Callable
 
 import clingo
 
-from asprilo.domain import Domain
+from asprilo.domain import Domain, Job
 from asprilo.model import DIRECTIONS, Cell, Instance
 
 from .assignment import Choice, aims, goal_problem, shelf_problem
@@ -50,7 +50,7 @@ class Work:
     def assign(self, budget: float, stopped: Callable[[], bool]) -> bool:
         """Compute the first assignment (optimising for ``budget`` seconds, waiting for a
         first one until ``stopped()``); whether there is one."""
-        if self.domain.delivers:
+        if self.domain.work is Job.TRIPS:
             return self._assign_shelves(budget, stopped)
         self._problem = goal_problem(self.instance, self.grid, self.longest)
         choice = self._problem.assigner.solve(budget=budget, stopped=stopped)
@@ -73,7 +73,7 @@ class Work:
 
     def _take(self, choice: Choice) -> None:
         self.choice, self._parking_cells, self._movers = choice, None, None
-        if self.domain.delivers:
+        if self.domain.work is Job.TRIPS:
             self.trips = trips(self.instance, self.domain, choice.of("give"), choice.of("carry"), self.homes)
         else:
             self.goals = aims(choice, self._problem)
@@ -116,7 +116,7 @@ class Work:
 
     def workers(self) -> list[int]:
         """The robots that have something to do."""
-        return sorted(self.trips if self.domain.delivers else self.goals)
+        return sorted(self.trips if self.domain.work is Job.TRIPS else self.goals)
 
     def stations_of(self, robot: int) -> set[Cell]:
         return {cell for trip in self.trips.get(robot, []) for cell, _, _ in trip.deliveries}
@@ -126,7 +126,7 @@ class Work:
         holds those that are), so it may park on its last station when no other robot needs
         that station any more, or on a free cell near it; the first plan does neither
         (robots parked there would block the ones routed later)."""
-        if not self.domain.delivers:
+        if self.domain.work is Job.GOALS:
             return goal_errand(self.goals[robot]) if robot in self.goals else self._make_room(robot)
         trips_ = self.trips.get(robot, [])
         if not trips_:
@@ -157,7 +157,7 @@ class Work:
         """Cells where robots with work park for good (goals; homes of the shelves used):
         others had better keep off them."""
         if self._parking_cells is None:
-            if self.domain.delivers:
+            if self.domain.work is Job.TRIPS:
                 self._parking_cells = frozenset(self.homes[t.shelf] for ts in self.trips.values() for t in ts)
             else:
                 self._parking_cells = frozenset(self.goals.values())
@@ -166,7 +166,7 @@ class Work:
     def needed_cells(self) -> set[Cell]:
         """Cells robots with work must be able to use: goals, shelves to fetch, stations and
         the cells next to them (the ways in and out)."""
-        if not self.domain.delivers:
+        if self.domain.work is Job.GOALS:
             return set(self.goals.values())
         stations = {cell for robot in self.trips for cell in self.stations_of(robot)}
         cells = stations | {(x + dx, y + dy) for x, y in stations for dx, dy in DIRECTIONS}
@@ -191,7 +191,7 @@ class Work:
 
     def estimate(self, robot: int) -> float:
         """Steps the robot's errand takes at least (to order robots: the longest first)."""
-        if not self.domain.delivers:
+        if self.domain.work is Job.GOALS:
             goal = self.goals.get(robot)
             start = self.instance.robots[robot].at
             return math.inf if goal is None else abs(goal[0] - start[0]) + abs(goal[1] - start[1])

@@ -1,4 +1,9 @@
-"""The asprilo problem domains and how to tell which one an instance belongs to.
+"""The asprilo problem domains, as data, and how to tell which one an instance belongs to.
+
+Each domain is a descriptor (:class:`Domain`, one module per built-in domain beside this
+one) that tools ask instead of testing a domain's name: its actions, what a delivery does,
+its goal, the object kinds it reads, its checker concerns, reference encodings, bound,
+anytime work model and generator alignment.  docs/DOMAINS.md shows how to add one.
 
 A, B and C instances share one format, so the instance alone cannot separate them:
 quantities make an instance A (the most general reading), quantity-free facts
@@ -12,36 +17,34 @@ takes ``--domain`` to override the guess.
 
 from __future__ import annotations
 
-from enum import Enum
+from ..model import Instance, Plan
+from .a import A
+from .b import B
+from .c import C
+from .descriptor import (
+    Bound,
+    Delivery,
+    Domain,
+    Generation,
+    Goal,
+    Job,
+    ReferenceEncoding,
+    domains,
+    register,
+    unregister,
+)
+from .m import M
+from .md import MD
 
-from .errors import InputError
-from .model import Instance, Plan
+__all__ = ["Bound", "Delivery", "Domain", "Generation", "Goal", "ReferenceEncoding", "Job", "DEFAULT",
+           "detect_domain", "domains", "is_m_aligned", "register", "unregister"]
 
+for _builtin in (A, B, C, M, MD):
+    register(_builtin)
+Domain.A, Domain.B, Domain.C, Domain.M, Domain.MD = A, B, C, M, MD
 
-class Domain(str, Enum):
-    A = "a"
-    B = "b"
-    C = "c"
-    M = "m"
-    MD = "md"
-
-    @classmethod
-    def parse(cls, text: str | Domain) -> Domain:
-        """``a``/``B``/``md``... -> Domain; an unknown name is bad input."""
-        try:
-            return cls(str(text.value if isinstance(text, Domain) else text).lower())
-        except ValueError:
-            names = ", ".join(domain.value for domain in cls)
-            raise InputError(f"unknown domain '{text}' (choose one of {names})") from None
-
-    @property
-    def label(self) -> str:
-        return "Md" if self is Domain.MD else self.name
-
-    @property
-    def delivers(self) -> bool:
-        """Whether plans of this domain pick up, put down and deliver (A, B, C)."""
-        return self in (Domain.A, Domain.B, Domain.C)
+#: the reading of an instance when nothing says otherwise (the most general one)
+DEFAULT = A
 
 
 def is_m_aligned(instance: Instance) -> bool:
@@ -68,12 +71,12 @@ def _has_quantities(instance: Instance) -> bool:
 def detect_domain(instance: Instance, plan: Plan | None = None) -> Domain:
     """The domain an instance (and optionally its plan) fits; see the module docstring."""
     if instance.destinations:
-        return Domain.MD
+        return MD
     if not instance.orders:
-        return Domain.M
+        return M
     if is_m_aligned(instance) and (plan is None or all(action.name == "move" for action in plan.actions)):
-        return Domain.M
+        return M
     if plan is not None and any(action.name == "deliver" and isinstance(action.args, tuple)
                                 and len(action.args) == 2 for action in plan.actions):
-        return Domain.B
-    return Domain.A if _has_quantities(instance) else Domain.B
+        return B
+    return A if _has_quantities(instance) else B
