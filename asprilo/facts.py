@@ -19,6 +19,7 @@ from clingo import SymbolType
 
 from .errors import InputError
 from .model import Action, Instance
+from .objects import KINDS
 
 INIT_SHAPE = "init(object(Type,Id),value(Attribute,Value))"
 ASSIGN_SHAPE = "assign(robot(R),shelf(S)) or assign(robot(R),destination(D))"
@@ -47,33 +48,6 @@ def format_value(value: Any) -> str:
     return str(value)
 
 
-def is_cell(value: Any) -> bool:
-    return type(value) is tuple and len(value) == 2 and type(value[0]) is int and type(value[1]) is int
-
-
-def _is_int(value: Any) -> bool:
-    return isinstance(value, int)
-
-
-def _is_count(value: Any) -> bool:
-    return _is_int(value) or is_cell(value)
-
-
-#: object type -> attribute -> (test of the value's shape, description used in messages)
-ATTRIBUTES: dict[str, dict[str, tuple[Callable[[Any], bool], str]]] = {
-    "node": {"at": (is_cell, "a cell (X,Y)")},
-    "highway": {"at": (is_cell, "a cell (X,Y)")},
-    "robot": {"at": (is_cell, "a cell (X,Y)"), "carries": (_is_int, "a shelf id")},
-    "shelf": {"at": (is_cell, "a cell (X,Y)")},
-    "pickingStation": {"at": (is_cell, "a cell (X,Y)")},
-    "destination": {"at": (is_cell, "a cell (X,Y)")},
-    "product": {"on": (_is_count, "(Shelf,Units) or Shelf")},
-    "order": {"line": (_is_count, "(Product,Units) or Product"),
-              "pickingStation": (_is_int, "a picking station id")},
-    "grid": {"xsize": (_is_int, "an integer"), "ysize": (_is_int, "an integer")},
-}
-
-
 # --- writing -----------------------------------------------------------------------------
 
 def init_fact(kind: str, ident: Any, attribute: str, value: Any) -> str:
@@ -92,32 +66,45 @@ def format_action(action: Action) -> str:
             f"action({action.name},{format_value(action.args)}),{action.step})")
 
 
-def fact_groups(instance: Instance) -> list[tuple[str, list[str]]]:
-    """The facts of an instance in canonical order, grouped by object type: (title, facts)."""
-    robots = []
+def _robot_facts(instance: Instance) -> list[str]:
+    facts = []
     for i, robot in sorted(instance.robots.items()):
-        robots.append(init_fact("robot", i, "at", robot.at))
+        facts.append(init_fact("robot", i, "at", robot.at))
         if robot.carries is not None:
-            robots.append(init_fact("robot", i, "carries", robot.carries))
-    orders = []
+            facts.append(init_fact("robot", i, "carries", robot.carries))
+    return facts
+
+
+def _product_facts(instance: Instance) -> list[str]:
+    return [init_fact("product", i, "on", shelf if units is None else (shelf, units))
+            for i, product in sorted(instance.products.items()) for shelf, units in sorted(product.stock.items())]
+
+
+def _order_facts(instance: Instance) -> list[str]:
+    facts = []
     for i, order in sorted(instance.orders.items()):
-        orders += [init_fact("order", i, "line", product if units is None else (product, units))
-                   for product, units in sorted(order.lines.items())]
+        facts += [init_fact("order", i, "line", product if units is None else (product, units))
+                  for product, units in sorted(order.lines.items())]
         if order.station is not None:
-            orders.append(init_fact("order", i, "pickingStation", order.station))
-    groups = [
-        ("nodes", [init_fact("node", i, "at", cell) for i, cell in sorted(instance.nodes.items())]),
-        ("highways", [init_fact("highway", i, "at", cell) for i, cell in sorted(instance.highways.items())]),
-        ("picking stations", [init_fact("pickingStation", i, "at", s.at)
-                              for i, s in sorted(instance.stations.items())]),
-        ("robots", robots),
-        ("shelves", [init_fact("shelf", i, "at", s.at) for i, s in sorted(instance.shelves.items())]),
-        ("products on shelves", [init_fact("product", i, "on", shelf if units is None else (shelf, units))
-                                 for i, product in sorted(instance.products.items())
-                                 for shelf, units in sorted(product.stock.items())]),
-        ("orders", orders),
-        ("destinations", [init_fact("destination", i, "at", d.at)
-                          for i, d in sorted(instance.destinations.items())]),
+            facts.append(init_fact("order", i, "pickingStation", order.station))
+    return facts
+
+
+#: how the kinds that are more than placed are written (a grid is written as its nodes)
+_WRITERS: dict[str, Callable[[Instance], list[str]]] = {
+    "robot": _robot_facts, "product": _product_facts, "order": _order_facts, "grid": lambda _instance: []}
+
+
+def fact_groups(instance: Instance) -> list[tuple[str, list[str]]]:
+    """The facts of an instance in canonical order, grouped by object kind: (title, facts)."""
+    groups = []
+    for kind in KINDS.values():
+        if kind.name in _WRITERS:
+            groups.append((kind.title, _WRITERS[kind.name](instance)))
+        else:
+            cells = kind.cells(instance)
+            groups.append((kind.title, [init_fact(kind.name, i, "at", cell) for i, cell in sorted(cells.items())]))
+    groups += [
         ("labelled goals: robot -> goal", [assign_fact(robot, kind, goal)
                                            for robot, (kind, goal) in sorted(instance.assignment.items())]),
         ("facts asprilo does not use (kept as they were read)", list(instance.other_facts)),

@@ -11,9 +11,10 @@ from typing import Any
 import clingo
 
 from .errors import InputError, InputWarning
-from .facts import ATTRIBUTES, action_of, assign_terms, format_action, format_value, init_fact, init_terms, value_of
+from .facts import action_of, assign_terms, format_action, format_value, init_fact, init_terms, value_of
 from .limits import Limits, current, require_plan_fits
-from .model import Action, Cell, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
+from .model import Action, Instance, Order, Plan, Product, Robot
+from .objects import KINDS, ObjectKind, placed_kinds
 from .sources import Source, SourceLike, as_sources, line_of, load_facts, locate
 
 #: value_of is the tools' way to read single terms
@@ -70,6 +71,9 @@ class _InstanceBuilder:
         self.seen: dict[tuple, tuple[Any, Any]] = {}
         self.grid: dict[str, int] = {}
         self.goals: dict[int, tuple[str, int]] = {}
+        #: how the kinds that are more than placed are read
+        self._readers: dict[str, Callable[[int, str, Any, Any], None]] = {
+            "robot": self._robot, "product": self._product, "order": self._order, "grid": self._grid}
 
     def fail(self, message: str, origin: Any) -> InputError:
         return InputError(message, *_where(origin, self.sources))
@@ -82,35 +86,35 @@ class _InstanceBuilder:
         self.seen[key] = (value, origin)
 
     def add(self, kind: Any, ident: Any, attribute: Any, value: Any, origin: Any) -> None:
-        attributes = ATTRIBUTES.get(kind)
+        known = KINDS.get(kind)
+        attributes = None if known is None else known.attributes
         if attributes is None or attribute not in attributes:
             what = f"object type '{format_value(kind)}'" if attributes is None else \
                 f"attribute '{format_value(attribute)}' of {kind}"
             self.unknown.setdefault(what, origin)
             self.instance.other_facts.append(init_fact(*map(format_value, (kind, ident, attribute)), value))
             return
-        shape, description = attributes[attribute]
+        expected = attributes[attribute]
         if not isinstance(ident, int):
             raise self.fail(f"{kind} id must be an integer, got {format_value(ident)}", origin)
-        if not shape(value):
-            raise self.fail(f"{kind} {ident}: value of '{attribute}' must be {description}, "
+        if not expected.shape(value):
+            raise self.fail(f"{kind} {ident}: value of '{attribute}' must be {expected.description}, "
                             f"got {format_value(value)}", origin)
-        getattr(self, f"_{kind}")(ident, attribute, value, origin)
+        if known.placed:
+            self._placed(known, ident, value, origin)
+        else:
+            self._readers[kind](ident, attribute, value, origin)
 
     def check_cells(self) -> None:
         """Every cell within the ``coordinate`` limit (checked once all are read: fast)."""
         limit, instance = self.limits.coordinate, self.instance
-        placed = {"node": instance.nodes, "highway": instance.highways, "robot": instance.robots,
-                  "shelf": instance.shelves, "picking station": instance.stations,
-                  "destination": instance.destinations}
-        for kind, table in placed.items():
-            plain = kind in ("node", "highway")
-            cells = table.values() if plain else (item.at for item in table.values())
-            if max(map(abs, chain.from_iterable(cells)), default=0) > limit:
-                ident, cell = next((i, c if plain else c.at) for i, c in table.items()
-                                   if max(map(abs, c if plain else c.at)) > limit)
-                what = self.limits.exceeded("coordinate", f"{kind} {ident} at {format_value(cell)}").message
-                raise self.fail(what, self.seen[(kind, ident, "at")][1])
+        for kind in placed_kinds():
+            cells = {robot.id: robot.at for robot in instance.robots.values()} if kind.name == "robot" \
+                else kind.cells(instance)
+            if max(map(abs, chain.from_iterable(cells.values())), default=0) > limit:
+                ident, cell = next((i, c) for i, c in cells.items() if max(map(abs, c)) > limit)
+                what = self.limits.exceeded("coordinate", f"{kind.words} {ident} at {format_value(cell)}").message
+                raise self.fail(what, self.seen[(kind.words, ident, "at")][1])
 
     def warn_unknown(self) -> None:
         """One warning naming everything unknown (at the place of the first such fact)."""
@@ -137,27 +141,11 @@ class _InstanceBuilder:
         self.single(("assign", ident), f"{kind}({goal})", atom, f"robot {ident} is assigned two goals")
         self.goals[ident] = (kind, goal)
 
-    # one method per object type --------------------------------------------------------
+    # the placed kinds, and one method for each other kind -----------------------------------
 
-    def _placed(self, table: dict, factory: Callable, kind: str, ident: int, value: Cell,
-                origin: Any) -> None:
-        self.single((kind, ident, "at"), value, origin, f"{kind} {ident} is at two places")
-        table[ident] = factory(ident, value)
-
-    def _node(self, ident, _attribute, value, origin):
-        self._placed(self.instance.nodes, lambda _i, cell: cell, "node", ident, value, origin)
-
-    def _highway(self, ident, _attribute, value, origin):
-        self._placed(self.instance.highways, lambda _i, cell: cell, "highway", ident, value, origin)
-
-    def _shelf(self, ident, _attribute, value, origin):
-        self._placed(self.instance.shelves, Shelf, "shelf", ident, value, origin)
-
-    def _pickingStation(self, ident, _attribute, value, origin):
-        self._placed(self.instance.stations, PickingStation, "picking station", ident, value, origin)
-
-    def _destination(self, ident, _attribute, value, origin):
-        self._placed(self.instance.destinations, Destination, "destination", ident, value, origin)
+    def _placed(self, kind: ObjectKind, ident: int, value: Any, origin: Any) -> None:
+        self.single((kind.words, ident, "at"), value, origin, f"{kind.words} {ident} is at two places")
+        kind.place(self.instance, ident, value)
 
     def _robot(self, ident, attribute, value, origin):
         robot = self.instance.robots.get(ident)

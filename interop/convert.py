@@ -262,7 +262,8 @@ def _copy(instance: Instance) -> Instance:
         products={i: Product(p.id, dict(p.stock)) for i, p in instance.products.items()},
         orders={i: Order(o.id, dict(o.lines), o.station) for i, o in instance.orders.items()},
         destinations={i: Destination(d.id, d.at) for i, d in instance.destinations.items()},
-        assignment=dict(instance.assignment), other_facts=list(instance.other_facts))
+        assignment=dict(instance.assignment), other_facts=list(instance.other_facts),
+        placed={kind: dict(cells) for kind, cells in instance.placed.items()})
 
 
 # --- plans -------------------------------------------------------------------------------

@@ -10,6 +10,7 @@ one (``a.py`` ... ``md.py``); docs/DOMAINS.md shows how to add one.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from enum import Enum
 from typing import Any, ClassVar
@@ -94,6 +95,9 @@ class Domain:
     work: Job
     generation: Generation | None        # None: gen does not make it (see ``made_by``)
     made_by: str = ""                    # how to get an instance when gen does not make one
+    #: words for the domain's own checks: (module, check) -> describe(timeline, *params),
+    #: which returns the sentence and what to highlight (see asprilo.simulate.messages)
+    messages: Mapping[tuple[str, str], Callable[..., tuple[str, dict]]] = field(default_factory=dict)
 
     A: ClassVar[Domain]
     B: ClassVar[Domain]

@@ -56,7 +56,7 @@ def _term_key(value: Any) -> tuple:
 def explain(timeline: Timeline, module: str, check: str, params: tuple) -> Violation:
     """``err(module,check,params)`` of ``timeline`` in plain words, with what to highlight."""
     step = params[-1] if params and isinstance(params[-1], int) else 0
-    describe = MESSAGES.get((module, check))
+    describe = timeline.domain.messages.get((module, check)) or MESSAGES.get((module, check))
     try:
         text, highlight = describe(timeline, *params)
     except (TypeError, KeyError, IndexError, ValueError):  # no words for it (raw facts only)
