@@ -133,7 +133,7 @@ def main() -> int:
     args = parser.parse_args()
     app = QApplication(sys.argv[:1])
     from asprilo.reader import read_instance
-    from asprilo.visualizer.loading import Scenario
+    from asprilo.visualizer.state.loading import Scenario
     from asprilo.visualizer.window import MainWindow
 
     settings = QSettings(str(Path(os.environ.get("TMPDIR", "/tmp")) / "asprilo-bench-viz.ini"), QSettings.IniFormat)

@@ -124,9 +124,9 @@ def measure_load(scenario):
 def load_parts(scenario) -> dict[str, float]:
     """The viewer's load split into its parts."""
     from asprilo.simulate import simulate
-    from asprilo.visualizer.animator import Animator
-    from asprilo.visualizer.scene import WarehouseScene
-    from asprilo.visualizer.track import Track
+    from asprilo.visualizer.scene.animator import Animator
+    from asprilo.visualizer.scene.warehouse import WarehouseScene
+    from asprilo.visualizer.state.track import Track
 
     parts, start = {}, time.perf_counter()
     simulate(scenario.instance, scenario.plan)
@@ -194,7 +194,7 @@ def main() -> int:
     print(f"instance: {c['x']}x{c['y']}, {c['nodes']} nodes, {c['robots']} robots, {c['shelves']} shelves; "
           f"plan: {len(plan)} actions, horizon {plan.horizon}", flush=True)
 
-    from asprilo.visualizer.loading import load_scenario
+    from asprilo.visualizer.state.loading import load_scenario
     reads = []
     for _ in range(args.repeat):
         start = time.perf_counter()

@@ -10,8 +10,8 @@ from helpers import SMALL_A
 from asprilo.model import Instance, Order, Product, Robot, Shelf
 from asprilo.reader import read_instance
 from asprilo.sources import Source
-from asprilo.visualizer import edits
-from asprilo.visualizer.edits import EditRefused
+from asprilo.visualizer.state import edits
+from asprilo.visualizer.state.edits import EditRefused
 from asprilo.writer import format_instance
 
 

@@ -15,8 +15,8 @@ from PyQt5.QtGui import QMouseEvent  # noqa: E402
 from PyQt5.QtWidgets import QApplication, QMessageBox  # noqa: E402
 
 from asprilo.reader import read_instance, read_plan  # noqa: E402
-from asprilo.visualizer import style  # noqa: E402
-from asprilo.visualizer.dialogs import GenerateDialog, SizeDialog, StockDialog  # noqa: E402
+from asprilo.visualizer.panels.dialogs import GenerateDialog, SizeDialog, StockDialog  # noqa: E402
+from asprilo.visualizer.scene import style  # noqa: E402
 from asprilo.writer import format_instance  # noqa: E402
 
 pytestmark = pytest.mark.gui

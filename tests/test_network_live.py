@@ -15,7 +15,7 @@ from helpers.viewer import shown_window  # noqa: E402
 from PyQt5.QtCore import Qt  # noqa: E402
 
 from asprilo.online.serve import listen  # noqa: E402
-from asprilo.visualizer import network  # noqa: E402
+from asprilo.visualizer.jobs import network  # noqa: E402
 
 pytestmark = pytest.mark.gui
 

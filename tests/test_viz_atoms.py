@@ -16,8 +16,8 @@ from PyQt5.QtWidgets import QMessageBox  # noqa: E402
 
 from asprilo.checker import check  # noqa: E402
 from asprilo.reader import read_instance, read_plan  # noqa: E402
-from asprilo.visualizer import style  # noqa: E402
-from asprilo.visualizer.atoms import about, instance_lines  # noqa: E402
+from asprilo.visualizer.scene import style  # noqa: E402
+from asprilo.visualizer.state.atoms import about, instance_lines  # noqa: E402
 
 pytestmark = pytest.mark.gui
 FIRST = "occurs(object(robot,1),action(move,(1,0)),1)."  # robot 1 starts at (1,6) and moves right

@@ -19,7 +19,7 @@ from PyQt5.QtCore import QMimeData, QPoint, Qt, QUrl  # noqa: E402
 from PyQt5.QtGui import QDropEvent  # noqa: E402
 from PyQt5.QtWidgets import QMessageBox  # noqa: E402
 
-from asprilo.visualizer import network  # noqa: E402
+from asprilo.visualizer.jobs import network  # noqa: E402
 
 pytestmark = pytest.mark.gui
 WAIT_MS = 30_000

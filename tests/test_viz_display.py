@@ -12,8 +12,8 @@ from pathlib import Path
 import pytest
 from helpers import OUTCOME
 
-from asprilo.visualizer import display
-from asprilo.visualizer.display import HEADLESS, INSTALL, window_problem, x_server_answers
+from asprilo.visualizer.state import display
+from asprilo.visualizer.state.display import HEADLESS, INSTALL, window_problem, x_server_answers
 
 NO_DISPLAY = f"no display to open a window on (DISPLAY is not set): {HEADLESS}"
 linux = pytest.mark.skipif(not sys.platform.startswith("linux"), reason="Qt uses xcb on Linux only")

@@ -14,8 +14,8 @@ from helpers import OUTCOME, ROOT, SMALL_A, WRONG_OUTCOME  # noqa: E402
 from PIL import Image  # noqa: E402
 
 from asprilo.cli import main  # noqa: E402
-from asprilo.visualizer import style  # noqa: E402
-from asprilo.visualizer.export import animation_times  # noqa: E402
+from asprilo.visualizer.export.images import animation_times  # noqa: E402
+from asprilo.visualizer.scene import style  # noqa: E402
 
 pytestmark = pytest.mark.gui
 
@@ -84,7 +84,7 @@ def test_mp4(qapp, tmp_path):
 
 
 def test_mp4_without_pyav_says_what_to_install(qapp, tmp_path, monkeypatch, capsys):
-    from asprilo.visualizer import export
+    from asprilo.visualizer.export import images as export
     real = export.importlib.util.find_spec
     monkeypatch.setattr(export.importlib.util, "find_spec", lambda name: None if name == "av" else real(name))
     assert viz(OUTCOME, "--export", tmp_path / "plan.mp4") == 2

@@ -15,9 +15,9 @@ from PyQt5.QtCore import Qt  # noqa: E402
 from asprilo.domain import Domain  # noqa: E402
 from asprilo.reader import read_instance, read_plan  # noqa: E402
 from asprilo.sources import Source  # noqa: E402
-from asprilo.visualizer import style  # noqa: E402
-from asprilo.visualizer.goals import Goal, goals_at  # noqa: E402
-from asprilo.visualizer.track import Track  # noqa: E402
+from asprilo.visualizer.scene import style  # noqa: E402
+from asprilo.visualizer.state.goals import Goal, goals_at  # noqa: E402
+from asprilo.visualizer.state.track import Track  # noqa: E402
 
 pytestmark = pytest.mark.gui
 

@@ -10,14 +10,14 @@ import pytest  # noqa: E402
 from helpers import OUTCOME, WRONG_OUTCOME  # noqa: E402
 
 from asprilo.reader import read_instance, read_plan  # noqa: E402
-from asprilo.visualizer.describe import action_text, actions_text, tooltip  # noqa: E402
-from asprilo.visualizer.inventory import InventoryModel  # noqa: E402
-from asprilo.visualizer.orders import OrdersModel  # noqa: E402
-from asprilo.visualizer.plan_list import PlanModel  # noqa: E402
-from asprilo.visualizer.robot_list import RobotsModel  # noqa: E402
-from asprilo.visualizer.tables import CURRENT, DONE, TablePanel  # noqa: E402
-from asprilo.visualizer.track import Track  # noqa: E402
-from asprilo.visualizer.violation_list import ViolationsModel  # noqa: E402
+from asprilo.visualizer.panels.inventory import InventoryModel  # noqa: E402
+from asprilo.visualizer.panels.orders import OrdersModel  # noqa: E402
+from asprilo.visualizer.panels.plan_list import PlanModel  # noqa: E402
+from asprilo.visualizer.panels.robot_list import RobotsModel  # noqa: E402
+from asprilo.visualizer.panels.tables import CURRENT, DONE, TablePanel  # noqa: E402
+from asprilo.visualizer.panels.violation_list import ViolationsModel  # noqa: E402
+from asprilo.visualizer.state.describe import action_text, actions_text, tooltip  # noqa: E402
+from asprilo.visualizer.state.track import Track  # noqa: E402
 
 pytestmark = pytest.mark.gui
 

@@ -13,12 +13,12 @@ from PyQt5.QtCore import QPointF  # noqa: E402
 from asprilo.model import Action, Instance, Plan, Robot, Shelf  # noqa: E402
 from asprilo.reader import read_instance, read_plan  # noqa: E402
 from asprilo.simulate import simulate  # noqa: E402
-from asprilo.visualizer import style  # noqa: E402
-from asprilo.visualizer.animator import Animator  # noqa: E402
-from asprilo.visualizer.marks import Badge, CellMark  # noqa: E402
-from asprilo.visualizer.paths import PathMode, Trails  # noqa: E402
-from asprilo.visualizer.scene import HIGHWAY, MISSING, STORAGE, WarehouseScene  # noqa: E402
-from asprilo.visualizer.track import Track  # noqa: E402
+from asprilo.visualizer.scene import style  # noqa: E402
+from asprilo.visualizer.scene.animator import Animator  # noqa: E402
+from asprilo.visualizer.scene.marks import Badge, CellMark  # noqa: E402
+from asprilo.visualizer.scene.paths import PathMode, Trails  # noqa: E402
+from asprilo.visualizer.scene.warehouse import HIGHWAY, MISSING, STORAGE, WarehouseScene  # noqa: E402
+from asprilo.visualizer.state.track import Track  # noqa: E402
 
 pytestmark = pytest.mark.gui
 

@@ -8,11 +8,11 @@ from helpers import OUTCOME, SMALL_A
 from asprilo.model import Action, Plan
 from asprilo.reader import read_instance, read_plan
 from asprilo.sources import Source
-from asprilo.visualizer import edits
-from asprilo.visualizer.document import INSTANCE, PLAN, Document
-from asprilo.visualizer.history import History
-from asprilo.visualizer.loading import Scenario, load_scenario
-from asprilo.visualizer.state import ViewerState
+from asprilo.visualizer.state import edits
+from asprilo.visualizer.state.document import INSTANCE, PLAN, Document
+from asprilo.visualizer.state.history import History
+from asprilo.visualizer.state.loading import Scenario, load_scenario
+from asprilo.visualizer.state.viewer import ViewerState
 
 
 class Counter:

@@ -16,7 +16,7 @@ from PyQt5.QtGui import QDropEvent  # noqa: E402
 from PyQt5.QtWidgets import QAction  # noqa: E402
 
 from asprilo.simulate import simulate  # noqa: E402
-from asprilo.visualizer import style  # noqa: E402
+from asprilo.visualizer.scene import style  # noqa: E402
 from asprilo.visualizer.window import MainWindow  # noqa: E402
 
 pytestmark = pytest.mark.gui

@@ -23,7 +23,7 @@ import traceback
 from asprilo.arguments import domain_argument
 from asprilo.errors import InputError
 
-from .display import INSTALL, window_problem
+from .state.display import INSTALL, window_problem
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -58,7 +58,7 @@ def run(args: argparse.Namespace) -> int:
         if problem is not None:
             raise InputError(problem)
     _load_qt()
-    from .loading import command_line_inputs, load_scenario
+    from .state.loading import command_line_inputs, load_scenario
     instance, plans = command_line_inputs(args.files)
     scenario = load_scenario(instance, plans, args.domain) if instance else None
     if args.export:
@@ -91,7 +91,7 @@ def _check_options(args: argparse.Namespace) -> None:
 
 
 def _export(args: argparse.Namespace, scenario) -> int:
-    from .render import render
+    from .export.render import render
 
     def progress(done: int, total: int) -> None:
         if done == total or done % 50 == 0:
@@ -104,8 +104,8 @@ def _export(args: argparse.Namespace, scenario) -> int:
 
 
 def _show(args: argparse.Namespace, scenario) -> int:
-    from .jobs import wait_for_jobs
-    from .render import application
+    from .export.render import application
+    from .jobs.runner import wait_for_jobs
     from .window import MainWindow
     app = application()
     window = MainWindow()

@@ -22,26 +22,26 @@ from PyQt5.QtWidgets import (
     QWidget,
 )
 
-from .atoms_pane import AtomsPane
-from .banner import SessionBanner
-from .commands import Table, make_actions, show_shortcuts
-from .controls import TransportBar
-from .dialogs import confirm_discard
-from .editor import Editor
-from .exporting import ExportActions
-from .files import FileActions
-from .jobs import JobRunner
-from .legend import Legend
-from .live import LiveControl
-from .loading import Scenario
-from .panels import Panels
-from .paths import PathMode
-from .player import Player
-from .stage import Stage
-from .state import ViewerState
-from .status import StatusLine
-from .track import Track
-from .view import WarehouseView
+from .editor.layout import Editor
+from .export.exporting import ExportActions
+from .jobs.live import LiveControl
+from .jobs.runner import JobRunner
+from .panels.atoms_pane import AtomsPane
+from .panels.banner import SessionBanner
+from .panels.commands import Table, make_actions, show_shortcuts
+from .panels.controls import TransportBar
+from .panels.dialogs import confirm_discard
+from .panels.docks import Panels
+from .panels.files import FileActions
+from .panels.legend import Legend
+from .panels.status import StatusLine
+from .scene.paths import PathMode
+from .scene.player import Player
+from .scene.stage import Stage
+from .scene.view import WarehouseView
+from .state.loading import Scenario
+from .state.track import Track
+from .state.viewer import ViewerState
 
 ACTIONS: Table = {
     "open": ("&Open instance…", ("Ctrl+O",)),

@@ -1,0 +1,421 @@
+"""Generate, Solve and Check from the window (the Run menu), each a job in a worker thread.
+
+The window never freezes: a job runs in a :class:`Job` (a QThread); the status bar shows
+what it does (the horizons the solver tries) with a Cancel button.  Editing is locked
+while a job runs, so its result always fits the instance shown.  Cancelling a solve
+interrupts clingo at once; the generator cannot be interrupted, so a cancelled generation
+is left to finish in the background (at most its time limit) and its result is dropped.
+A job's thread belongs to no window: closing the window while a job still runs never
+destroys a running thread (Qt would abort the process); the application waits for such
+jobs when its window has gone (:func:`wait_for_jobs`).
+
+Solve has two methods (Run > Solve method, kept in the settings like the encoding): a plan
+of minimal makespan with a reference encoding, or the anytime planner, whose better plans
+are shown as they come (a draft, outside the undo history) and which answers with its best
+plan when cancelled.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import copy
+import threading
+import time
+from collections.abc import Callable
+from typing import Any
+
+import clingo
+from PyQt5.QtCore import QObject, QSettings, QThread, pyqtSignal
+from PyQt5.QtWidgets import QActionGroup, QHBoxLayout, QLabel, QMainWindow, QMenu, QProgressBar, QToolButton, QWidget
+
+from asprilo.errors import InputError
+from asprilo.reader import value_of
+from asprilo.simulate import Violation
+
+from ..panels.commands import Table, make_actions
+from ..panels.dialogs import GenerateDialog
+from ..scene.player import Player
+from ..state import edits
+from ..state.viewer import ViewerState
+
+#: seconds the solver and the generator may take from the window
+SOLVE_SECONDS, GENERATE_SECONDS = 300.0, 120.0
+#: the Solve methods: setting -> menu entry (``asp``: minimal makespan with the encoding chosen)
+SOLVE_METHODS = {"asp": "&Minimal makespan (with the encoding chosen)",
+                 "anytime": "&Anytime: a plan fast, then better ones"}
+
+JOB_ACTIONS: Table = {
+    "generate": ("&Generate (fill this layout)…", ("Ctrl+Shift+G",)),
+    "solve": ("&Solve", ("F9",)),
+    "check": ("&Check with the ASP checker", ("F7",)),
+    "cancel": ("C&ancel", ("Ctrl+.",)),
+}
+
+
+class Job(QThread):
+    """Runs ``work(job)`` in a worker thread and reports its result or failure (and, from
+    an anytime search, each better result so far through ``better``)."""
+
+    progress = pyqtSignal(str)
+    better = pyqtSignal(object)
+    succeeded = pyqtSignal(object)
+    failed = pyqtSignal(str)
+
+    def __init__(self, title: str, work: Callable[[Job], Any], parent: QObject | None = None):
+        super().__init__(parent)
+        self.title = title
+        self.work = work
+        self.cancel = threading.Event()
+        self.seconds = 0.0
+
+    def run(self) -> None:
+        started = time.perf_counter()
+        try:
+            result = self.work(self)
+        except InputError as error:
+            self.failed.emit(str(error))
+        except Exception as error:  # a bug must not take the window down: say what happened
+            self.failed.emit(f"{self.title} failed: {type(error).__name__}: {error}")
+        else:
+            self.seconds = time.perf_counter() - started
+            self.succeeded.emit(result)
+
+
+#: the jobs started, until their threads are seen finished (see the module's docstring)
+_STARTED: list[Job] = []
+
+
+def _keep(job: Job) -> None:
+    """Hold on to ``job`` until its thread has finished (dropping the finished ones)."""
+    _STARTED[:] = [started for started in _STARTED if started.isRunning()]
+    _STARTED.append(job)
+
+
+def _silence(job: Job) -> None:
+    """Disconnect everything ``job`` reports to: its result is no longer wanted."""
+    for signal in (job.progress, job.better, job.succeeded, job.failed):
+        with contextlib.suppress(TypeError):  # TypeError: nothing connected
+            signal.disconnect()
+
+
+def wait_for_jobs() -> None:
+    """Cancel the jobs still running and let them end (a solve stops at once); for the
+    application's last moments, before Qt destroys every object it still has."""
+    for job in _STARTED:
+        job.cancel.set()
+        job.wait()
+
+
+class JobBar(QWidget):
+    """What a running job does, with a busy bar and a Cancel button (in the status bar)."""
+
+    def __init__(self, parent: QWidget | None = None):
+        super().__init__(parent)
+        layout = QHBoxLayout(self)
+        layout.setContentsMargins(16, 0, 4, 0)  # apart from the status message on its left
+        self.label = QLabel(self)
+        self.bar = QProgressBar(self)
+        self.bar.setRange(0, 0)  # busy: how long a search takes is not known in advance
+        self.bar.setMaximumWidth(120)
+        self.bar.setMaximumHeight(14)
+        self.cancel = QToolButton(self)
+        self.cancel.setText("Cancel")
+        for widget in (self.label, self.bar, self.cancel):
+            layout.addWidget(widget)
+        self.hide()
+
+
+class JobRunner(QObject):
+    """The Run menu: Generate…, Solve, Check, Cancel, each a job in the background."""
+
+    def __init__(self, state: ViewerState, player: Player, window: QMainWindow, settings: QSettings):
+        super().__init__(window)
+        self.state, self.player, self.window, self.settings = state, player, window, settings
+        self.job: Job | None = None
+        self.last_outcome: Any = None  # the last solve's outcome, the last check's report
+        self.bar = JobBar(window)
+        self.bar.cancel.clicked.connect(self.cancel)
+        window.statusBar().addPermanentWidget(self.bar)
+        self.commands = make_actions(window, JOB_ACTIONS, {"generate": self.ask_generate, "solve": self.solve,
+                                                           "check": self.check, "cancel": self.cancel})
+        self.encodings = QActionGroup(self)
+        self.encoding_menu: QMenu | None = None
+        self.methods = QActionGroup(self)
+        for method, text in SOLVE_METHODS.items():
+            action = self.methods.addAction(text)
+            action.setCheckable(True)
+            action.setData(method)
+            action.triggered.connect(lambda _checked=False, m=method: self.settings.setValue("tools/method", m))
+        state.shown.connect(lambda _keep: self.update_actions())
+        state.locks_changed.connect(self.update_actions)
+        self.update_actions()
+
+    def install(self, menu: QMenu) -> None:
+        menu.addAction(self.commands["generate"])
+        menu.addSeparator()
+        menu.addAction(self.commands["solve"])
+        methods = menu.addMenu("Solve &method")
+        methods.addActions(self.methods.actions())
+        methods.aboutToShow.connect(self._show_method)
+        self.encoding_menu = menu.addMenu("Solve &with encoding")
+        self.encoding_menu.aboutToShow.connect(self._fill_encodings)
+        menu.addAction(self.commands["check"])
+        menu.addSeparator()
+        menu.addAction(self.commands["cancel"])
+
+    def update_actions(self) -> None:
+        idle = self.job is None
+        shown = self.state.document.scenario is not None and not self.state.session.running
+        for name in ("generate", "solve", "check"):
+            self.commands[name].setEnabled(idle and shown)
+        self.commands["cancel"].setEnabled(not idle)
+
+    def _fill_encodings(self) -> None:
+        from asprilo.encodings import encoding_names
+        self.encoding_menu.clear()
+        chosen = str(self.settings.value("tools/encoding", "plain"))
+        names = encoding_names(self.state.document.domain) if self.state.document.scenario is not None else ["plain"]
+        for name in names:
+            action = self.encoding_menu.addAction(name)
+            action.setCheckable(True)
+            action.setChecked(name == chosen)
+            self.encodings.addAction(action)
+            action.triggered.connect(lambda _checked=False, n=name: self.settings.setValue("tools/encoding", n))
+
+    @property
+    def method(self) -> str:
+        """The Solve method chosen (``asp`` or ``anytime``)."""
+        method = str(self.settings.value("tools/method", "asp"))
+        return method if method in SOLVE_METHODS else "asp"
+
+    def _show_method(self) -> None:
+        for action in self.methods.actions():
+            action.setChecked(action.data() == self.method)
+
+    # --- running jobs ----------------------------------------------------------------------------
+
+    def start(self, title: str, work: Callable[[Job], Any], done: Callable[[Job, Any], None],
+              better: Callable[[Any], None] | None = None) -> Job | None:
+        """Run ``work`` in the background; ``done(job, result)`` in the window's thread afterwards.
+
+        ``better(value)``, in the window's thread, hears of each better result so far; such
+        a job still answers when cancelled (with its best result)."""
+        if self.job is not None or self.state.document.scenario is None:
+            return None
+        job = Job(title, work)
+        _keep(job)
+        job.progress.connect(lambda text: self.bar.label.setText(f"{title}: {text}"))
+        if better is not None:
+            job.better.connect(better)
+        job.succeeded.connect(lambda result: self._finished(job, better is not None) and done(job, result))
+        job.failed.connect(lambda message: self._finished(job) and self.state.report_error(message))
+        self.job = job
+        self.bar.label.setText(f"{title}…")
+        self.bar.show()
+        self.player.pause()
+        self.state.begin_job(title)
+        job.start()
+        return job
+
+    def _finished(self, job: Job, answers: bool = False) -> bool:
+        """Tidy up after ``job``; whether its result is still wanted (not cancelled, or
+        ``answers``: its result is the best so far also when cancelled).  A draft plan it
+        showed goes when its result is not wanted."""
+        job.wait()
+        if self.job is job:
+            self._idle()
+        if not answers:
+            self.state.document.drop_draft()
+        if job.cancel.is_set() and not answers:
+            self.state.say(f"{job.title} cancelled")
+            return False
+        return True
+
+    def _idle(self) -> None:
+        self.job = None
+        self.bar.hide()
+        self.state.end_job()
+
+    def cancel(self) -> None:
+        """Stop the running job (the solver at once; a generation's result is dropped)."""
+        job = self.job
+        if job is None:
+            return
+        job.cancel.set()
+        if job.title == "Generate":  # the generator cannot be interrupted: let it run out unheard
+            self._abandon(job)
+            self.state.say("Generate cancelled")
+
+    def close(self) -> None:
+        """The window closes: stop the running job and hear nothing more from it."""
+        if self.job is not None:
+            self.job.cancel.set()
+            self._abandon(self.job)
+
+    def _abandon(self, job: Job) -> None:
+        _silence(job)
+        self._idle()
+
+    # --- generate ----------------------------------------------------------------------------------
+
+    def ask_generate(self) -> None:
+        if self.state.document.scenario is None:
+            return
+        counts = self.state.document.instance.counts()
+        dialog = GenerateDialog(counts, int(self.settings.value("tools/seed", 1)), self.window)
+        if dialog.exec_():
+            values = dialog.values()
+            self.settings.setValue("tools/seed", values["seed"])
+            self.generate(values["options"], values["seed"])
+
+    def generate(self, options: dict, seed: int) -> Job | None:
+        """Fill the instance shown with the generator (totals in ``options``), as one undoable edit."""
+        document = self.state.document
+        template = copy.deepcopy(document.instance)
+
+        def work(job: Job):
+            from asprilo.generator import populate
+            return populate(template, seed=seed, time_limit=GENERATE_SECONDS, **options)
+
+        def done(job: Job, generated) -> None:
+            self.last_outcome = generated
+            document.perform(edits.replace_all(document.instance, generated.instance, f"generate (seed {seed})"))
+            counts = generated.instance.counts()
+            self.state.say(f"generated in {job.seconds:.1f} s: {counts['robots']} robots, {counts['shelves']} "
+                           f"shelves, {counts['orders']} orders (Undo takes it back)", 8000)
+
+        return self.start("Generate", work, done)
+
+    # --- solve ----------------------------------------------------------------------------------
+
+    def solve(self, encoding: str | None = None, time_limit: float | None = None,
+              method: str | None = None) -> Job | None:
+        """Find a plan for the instance shown and play it: of minimal makespan with a reference
+        encoding (``method`` ``asp``), or with the anytime planner (``anytime``: each better
+        plan shown as it comes).  Default: the method and encoding chosen in the Run menu, the
+        time limit :data:`SOLVE_SECONDS` (anytime: the planner's own default)."""
+        from asprilo.encodings.anytime import DEFAULT_SECONDS as ANYTIME_SECONDS
+
+        document = self.state.document
+        if document.scenario is None:
+            return None
+        scenario, instance, domain = document.scenario, copy.deepcopy(document.instance), document.domain
+        method = method or self.method
+        anytime = method == "anytime"
+        encoding = encoding or str(self.settings.value("tools/encoding", "plain"))
+        if time_limit is None:
+            time_limit = ANYTIME_SECONDS if anytime else SOLVE_SECONDS
+
+        def work(job: Job):
+            from asprilo.encodings import solve
+
+            def heard(attempt) -> None:
+                job.progress.emit(tried(attempt))
+                if attempt.plan is not None:
+                    job.better.emit(attempt)
+
+            return solve(instance, domain, encoding=encoding, method=method, time_limit=time_limit,
+                         cancel=job.cancel, on_progress=heard,
+                         on_phase=lambda phase: job.progress.emit(doing(phase)))
+
+        def better(attempt) -> None:
+            if document.scenario is scenario:
+                document.draft_plan(attempt.plan)
+
+        def done(job: Job, outcome) -> None:
+            self._solved(job, outcome, scenario, domain.label)
+
+        return self.start("Solve", work, done, better if anytime else None)
+
+    def _solved(self, job: Job, outcome, scenario, domain: str) -> None:
+        """Load and play the plan found in ``scenario`` (if still shown), or say why there is none."""
+        document = self.state.document
+        self.last_outcome = outcome
+        if document.scenario is not scenario:
+            self.state.say("Solve: another instance is open now; the plan found is dropped", 10000)
+            return
+        if not outcome.found:
+            document.drop_draft()
+            if outcome.status.value == "cancelled":
+                self.state.say("Solve cancelled")
+                return
+            why = f" ({outcome.message})" if outcome.message else ""
+            hint = (" For a plan fast (not proven minimal), choose Run > Solve method > Anytime."
+                    if outcome.status.value == "limit" and outcome.method == "asp" else "")
+            self.state.report_error(f"No plan: {outcome.status.value}{why}.{hint}")
+            return
+        document.replace_plan(outcome.plan, f"solve ({outcome.encoding}, makespan {outcome.horizon})", time=0.0,
+                              sources=[])
+        self.state.say(found(outcome, job, domain), 10000)
+        self.player.play()
+
+    # --- check ----------------------------------------------------------------------------------
+
+    def check(self) -> Job | None:
+        """Run the ASP checker on instance and plan; its diagnostics go to the violations panel."""
+        document = self.state.document
+        if document.scenario is None:
+            return None
+        instance, plan, domain = copy.deepcopy(document.instance), document.plan, document.domain
+
+        def work(job: Job):
+            from asprilo.checker import check
+            return check(instance, plan, domain)
+
+        def done(job: Job, report) -> None:
+            self.last_outcome = report
+            self.show_report(report)
+
+        return self.start("Check", work, done)
+
+    def show_report(self, report) -> None:
+        """The checker's ``err/3`` diagnostics in the violations panel, said as the viewer says them."""
+        track = self.state.track
+        violations = [explain(track.timeline, error.atom) for error in report.errors]
+        self.state.show_checker_report(violations)
+        replay = {v.atom for v in track.timeline.violations}  # the goal included, also without a plan
+        agree = "agrees with" if replay == {v.atom for v in violations} else "differs from"
+        verdict = "valid plan" if report.valid else f"{len(violations)} violation{'s' if len(violations) != 1 else ''}"
+        self.state.say(f"ASP checker: {verdict}; it {agree} the viewer's replay", 10000)
+
+
+def doing(phase) -> str:
+    """What the progress line says while the search grounds or solves one horizon."""
+    if phase.horizon == 0:
+        return f"{phase.name}…"
+    return f"horizon {phase.horizon}: {phase.name}…"
+
+
+def tried(attempt) -> str:
+    """What the progress line says of one horizon tried, or of a better plan (anytime)."""
+    if attempt.result == "improved":
+        return f"makespan {attempt.horizon}, {attempt.note} ({attempt.seconds:.1f} s)"
+    return f"horizon {attempt.horizon}: {attempt.result} ({attempt.seconds:.1f} s)"
+
+
+def found(outcome, job: Job, domain: str) -> str:
+    """What the status bar says of the plan a solve found."""
+    minimal = "minimal " if outcome.minimal else ""
+    if outcome.method != "anytime":
+        return (f"plan found in {job.seconds:.1f} s: {minimal}makespan {outcome.horizon}, "
+                f"{len(outcome.plan)} actions ({domain}, {outcome.encoding})")
+    head = f"Solve stopped after {job.seconds:.1f} s, best plan" if job.cancel.is_set() else \
+        f"plan found in {job.seconds:.1f} s"
+    gap = outcome.history[-1]["gap"] if outcome.history else None
+    above = f", {100 * gap:.1f}% above the lower bound {outcome.lower_bound:g}" if gap and not minimal else ""
+    plans = len(outcome.history)
+    return (f"{head}: {minimal}makespan {outcome.horizon}{above}, {len(outcome.plan)} actions, "
+            f"{plans} plan{'s' if plans != 1 else ''} reported ({domain}, anytime)")
+
+
+def explain(timeline, atom: str) -> Violation:
+    """An ``err(Module,Check,Params)`` atom as the replay words it (with what to highlight)."""
+    term = clingo.parse_term(atom)
+    module, check, params = term.arguments
+    values = value_of(params)
+    values = values if isinstance(values, tuple) else (values,)
+    try:
+        return timeline.explain(module.name, check.name, values)
+    except (KeyError, IndexError, TypeError, ValueError):
+        step = values[-1] if values and isinstance(values[-1], int) else 0
+        return Violation(module.name, check.name, values, step, f"{module.name} rule '{check.name}' is broken ({atom})")

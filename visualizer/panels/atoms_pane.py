@@ -1,0 +1,264 @@
+"""The atoms pane: the instance's facts and the plan's ``occurs/3`` facts as text, following
+the map, and the plan editable there.
+
+Selecting an object (on the map, in a panel) marks its facts and its actions; the actions of
+the step shown are marked as the plan plays.  Clicking a fact selects its object; clicking
+an action goes to its step.  Edits of the plan's text are read back a moment after the last
+keystroke: if the text is a plan of the instance's robots it replaces the plan shown (one
+undoable step: Ctrl+Z takes it back), the animation and the violations follow; otherwise the
+line at fault is marked and the plan shown stays.
+"""
+
+from __future__ import annotations
+
+from PyQt5.QtCore import QEvent, Qt, QTimer
+from PyQt5.QtGui import QColor, QFont, QKeySequence, QTextCursor, QTextFormat
+from PyQt5.QtWidgets import QLabel, QPlainTextEdit, QSplitter, QTextEdit, QVBoxLayout, QWidget
+
+from asprilo.errors import InputError
+
+from ..state.atoms import AtomLine, about, instance_lines, lines_about, plan_lines, read_plan_text
+from ..state.document import Change
+from ..state.viewer import ViewerState
+from .tables import CURRENT, PROBLEM
+
+#: milliseconds after the last keystroke before an edited plan is read
+READ_DELAY_MS = 400
+SUBJECT = QColor("#ffec99")  # the facts of the object selected
+
+
+class _PlanText(QPlainTextEdit):
+    """The plan's text: Ctrl+Z and Ctrl+Shift+Z go to the window's undo (the document's
+    history), after what was typed so far has been read."""
+
+    def __init__(self, pane: AtomsPane):
+        super().__init__()
+        self.pane = pane
+        self.setUndoRedoEnabled(False)
+
+    def event(self, event) -> bool:
+        if event.type() == QEvent.ShortcutOverride and (event.matches(QKeySequence.Undo)
+                                                        or event.matches(QKeySequence.Redo)):
+            self.pane.read_now()
+            event.ignore()  # not the text's own undo: the window's shortcut runs
+            return True
+        return super().event(event)
+
+
+def _text_box(read_only: bool, editor: QPlainTextEdit | None = None) -> QPlainTextEdit:
+    box = editor or QPlainTextEdit()
+    box.setReadOnly(read_only)
+    box.setLineWrapMode(QPlainTextEdit.NoWrap)
+    font = QFont("DejaVu Sans Mono")
+    font.setStyleHint(QFont.Monospace)
+    font.setPointSize(9)
+    box.setFont(font)
+    return box
+
+
+class AtomsPane(QWidget):
+    """Instance facts above, plan facts below, each with a line saying what it shows."""
+
+    def __init__(self, state: ViewerState, parent: QWidget | None = None):
+        super().__init__(parent)
+        self.state = state
+        self.instance_box = _text_box(True)
+        self.plan_box = _text_box(False, _PlanText(self))
+        self.plan_note = QLabel(self)
+        self.plan_note.setWordWrap(True)
+        self.lines: dict[str, list[AtomLine]] = {"instance": [], "plan": []}
+        self._stale = {"instance": True, "plan": True}
+        self.shown = False  # the pane can be seen (its dock is open and its tab chosen)
+        self._by_step: dict[int, list[int]] = {}  # step -> numbers of the plan's lines
+        self._own_edit = False  # the plan shown came from this pane's text
+        self._problem_marks: list = []  # the line the reader refused
+        self._filling = False
+        self._timer = QTimer(self)
+        self._timer.setSingleShot(True)
+        self._timer.setInterval(READ_DELAY_MS)
+        self._timer.timeout.connect(self._read)
+        self._layout()
+        self.plan_box.textChanged.connect(self._typed)
+        self.plan_box.cursorPositionChanged.connect(self._plan_clicked)
+        self.instance_box.cursorPositionChanged.connect(self._instance_clicked)
+        state.shown.connect(lambda _keep: self._stale_all())
+        state.track_changed.connect(self._changed)
+        state.step_changed.connect(lambda _step: self._mark())
+        state.selection.changed.connect(self._follow_selection)
+        state.locks_changed.connect(self._show_locks)
+
+    def _layout(self) -> None:
+        splitter = QSplitter(Qt.Vertical, self)
+        for title, box, note in (("Instance facts (read only)", self.instance_box, None),
+                                 ("Plan: occurs/3 facts, edit them here", self.plan_box, self.plan_note)):
+            part = QWidget(splitter)
+            layout = QVBoxLayout(part)
+            layout.setContentsMargins(2, 2, 2, 2)
+            layout.setSpacing(2)
+            layout.addWidget(QLabel(f"<b>{title}</b>", part))
+            layout.addWidget(box)
+            if note is not None:
+                layout.addWidget(note)
+            splitter.addWidget(part)
+        layout = QVBoxLayout(self)
+        layout.setContentsMargins(0, 0, 0, 0)
+        layout.addWidget(splitter)
+
+    # --- following the state ------------------------------------------------------------------
+
+    def _stale_all(self) -> None:
+        self._stale = {"instance": True, "plan": True}
+        self._own_edit = False
+        self._show_locks()
+        self.refresh()
+
+    def _changed(self, change: Change) -> None:
+        if change.edit is not None:
+            self._stale["instance"] = True
+        if change.plan and not self._own_edit:
+            self._stale["plan"] = True
+        self._own_edit = False
+        self.refresh()
+
+    def set_shown(self, shown: bool) -> None:
+        """The pane's dock was opened or closed, its tab chosen or left."""
+        self.shown = shown
+        self.refresh()
+
+    def refresh(self) -> None:
+        """Fill in what went out of date (only while the pane can be seen: big plans take a while)."""
+        if not self.shown:
+            return
+        document = self.state.document
+        if self._stale["instance"]:
+            self._fill("instance", self.instance_box, instance_lines(document.instance))
+        if self._stale["plan"]:
+            self._timer.stop()
+            self._fill("plan", self.plan_box, plan_lines(document.plan))
+        self._show_note()
+        self._follow_selection()
+
+    def _fill(self, part: str, box: QPlainTextEdit, lines: list[AtomLine]) -> None:
+        self._filling = True
+        try:
+            box.setPlainText("\n".join(line.text for line in lines))
+        finally:
+            self._filling = False
+        self._stale[part] = False
+        self._set_lines(part, lines)
+        if part == "plan":
+            self._problem_marks = []
+
+    def _set_lines(self, part: str, lines: list[AtomLine]) -> None:
+        self.lines[part] = lines
+        if part == "plan":
+            self._by_step = {}
+            for number, line in enumerate(lines):
+                if line.step is not None:
+                    self._by_step.setdefault(line.step, []).append(number)
+
+    def _show_locks(self) -> None:
+        self.plan_box.setReadOnly(self.state.layout_lock() is not None or self.state.document.scenario is None)
+
+    def _show_note(self, problem: str | None = None) -> None:
+        track = self.state.track
+        if problem is not None:
+            self.plan_note.setText(f"<span style='color:#e03131'>{problem} (the plan shown stays)</span>")
+        elif track is None:
+            self.plan_note.setText("")
+        else:
+            count = len(track.violations)
+            verdict = f"{count} violation{'s' if count != 1 else ''}" if count else "no violation"
+            self.plan_note.setText(f"{len(track.plan)} actions, horizon {track.horizon}: {verdict}")
+
+    # --- marks: the object selected, the step shown ----------------------------------------------
+
+    def _follow_selection(self) -> None:
+        focus = self.state.selection.focus
+        numbers = lines_about(self.lines["instance"], focus) if focus is not None else []
+        if numbers and self.shown and not self.instance_box.hasFocus():
+            _scroll_to(self.instance_box, numbers[0])
+        self._mark()
+
+    def _mark(self) -> None:
+        if not self.shown:
+            return
+        focus, step = self.state.selection.focus, self.state.step
+        subject = lines_about(self.lines["instance"], focus) if focus else []
+        self.instance_box.setExtraSelections(_marks(self.instance_box, subject, SUBJECT))
+        plan = self.lines["plan"]
+        now = self._by_step.get(step, [])
+        mine = [n for n in lines_about(plan, focus) if plan[n].step != step] if focus else []
+        self.plan_box.setExtraSelections(_marks(self.plan_box, now, CURRENT) + _marks(self.plan_box, mine, SUBJECT)
+                                         + self._problem_marks)
+        if now and not self.plan_box.hasFocus() and self.state.document.scenario is not None:
+            _scroll_to(self.plan_box, now[0])
+
+    # --- what the user does ----------------------------------------------------------------------
+
+    def _typed(self) -> None:
+        if not self._filling:
+            self._timer.start()
+
+    def read_now(self) -> None:
+        """Read the edited plan now, if it was edited since it was last read."""
+        if self._timer.isActive():
+            self._timer.stop()
+            self._read()
+
+    def _read(self) -> None:
+        """Show the plan the text holds, or say what is wrong with it."""
+        text = self.plan_box.toPlainText()
+        self._set_lines("plan", [about(line) for line in text.split("\n")])
+        try:
+            plan = read_plan_text(text, self.state.document.instance)
+        except InputError as error:
+            self._problem_marks = _marks(self.plan_box, [error.line - 1] if error.line else [], PROBLEM)
+            self._show_note(str(error))
+            self._mark()
+            return
+        self._problem_marks = []
+        self._own_edit = True
+        if not self.state.document.replace_plan(plan, "edit the plan's atoms"):
+            self._own_edit = False
+            self._show_note()
+            self._mark()
+
+    def _plan_clicked(self) -> None:
+        if self._filling or not self.plan_box.hasFocus():
+            return
+        line = about(self.plan_box.textCursor().block().text())
+        if line.step is not None and line.step != self.state.step:
+            self.state.seek(line.step)
+
+    def _instance_clicked(self) -> None:
+        if self._filling or not self.instance_box.hasFocus():
+            return
+        line = about(self.instance_box.textCursor().block().text())
+        objects = sorted(subject for subject in line.subjects if subject[0] in ("robot", "shelf", "station",
+                                                                                   "destination"))
+        if objects:
+            robots = [ident for kind, ident in objects if kind == "robot"]
+            self.state.selection.set(robots, ("robot", robots[0]) if robots else objects[0])
+
+
+def _marks(box: QPlainTextEdit, numbers: list[int], colour: QColor) -> list:
+    """Whole-line marks on the lines ``numbers`` of ``box``."""
+    marks = []
+    document = box.document()
+    for number in numbers:
+        block = document.findBlockByNumber(number)
+        if not block.isValid():
+            continue
+        mark = QTextEdit.ExtraSelection()
+        mark.format.setBackground(colour)
+        mark.format.setProperty(QTextFormat.FullWidthSelection, True)
+        mark.cursor = QTextCursor(block)
+        marks.append(mark)
+    return marks
+
+
+def _scroll_to(box: QPlainTextEdit, number: int) -> None:
+    """Scroll so that line ``number`` shows near the top (the text cursor stays where it is)."""
+    box.verticalScrollBar().setValue(max(0, number - 3))
+
