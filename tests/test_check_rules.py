@@ -10,7 +10,7 @@ from helpers.worlds import plan, walk, world
 
 from asprilo.checker.programs import err_atoms
 from asprilo.domain import Domain
-from asprilo.model import PickingStation, Shelf
+from asprilo.model import Destination, PickingStation, Shelf
 from asprilo.simulate import simulate
 
 A, B, C, M, MD = Domain.A, Domain.B, Domain.C, Domain.M, Domain.MD
@@ -24,6 +24,20 @@ def _moved(instance, robot=None, shelf=None, station=None):
         instance.shelves[1] = Shelf(1, shelf)
     if station is not None:
         instance.stations[1] = PickingStation(1, station)
+    return instance
+
+
+def _add_station(instance, cell):
+    """``instance`` with one more picking station on ``cell``."""
+    number = max(instance.stations, default=0) + 1
+    instance.stations[number] = PickingStation(number, cell)
+    return instance
+
+
+def _with_destinations(instance, *cells):
+    """``instance`` with destinations 1, 2, ... on ``cells``."""
+    for number, cell in enumerate(cells, 1):
+        instance.destinations[number] = Destination(number, cell)
     return instance
 
 
@@ -45,6 +59,15 @@ CASES = {
     "instance shelfOffFloor": (M, _moved(world("R."), shelf=(3, 1)), plan(), ["err(instance,shelfOffFloor,(1,0))"]),
     "instance stationOffFloor": (M, _moved(world("R."), station=(9, 9)), plan(),
                                  ["err(instance,stationOffFloor,(1,0))"]),
+    "instance destinationOffFloor": (MD, _with_destinations(world("R."), (9, 9)), plan(),
+                                     ["err(instance,destinationOffFloor,(1,0))",
+                                      "err(goal,unoccupiedDestination,(1,0))"]),
+    "instance stationCollision": (M, _add_station(world("RP."), (2, 1)), plan(),
+                                  ["err(instance,stationCollision,(1,2,0))"]),
+    "instance destinationCollision": (MD, _with_destinations(world("R."), (2, 1), (2, 1)), plan(),
+                                      ["err(instance,destinationCollision,(1,2,0))",
+                                       "err(goal,unoccupiedDestination,(1,0))",
+                                       "err(goal,unoccupiedDestination,(2,0))"]),
     "instance robotCollision": (M, _moved(world("RR"), robot=(2, 1)), plan(),
                                 ["err(instance,robotCollision,(1,2,0))"]),
     "instance shelfCollision": (M, _moved(world("RSS"), shelf=(3, 1)), plan(),

@@ -50,9 +50,7 @@ def test_objects_get_the_next_ids_and_refusals_say_why(floor):
     with pytest.raises(EditRefused) as refused:
         edits.add_object(floor, "shelf", (3, 2))
     assert str(refused.value) == "(3,2) is a highway: shelves may not rest there"
-    with pytest.raises(EditRefused) as refused:
-        edits.add_object(floor, "station", (3, 2))
-    assert str(refused.value) == "(3,2) is a highway: picking stations are never on highways"
+    edits.add_object(floor, "station", (3, 2))  # allowed, as in the checker (the paper's instances do it)
     do(floor, edits.add_object(floor, "station", (4, 1)))
     with pytest.raises(EditRefused) as refused:
         edits.add_object(floor, "shelf", (4, 1))

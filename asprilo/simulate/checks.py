@@ -33,9 +33,7 @@ def check_instance(instance: Instance, domain: Domain, report: Report) -> Start:
             report("instance", "sharedShelf", shelf, 0)
     resting = {s.id: s.at for s in instance.shelves.values() if s.id not in holder}
     _check_resting(instance, nodes, resting, report)
-    for station in instance.stations.values():
-        if station.at not in nodes:
-            report("instance", "stationOffFloor", station.id, 0)
+    _check_fixed(instance, nodes, report)
     robot_cells = {r.id: r.at for r in instance.robots.values()}
     shelf_cells = dict(resting)
     shelf_cells.update({shelf: robot_cells[robot] for shelf, robot in holder.items()})
@@ -45,6 +43,17 @@ def check_instance(instance: Instance, domain: Domain, report: Report) -> Start:
         report("instance", "shelfCollision", first, second, 0)
     _check_orders(instance, domain, set(shelf_cells), report)
     return Start(holder, resting, set(shelf_cells))
+
+
+def _check_fixed(instance: Instance, nodes: set[Cell], report: Report) -> None:
+    """Picking stations and destinations: on a floor node, one of each kind per node."""
+    for kind, objects in (("station", instance.stations), ("destination", instance.destinations)):
+        cells = {thing.id: thing.at for thing in objects.values()}
+        for ident, cell in cells.items():
+            if cell not in nodes:
+                report("instance", f"{kind}OffFloor", ident, 0)
+        for first, second in pairs_sharing(cells):
+            report("instance", f"{kind}Collision", first, second, 0)
 
 
 def _check_robots(instance: Instance, nodes: set[Cell], report: Report) -> dict[int, list[int]]:

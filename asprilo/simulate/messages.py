@@ -53,6 +53,21 @@ def instance_station_off_floor(timeline, station, _step):
     return f"picking station {station} is at {_cell(cell)}, which is not a floor node", {"cells": [cell]}
 
 
+def instance_destination_off_floor(timeline, destination, _step):
+    cell = timeline.instance.destinations[destination].at
+    return f"destination {destination} is at {_cell(cell)}, which is not a floor node", {"cells": [cell]}
+
+
+def instance_station_collision(timeline, first, second, _step):
+    cell = timeline.instance.stations[first].at
+    return f"picking stations {first} and {second} are both on {_cell(cell)}", {"cells": [cell]}
+
+
+def instance_destination_collision(timeline, first, second, _step):
+    cell = timeline.instance.destinations[first].at
+    return f"destinations {first} and {second} are both on {_cell(cell)}", {"cells": [cell]}
+
+
 def instance_robot_collision(timeline, first, second, _step):
     cell = timeline.instance.robots[first].at
     return f"robots {first} and {second} both start on {_cell(cell)}", \
@@ -318,6 +333,9 @@ MESSAGES: dict[tuple[str, str], Describe] = {
     ("instance", "robotOffFloor"): instance_robot_off_floor,
     ("instance", "shelfOffFloor"): instance_shelf_off_floor,
     ("instance", "stationOffFloor"): instance_station_off_floor,
+    ("instance", "destinationOffFloor"): instance_destination_off_floor,
+    ("instance", "stationCollision"): instance_station_collision,
+    ("instance", "destinationCollision"): instance_destination_collision,
     ("instance", "robotCollision"): instance_robot_collision,
     ("instance", "shelfCollision"): instance_shelf_collision,
     ("instance", "shelfOnHighway"): instance_shelf_on_highway,

@@ -6,9 +6,10 @@ values) or raises :class:`EditRefused` with the reason, e.g. *(3,4) is a highway
 may not rest there*.  Nothing here touches Qt: :func:`apply` performs an edit, the document
 (``document.py``) calls it forwards and backwards for its undo history.
 
-The rules follow SPEC.md §1: objects stand on nodes; at most one robot, one shelf and one
-picking station per node; shelves rest only on storage nodes (neither highway nor picking
-station); a carried shelf is where its robot is.
+The rules are the instance rules of the simulator and the checker (SPEC.md §1): objects
+stand on nodes; at most one robot, one shelf, one picking station and one destination per
+node; shelves rest only on storage nodes (neither highway nor picking station); a carried
+shelf is where its robot is.  An edit is refused when it breaks one that held before.
 """
 
 from __future__ import annotations
@@ -18,7 +19,10 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
-from asprilo.model import Cell, Destination, Instance, Order, PickingStation, Product, Robot, Shelf
+from asprilo.domain import DEFAULT
+from asprilo.model import Cell, Instance, Order, Product, Robot, Shelf
+from asprilo.objects import KINDS
+from asprilo.simulate.checks import check_instance
 
 
 class _Missing:
@@ -33,11 +37,14 @@ class _Missing:
 
 MISSING: Any = _Missing()
 
-#: object kinds the editor places, and the instance table that holds them
-TABLES = {"robot": "robots", "shelf": "shelves", "station": "stations", "destination": "destinations"}
-_MAKERS: dict[str, Callable[[int, Cell], Any]] = {
-    "robot": Robot, "shelf": Shelf, "station": PickingStation, "destination": Destination}
-NAMES = {"robot": "robot", "shelf": "shelf", "station": "picking station", "destination": "destination"}
+#: the object kinds the editor places (asprilo.objects), by the editor's names for them;
+#: the instance table that holds each, how one is made, how one and several are called
+_KINDS = {"robot": KINDS["robot"], "shelf": KINDS["shelf"], "station": KINDS["pickingStation"],
+          "destination": KINDS["destination"]}
+TABLES = {name: str(kind.table) for name, kind in _KINDS.items()}
+_MAKERS: dict[str, Callable[[int, Cell], Any]] = {name: kind.factory or Robot for name, kind in _KINDS.items()}
+NAMES = {name: kind.words for name, kind in _KINDS.items()}
+_PLURALS = {name: kind.title for name, kind in _KINDS.items()}
 FLOOR_KINDS = ("storage", "highway", "missing")
 
 
@@ -151,36 +158,66 @@ def _require_node(instance: Instance, cell: Cell, what: str) -> None:
 def _check_place(instance: Instance, kind: str, cell: Cell, ignore: tuple[str, int] | None = None,
                  carried: int | None = None) -> None:
     """Raise unless an object of ``kind`` (another than ``ignore``) may stand on ``cell``.
-    ``carried``: the shelf a robot to be placed there carries."""
-    name = NAMES[kind]
-    _require_node(instance, cell, f"a {name}")
-    here = [(k, i) for k, i in objects_at(instance, cell) if (k, i) != ignore]
-    resting = [i for k, i in here if k == "shelf" and carrier_of(instance, i) is None]
-    if kind != "shelf" and any(k == kind for k, _ in here):
-        other = next(i for k, i in here if k == kind)
-        raise EditRefused(f"{name} {other} already stands on {cell_text(cell)}: "
-                          f"two {name}s may not share a node")
-    kind_here = floor_kind(instance, cell)
-    station_here = next((i for k, i in here if k == "station"), None)
-    if kind == "shelf":
-        if kind_here == "highway":
-            raise EditRefused(f"{cell_text(cell)} is a highway: shelves may not rest there")
-        if station_here is not None:
-            raise EditRefused(f"picking station {station_here} is on {cell_text(cell)}: "
-                              "shelves may not rest there")
-        shelves = [i for k, i in here if k == "shelf"]
-        if shelves:
-            raise EditRefused(f"shelf {shelves[0]} already stands on {cell_text(cell)}: "
-                              "two shelves may not share a node")
-    elif kind == "station":
-        if kind_here == "highway":
-            raise EditRefused(f"{cell_text(cell)} is a highway: picking stations are never on highways")
-        if resting:
-            raise EditRefused(f"shelf {resting[0]} rests on {cell_text(cell)}: "
-                              "a picking station needs a node without shelves")
-    elif kind == "robot" and carried is not None and resting:
-        raise EditRefused(f"shelf {resting[0]} rests on {cell_text(cell)}: a robot carrying "
-                          f"shelf {carried} cannot go under it")
+    ``carried``: the shelf a robot to be placed there carries.
+
+    The rules are the instance's (:func:`asprilo.simulate.checks.check_instance`, which the
+    checker's instance.lp agrees with): an edit may not break one that was kept before.
+    Every rule is about one node, so they are checked on the node and what stands on it."""
+    here = [(k, i) for k, i in objects_at(instance, cell) if (k, i) != ignore and (k, i) != ("shelf", carried)]
+    local = _node_with(instance, cell, here)
+    before = instance_errors(local)
+    ident = next_id(getattr(local, TABLES[kind]))
+    getattr(local, TABLES[kind])[ident] = _MAKERS[kind](ident, cell)
+    if carried is not None:
+        local.robots[ident].carries = carried
+        local.shelves[carried] = Shelf(carried, cell)
+    broken = sorted(instance_errors(local) - before)
+    if broken:
+        raise EditRefused(_refusal(local, kind, cell, ident, carried, broken[0]))
+
+
+def instance_errors(instance: Instance) -> set[tuple]:
+    """The instance rules ``instance`` breaks, as ``(check, *params)``."""
+    found: set[tuple] = set()
+    check_instance(instance, DEFAULT, lambda _module, check, *params: found.add((check, *params[:-1])))
+    return found
+
+
+def _node_with(instance: Instance, cell: Cell, objects: list[tuple[str, int]]) -> Instance:
+    """A copy of ``cell``'s node (if any: storage or highway) with ``objects`` on it."""
+    local = Instance()
+    if cell in instance.cells:
+        local.nodes[1] = cell
+    if floor_kind(instance, cell) == "highway":
+        local.highways[1] = cell
+    for kind, ident in objects:
+        table = TABLES[kind]
+        getattr(local, table)[ident] = copy.copy(getattr(instance, table)[ident])
+    for robot in local.robots.values():
+        if robot.carries is not None and robot.carries not in local.shelves:
+            robot.carries = None  # its shelf stands elsewhere: another node's business
+    return local
+
+
+def _refusal(node: Instance, kind: str, cell: Cell, ident: int, carried: int | None, broken: tuple) -> str:
+    """Why placing a ``kind`` (``ident`` in ``node``, the copy of ``cell``'s node) on ``cell``
+    breaks the rule ``broken``."""
+    check, *params = broken
+    name, where = NAMES[kind], cell_text(cell)
+    other = next((p for p in params if p != ident), None)
+    if check.endswith("OffFloor"):
+        return f"{where} is not a floor node: a {name} must stand on a node"
+    if check == "shelfCollision" and kind == "robot":
+        return f"shelf {other} rests on {where}: a robot carrying shelf {carried} cannot go under it"
+    if check.endswith("Collision"):
+        return f"{name} {other} already stands on {where}: two {_PLURALS[kind]} may not share a node"
+    if check == "shelfOnHighway":
+        return f"{where} is a highway: shelves may not rest there"
+    if check == "shelfOnStation" and kind == "shelf":
+        return f"picking station {min(node.stations)} is on {where}: shelves may not rest there"
+    if check == "shelfOnStation":
+        return f"shelf {params[0]} rests on {where}: a picking station needs a node without shelves"
+    return f"{name} on {where} breaks the instance rule {check}"
 
 
 # --- objects ------------------------------------------------------------------------------------
@@ -301,21 +338,20 @@ def set_floor(instance: Instance, cell: Cell, kind: str, width: int | None = Non
 
 
 def _check_floor(instance: Instance, cell: Cell, kind: str) -> None:
-    """Raise unless what stands on ``cell`` may stand on floor of ``kind``."""
+    """Raise unless what stands on ``cell`` may stand on floor of ``kind`` (the instance rules
+    of :func:`_check_place`)."""
     here = objects_at(instance, cell)
-    if kind == "missing" and here:
-        names = ", ".join(f"{NAMES[k]} {i}" for k, i in here)
-        raise EditRefused(f"{names} stand{'s' if len(here) == 1 else ''} on {cell_text(cell)}: "
-                          "remove it first")
-    if kind != "highway":
+    local = _node_with(instance, cell, here)
+    before = instance_errors(local)
+    local.nodes, local.highways = ({1: cell} if kind != "missing" else {}), ({1: cell} if kind == "highway" else {})
+    broken = sorted(instance_errors(local) - before)
+    if not broken:
         return
-    resting = [i for k, i in here if k == "shelf" and carrier_of(instance, i) is None]
-    if resting:
-        raise EditRefused(f"shelf {resting[0]} rests on {cell_text(cell)}: a highway must stay free of shelves")
-    station = next((i for k, i in here if k == "station"), None)
-    if station is not None:
-        raise EditRefused(f"picking station {station} is on {cell_text(cell)}: "
-                          "picking stations are never on highways")
+    if kind == "missing":
+        names = ", ".join(f"{NAMES[k]} {i}" for k, i in here)
+        raise EditRefused(f"{names} stand{'s' if len(here) == 1 else ''} on {cell_text(cell)}: remove it first")
+    shelf = next(params[0] for check, *params in broken if check == "shelfOnHighway")
+    raise EditRefused(f"shelf {shelf} rests on {cell_text(cell)}: a highway must stay free of shelves")
 
 
 def _floor_words(kind: str) -> str:

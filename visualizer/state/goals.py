@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from asprilo.domain import Domain
+from asprilo.domain import Goal as DomainGoal
 from asprilo.simulate import State
 
 from .track import Track
@@ -36,7 +36,7 @@ class Goal:
 def goals_at(track: Track, step: int) -> list[Goal]:
     """The goals at the state after ``step``, sorted by kind and id."""
     state = track.state(step)
-    goals = _delivery_goals(track, state) if track.domain.delivers else _mapf_goals(track, state)
+    goals = _delivery_goals(track, state) if track.domain.goal is DomainGoal.LINES else _mapf_goals(track, state)
     return sorted(goals.values(), key=lambda goal: (goal.kind, goal.ident))
 
 
@@ -46,7 +46,7 @@ def _mapf_goals(track: Track, state: State) -> dict[tuple[str, int], Goal]:
     standing = {tuple(cell): robot for robot, cell in sorted(state.robots.items(), reverse=True)}  # least id
     assigned = {goal: robot for robot, goal in instance.assignment.items()}
     targets = set(assigned)
-    if track.domain is Domain.M:
+    if track.domain.goal is DomainGoal.SHELVES:
         for order in instance.orders.values():
             for product in order.lines:
                 holders = instance.products[product].stock if product in instance.products else {}
@@ -73,7 +73,7 @@ def _delivery_goals(track: Track, state: State) -> dict[tuple[str, int], Goal]:
         holders = instance.products[product].stock if product in instance.products else {}
         for shelf in holders:
             units = state.stock.get((shelf, product), holders[shelf])
-            if track.domain is not Domain.A or units is None or units > 0:
+            if not track.domain.counts_units or units is None or units > 0:
                 wanted.setdefault(shelf, set()).update({station} if station is not None else set())
     at_station = {station.at: station.id for station in instance.stations.values()}
     goals = {}
