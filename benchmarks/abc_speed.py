@@ -38,7 +38,7 @@ GROUND = r"""
 import json, resource, sys, time
 from asprilo.bounds import makespan_bound
 from asprilo.domain import Domain
-from asprilo.encodings.search import ground
+from asprilo.encodings.solving import ground
 from asprilo.reader import read_instance
 instance = read_instance(sys.argv[1])
 horizon = int(makespan_bound(instance, Domain.parse("a")))

@@ -21,10 +21,16 @@ from .report import Report, build_report
 __all__ = ["check", "Report"]
 
 
-def check(instance: Instance, plan: Plan, domain: Domain | None = None) -> Report:
+def check(instance: Instance, plan: Plan, domain: Domain | None = None, *, makespan_bound: float | None = None,
+          sum_of_costs_bound: float | None = None) -> Report:
     """Check ``plan`` on ``instance`` with the ASP checker of ``domain`` (a plan beyond the
-    ``robot-steps`` limit is refused: :class:`~asprilo.errors.InputError`)."""
+    ``robot-steps`` limit is refused: :class:`~asprilo.errors.InputError`).
+
+    ``makespan_bound`` and ``sum_of_costs_bound``: the lower bounds of the metrics, when the
+    caller has computed them already (a solver checking its plans); those not given are
+    computed here.
+    """
     require_plan_fits(instance, plan)
     domain = domain or detect_domain(instance, plan)
     atoms, statistics = err_atoms(instance, plan, domain)
-    return build_report(instance, plan, domain, atoms, statistics.as_dict())
+    return build_report(instance, plan, domain, atoms, statistics.as_dict(), (makespan_bound, sum_of_costs_bound))

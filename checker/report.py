@@ -69,9 +69,15 @@ def diagnostics(atoms: list[clingo.Symbol], timeline: Timeline | None) -> list[V
 
 # --- metrics -----------------------------------------------------------------------------
 
-def metrics(instance: Instance, plan: Plan, domain: Domain, errors: list[Violation]) -> dict[str, Any]:
+#: lower bounds a caller already knows: (makespan, sum of costs), ``None`` where not known
+Known = tuple[float | None, float | None]
+
+
+def metrics(instance: Instance, plan: Plan, domain: Domain, errors: list[Violation],
+            known: Known = (None, None)) -> dict[str, Any]:
     """Horizon, actions by name, sum of costs, idle steps, what the plan fulfils, lower
-    bounds and the ratios plan/bound (``None`` where a bound is 0 or infinite)."""
+    bounds (those in ``known`` are not computed again) and the ratios plan/bound (``None``
+    where a bound is 0 or infinite)."""
     robots = list(instance.robots)
     row = {robot: i for i, robot in enumerate(robots)}
     rows = np.array([row.get(a.robot, -1) if a.kind == "robot" else -1 for a in plan.actions], dtype=np.int64)
@@ -96,16 +102,23 @@ def metrics(instance: Instance, plan: Plan, domain: Domain, errors: list[Violati
         missed = {e.params[0] for e in errors if e.check == "unfilledOrder"}
         result["orders"] = len(instance.orders)
         result["orders_fulfilled"] = len(set(instance.orders) - missed)
-    floor = Floor(instance.cells)
-    if domain.bound is Bound.DELIVERY:
-        result["makespan_bound"] = _number(makespan_bound(instance, domain, floor))
-    else:
-        makespan, total = mapf_bounds(instance, floor)
-        result["makespan_bound"] = _number(makespan)
+    makespan, total = _bounds(instance, domain, known)
+    result["makespan_bound"] = _number(makespan)
+    if domain.bound is not Bound.DELIVERY:
         result["sum_of_costs_bound"] = _number(total)
         result["sum_of_costs_ratio"] = _ratio(sum_of_costs, total)
     result["makespan_ratio"] = _ratio(horizon, result["makespan_bound"])
     return result
+
+
+def _bounds(instance: Instance, domain: Domain, known: Known) -> tuple[float, float | None]:
+    """The makespan bound and (M/Md) the sum-of-costs bound: as known, or computed."""
+    makespan, total = known
+    if domain.bound is Bound.DELIVERY:
+        return (makespan_bound(instance, domain, Floor(instance.cells)) if makespan is None else makespan), None
+    if makespan is None or total is None:
+        return mapf_bounds(instance, Floor(instance.cells))
+    return makespan, total
 
 
 def _number(value: float) -> int | None:
@@ -120,9 +133,10 @@ def _ratio(value: float, bound: float | None) -> float | None:
 
 
 def build_report(instance: Instance, plan: Plan, domain: Domain, atoms: list[clingo.Symbol],
-                 statistics: dict[str, float | int]) -> Report:
-    """The report for a plan whose checker derived ``atoms``."""
+                 statistics: dict[str, float | int], known: Known = (None, None)) -> Report:
+    """The report for a plan whose checker derived ``atoms`` (``known``: lower bounds the
+    caller knows already)."""
     timeline = simulate(instance, plan, domain) if atoms else None
     errors = diagnostics(atoms, timeline)
-    measured = metrics(instance, plan, domain, errors)
+    measured = metrics(instance, plan, domain, errors, known)
     return Report(domain, measured["horizon"], errors, measured, statistics)

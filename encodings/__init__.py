@@ -3,10 +3,12 @@
     from asprilo.encodings import solve, reference_encodings
     outcome = solve("instance.lp", encoding="plain", time_limit=60)
     outcome.plan, outcome.horizon, outcome.minimal, outcome.stats
+
+``solve`` also takes a :class:`SolveRequest`; the methods behind it live in :mod:`.solving`.
 """
 
 from .registry import Encoding, encoding_names, find_encoding, reference_encodings
-from .search import Attempt, Outcome, Phase, SolveStatus, solve
+from .solving import Attempt, LowerBounds, Outcome, Phase, SolveRequest, SolveStatus, solve
 
 __all__ = ["Encoding", "encoding_names", "find_encoding", "reference_encodings",
-           "Attempt", "Outcome", "Phase", "SolveStatus", "solve"]
+           "Attempt", "LowerBounds", "Outcome", "Phase", "SolveRequest", "SolveStatus", "solve"]

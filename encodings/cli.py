@@ -32,7 +32,7 @@ from asprilo.writer import format_action, format_plan, refuse_overwriting, write
 
 from .anytime import DEFAULT_SECONDS as ANYTIME_SECONDS
 from .registry import reference_encodings
-from .search import Attempt, Outcome, Phase, solve
+from .solving import Attempt, Outcome, Phase, method_names, solve
 
 #: seconds ``asprilo solve`` may take unless told otherwise (the anytime method: its own default)
 DEFAULT_TIME_LIMIT = 300.0
@@ -52,7 +52,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                              f"anytime: {ANYTIME_SECONDS:g})")
     parser.add_argument("--memory-limit", type=megabytes_argument, metavar="MB",
                         help="stop when the solver needs more than MB megabytes (default: no limit)")
-    parser.add_argument("--method", choices=("asp", "flow", "anytime"), default="asp",
+    parser.add_argument("--method", choices=method_names(), default="asp",
                         help="asp: an encoding (default); flow: exact max-flow solver for M/Md; "
                              "anytime: a plan fast, then better ones")
     parser.add_argument("-o", "--output", metavar="PLAN", help="write the plan to this file")
@@ -74,9 +74,9 @@ def run(args: argparse.Namespace) -> int:
         time_limit = ANYTIME_SECONDS if args.method == "anytime" else DEFAULT_TIME_LIMIT
     progress = SearchProgress(sys.stderr)
     try:
-        outcome = solve(args.instance, args.domain, args.encoding, args.horizon, args.assign,
-                        time_limit, args.method, on_progress=progress.attempt, on_phase=progress.phase,
-                        isolate=True, memory_limit=args.memory_limit)
+        outcome = solve(args.instance, args.domain, encoding=args.encoding, horizon=args.horizon,
+                        assign=args.assign, time_limit=time_limit, method=args.method, isolate=True,
+                        memory_limit=args.memory_limit, on_progress=progress.attempt, on_phase=progress.phase)
     finally:
         progress.close()
     if outcome.plan is not None and outcome.found and args.output:
@@ -186,8 +186,7 @@ def report(outcome: Outcome) -> dict:
         "horizon": outcome.horizon,
         "minimal": outcome.minimal,
         "lower_bound": outcome.lower_bound if outcome.lower_bound != float("inf") else None,
-        "horizons_tried": [{key: value for key, value in attempt.__dict__.items() if key != "plan"}
-                           for attempt in outcome.horizons_tried],
+        "horizons_tried": [attempt.as_json() for attempt in outcome.horizons_tried],
         "refuted": outcome.refuted,
         "proven_bound": outcome.proven_bound if outcome.proven_bound != float("inf") else None,
         "stats": outcome.stats,

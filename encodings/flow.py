@@ -28,28 +28,34 @@ import numpy as np
 from asprilo.bounds import Floor, goal_cells, mapf_bounds
 from asprilo.model import Action, Cell, Instance, Plan
 
+from .solving.status import Attempt, SolveStatus
+from .solving.watch import Watch
+
 
 @dataclass
-class FlowAttempt:
-    """One horizon tried: whether all robots reached the goals, and the seconds it took."""
+class FlowAttempt(Attempt):
+    """One horizon tried (``sat``: all robots reached the goals) and the size of its network."""
 
-    horizon: int
-    feasible: bool
-    seconds: float
-    nodes: int
-    arcs: int
+    nodes: int = 0
+    arcs: int = 0
+
+    @property
+    def feasible(self) -> bool:
+        return self.result == "sat"
 
 
 @dataclass
 class FlowSearch:
-    """The result of :func:`flow_plan`: the plan (or ``None``) and every horizon tried."""
+    """The result of :func:`flow_plan`: the plan (or ``None``), every horizon tried, and the
+    status: ``found``, ``none`` (no plan at the horizon asked for, or at any horizon),
+    ``limit`` (time ran out) or ``cancelled``."""
 
     plan: Plan | None
     horizon: int | None
     minimal: bool
     lower_bound: float
     attempts: list[FlowAttempt] = field(default_factory=list)
-    stopped: str | None = None  # "time limit" / "cancelled" when the search was cut short
+    status: SolveStatus = SolveStatus.NONE
 
 
 class TimeExpandedNetwork:
@@ -150,44 +156,54 @@ def plan_of_paths(robots: list[int], paths: dict[int, list[Cell]]) -> Plan:
     return Plan(actions)
 
 
-def flow_plan(instance: Instance, horizon: int | None = None, time_limit: float | None = None,
-              should_stop: Callable[[], bool] = lambda: False,
-              on_attempt: Callable[[FlowAttempt], None] | None = None) -> FlowSearch:
+def flow_plan(instance: Instance, horizon: int | None = None, watch: Watch | None = None,
+              on_attempt: Callable[[FlowAttempt], None] | None = None, bound: float | None = None) -> FlowSearch:
     """A plan of minimal makespan for an M/Md instance (or the plan for a fixed ``horizon``).
 
-    Without ``horizon`` the search starts at the bottleneck-assignment lower bound and goes
-    up one step at a time; the first feasible horizon is the minimal makespan.
+    Without ``horizon`` the search starts at the bottleneck-assignment lower bound (``bound``,
+    when the caller has it) and goes up one step at a time; the first feasible horizon is the
+    minimal makespan.  ``watch`` bounds its time and may cancel it; ``on_attempt`` hears of
+    every horizon tried.
     """
-    started = time.perf_counter()
     floor = Floor(instance.cells)
     robots = sorted(instance.robots)
     starts = [instance.robots[r].at for r in robots]
     goals = goal_cells(instance)
-    bound, _ = mapf_bounds(instance, floor)
+    if bound is None:
+        bound = mapf_bounds(instance, floor, total=False)[0]
     search = FlowSearch(None, None, False, bound)
     if any(cell not in floor.index for cell in starts + goals) or not np.isfinite(bound):
         search.minimal = True  # some goal can be reached by no robot: no plan at any horizon
         return search
-    first = horizon if horizon is not None else int(bound)
-    last = horizon if horizon is not None else int(bound) + len(robots) + len(floor.cells)
+    first = last = horizon
+    if horizon is None:
+        first, last = int(bound), int(bound) + len(robots) + len(floor.cells)
+    watch = watch or Watch()
     for current in range(first, last + 1):
-        if should_stop():
-            search.stopped = "cancelled"
+        if watch.cancelled or watch.expired:
+            search.status = _stopped(watch)
             break
-        if time_limit is not None and time.perf_counter() - started > time_limit:
-            search.stopped = "time limit"
-            break
-        tried = time.perf_counter()
-        network = TimeExpandedNetwork(floor, starts, goals, current)
-        paths = network.route()
-        attempt = FlowAttempt(current, paths is not None, time.perf_counter() - tried,
-                              network.size, network.arcs)
+        attempt, paths = _try(floor, starts, goals, current)
         search.attempts.append(attempt)
         if on_attempt is not None:
             on_attempt(attempt)
         if paths is not None:
-            search.plan = plan_of_paths(robots, paths)
-            search.horizon = current
+            search.plan, search.horizon, search.status = plan_of_paths(robots, paths), current, SolveStatus.FOUND
             search.minimal = horizon is None or current <= bound
             break
     return search
+
+
+def _stopped(watch: Watch) -> SolveStatus:
+    return SolveStatus.CANCELLED if watch.cancelled else SolveStatus.LIMIT
+
+
+def _try(floor: Floor, starts: list[Cell], goals: list[Cell], horizon: int
+         ) -> tuple[FlowAttempt, dict[int, list[Cell]] | None]:
+    """One horizon: the attempt, and each robot's path when all of them get through."""
+    tried = time.perf_counter()
+    network = TimeExpandedNetwork(floor, starts, goals, horizon)
+    paths = network.route()
+    attempt = FlowAttempt(horizon, "sat" if paths is not None else "unsat", time.perf_counter() - tried,
+                          nodes=network.size, arcs=network.arcs)
+    return attempt, paths

@@ -8,8 +8,9 @@ from oracles.brute_force import minimal_makespan as brute_force
 
 from asprilo.checker import check
 from asprilo.domain import Domain
-from asprilo.encodings import SolveStatus, reference_encodings, search, solve
+from asprilo.encodings import SolveStatus, reference_encodings, solve
 from asprilo.encodings.assignment import assign_tasks, assignment_of_plan, distance_facts
+from asprilo.encodings.solving.methods import assigned, program
 from asprilo.errors import InputError
 from asprilo.model import Action, Plan
 from asprilo.reader import read_instance
@@ -136,7 +137,7 @@ def pickup_cells(instance, plan: Plan) -> list[tuple[int, tuple[int, int]]]:
 @pytest.fixture
 def no_probe(monkeypatch):
     """Searches with assignment go straight to the optimised assignment (no probe without it)."""
-    monkeypatch.setattr(search, "PROBE_CONFLICTS", 0)
+    monkeypatch.setattr(assigned, "PROBE_CONFLICTS", 0)
 
 
 def test_assigned_plans_follow_the_assignment(no_probe):
@@ -276,7 +277,7 @@ def test_a_hinted_search_takes_the_same_path_every_time():
     # searches switch hints on and off at the same points and agree conflict for conflict
     instance = read_instance(EXAMPLES / "paper-m/1x2x4/x11_y6_n66_r11_s16_ps1_pr16_u16_o11_N001.lp")
     first, second = (solve(instance, Domain.C, horizon=28, time_limit=120) for _ in range(2))
-    assert first.found and first.stats["conflicts"] > search.FIRST_TURN
+    assert first.found and first.stats["conflicts"] > program.FIRST_TURN
     assert (second.stats["conflicts"], second.plan) == (first.stats["conflicts"], first.plan)
 
 

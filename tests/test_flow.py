@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import threading
+
 import pytest
 from helpers import EXAMPLES
 from helpers.worlds import WALLED, md
@@ -9,7 +11,9 @@ from helpers.worlds import WALLED, md
 from asprilo.bounds import Floor
 from asprilo.checker import check
 from asprilo.domain import Domain
+from asprilo.encodings import SolveStatus
 from asprilo.encodings.flow import TimeExpandedNetwork, flow_plan
+from asprilo.encodings.solving import Watch
 from asprilo.reader import read_instance
 
 #: minimal makespans of the paper's domain-M instances (bottleneck bound = flow optimum)
@@ -77,5 +81,9 @@ def test_unreachable_goal_means_no_plan_at_any_horizon():
 
 
 def test_time_limit_and_cancellation_stop_the_search():
-    assert flow_plan(WALLED, time_limit=0).stopped == "time limit"
-    assert flow_plan(WALLED, should_stop=lambda: True).stopped == "cancelled"
+    assert (flow_plan(WALLED, watch=Watch(time_limit=0)).status, flow_plan(WALLED).status) == (
+        SolveStatus.LIMIT, SolveStatus.FOUND)
+    cancel = threading.Event()
+    cancel.set()
+    with Watch(cancel=cancel) as watch:
+        assert flow_plan(WALLED, watch=watch).status is SolveStatus.CANCELLED

@@ -5,6 +5,11 @@ Steps: the lower bound; the assignment (:mod:`.work`); the first tracks by prior
 planning (:mod:`.prioritized`); then large-neighbourhood search (:mod:`.improve`).  A
 better plan is checked before it is reported, at most every few seconds when checking is
 slow; the best plan not reported yet is checked at the end, with time kept for it.
+
+Its clock, time limit and cancel are a :class:`~asprilo.encodings.solving.watch.Watch` (the
+one of the solve that runs it, or its own); its statuses are
+:class:`~asprilo.encodings.solving.status.SolveStatus`, and each plan it reports is an
+:class:`Improvement`, an :class:`~asprilo.encodings.solving.status.Attempt` at its makespan.
 """
 
 from __future__ import annotations
@@ -21,6 +26,9 @@ from asprilo.checker import Report, check
 from asprilo.domain import Domain
 from asprilo.model import Instance, Plan
 
+from ..solving.bounds import LowerBounds
+from ..solving.status import IMPROVED, Attempt, SolveStatus
+from ..solving.watch import Watch
 from .bound import makespan_bound, sum_of_costs_bound
 from .grid import Grid
 from .improve import Improver
@@ -39,15 +47,24 @@ RECENT_STEPS = 10
 
 
 @dataclass
-class Improvement:
-    """One plan reported: when (seconds since the start), its makespan and sum of costs,
-    the gap of the makespan to the lower bound (a fraction of the bound), and the plan."""
+class Improvement(Attempt):
+    """One plan reported, as an ``improved`` attempt at its makespan: when (``seconds``
+    since the start), its sum of costs, the gap of the makespan to the lower bound (a
+    fraction of the bound), and the plan."""
 
-    seconds: float
-    makespan: int
-    sum_of_costs: int
-    gap: float | None
-    plan: Plan | None = field(default=None, repr=False, compare=False)
+    sum_of_costs: int = 0
+    gap: float | None = None
+
+    @classmethod
+    def of(cls, seconds: float, makespan: int, sum_of_costs: int, gap: float | None, plan: Plan) -> Improvement:
+        """The report of a plan; its note gives the sum of costs and the gap."""
+        above = "" if gap is None else f", {100 * gap:.1f}% above the lower bound"
+        return cls(makespan, IMPROVED, seconds, f"sum of costs {sum_of_costs}{above}", plan,
+                   sum_of_costs=sum_of_costs, gap=gap)
+
+    @property
+    def makespan(self) -> int:
+        return self.horizon
 
     def figures(self) -> dict:
         """The numbers without the plan (a history entry of a report)."""
@@ -59,13 +76,13 @@ class Improvement:
 class AnytimeResult:
     """What :func:`plan_anytime` found.
 
-    ``status``: ``found`` (a checked plan), ``none`` (no plan can exist: some goal or line
-    cannot be reached), ``limit`` (no plan within the time), ``cancelled``, or ``invalid``
+    ``status``: ``FOUND`` (a checked plan), ``NONE`` (no plan can exist: some goal or line
+    cannot be reached), ``LIMIT`` (no plan within the time), ``CANCELLED``, or ``INVALID``
     (the first plan failed the check: a bug, reported in ``message``).  ``minimal``:
     the plan's makespan meets the lower bound, so no shorter plan exists.
     """
 
-    status: str
+    status: SolveStatus
     domain: Domain
     plan: Plan | None = None
     check: Report | None = None
@@ -82,15 +99,14 @@ class AnytimeResult:
 
 
 class _Run:
-    """One call of :func:`plan_anytime`: the clock, the best plan and its reports."""
+    """One call of :func:`plan_anytime`: its watch, the best plan and its reports."""
 
-    def __init__(self, instance: Instance, domain: Domain, time_limit: float, cancel: threading.Event | None,
+    def __init__(self, instance: Instance, domain: Domain, watch: Watch, bounds: LowerBounds,
                  on_improvement: Callable[[Improvement], None] | None):
-        self.instance, self.domain = instance, domain
-        self.started = time.perf_counter()
-        self.deadline = self.started + time_limit
-        self.cancel, self.on_improvement = cancel, on_improvement
-        self.result = AnytimeResult("limit", domain)
+        self.instance, self.domain, self.watch = instance, domain, watch
+        self.on_improvement = on_improvement
+        self.result = AnytimeResult(SolveStatus.LIMIT, domain, bound=bounds.makespan,
+                                    sum_of_costs_bound=bounds.sum_of_costs)
         self.check_seconds = 0.0
         self.last_check = -math.inf
         self.pending: dict[int, Track] | None = None
@@ -99,14 +115,9 @@ class _Run:
         self.good_work: tuple | None = None         # ... and the assignment they follow
         self.pending_work: tuple | None = None
 
-    def elapsed(self) -> float:
-        return time.perf_counter() - self.started
-
-    def cancelled(self) -> bool:
-        return self.cancel is not None and self.cancel.is_set()
-
-    def out_of_time(self, keep: float = 0.0) -> bool:
-        return self.cancelled() or time.perf_counter() >= self.deadline - keep
+    def stopped(self, status: SolveStatus | None = None) -> SolveStatus:
+        """``CANCELLED`` when the caller cancelled, else ``status`` (by default ``LIMIT``)."""
+        return SolveStatus.CANCELLED if self.watch.cancelled else status or SolveStatus.LIMIT
 
     def reached_bound(self, tracks: dict[int, Track]) -> bool:
         makespan = max((t.finish for t in tracks.values()), default=0)
@@ -119,7 +130,7 @@ class _Run:
         ``False`` when it failed the check (the search then goes back to the last good one)."""
         self.pending = dict(tracks)
         self.pending_work = self.work.save()
-        if not force and time.perf_counter() - self.last_check < max(CHECK_GAP, CHECK_FACTOR * self.check_seconds):
+        if not force and self.watch.clock() - self.last_check < max(CHECK_GAP, CHECK_FACTOR * self.check_seconds):
             return True
         return self.report()
 
@@ -128,64 +139,89 @@ class _Run:
         tracks, self.pending = self.pending, None
         if tracks is None:
             return True
+        result, clock = self.result, self.watch.clock
         plan = plan_of(tracks, self.instance, self.domain)
-        began = time.perf_counter()
-        verdict = check(self.instance, plan, self.domain)
-        self.check_seconds = time.perf_counter() - began
-        self.last_check = time.perf_counter()
+        began = clock()
+        verdict = check(self.instance, plan, self.domain, makespan_bound=result.bound,
+                        sum_of_costs_bound=result.sum_of_costs_bound)
+        self.check_seconds = clock() - began
+        self.last_check = clock()
         if not verdict.valid:
-            self.result.message = "a plan failed the check and was dropped: " + verdict.errors[0].message
+            result.message = "a plan failed the check and was dropped: " + verdict.errors[0].message
             return False
         self.good, self.good_work = tracks, self.pending_work
-        result = self.result
-        result.status, result.plan, result.check = "found", plan, verdict
+        result.status, result.plan, result.check = SolveStatus.FOUND, plan, verdict
         makespan, soc = verdict.metrics["horizon"], verdict.metrics["sum_of_costs"]
         result.minimal = makespan <= result.bound
         gap = None if result.bound <= 0 or not math.isfinite(result.bound) else (makespan - result.bound) / result.bound
-        improvement = Improvement(round(self.elapsed(), 3), makespan, soc, gap, plan)
+        improvement = Improvement.of(round(self.watch.elapsed(), 3), makespan, soc, gap, plan)
         result.history.append(improvement)
         if self.on_improvement is not None:
             self.on_improvement(improvement)
         return True
 
 
+def _clock() -> float:
+    """The planner's own clock (read through this module's ``time``, which a test may replace)."""
+    return time.perf_counter()
+
+
 def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = DEFAULT_SECONDS,
                  cancel: threading.Event | None = None,
-                 on_improvement: Callable[[Improvement], None] | None = None, seed: int = 0) -> AnytimeResult:
+                 on_improvement: Callable[[Improvement], None] | None = None, seed: int = 0, *,
+                 watch: Watch | None = None, bounds: LowerBounds | None = None) -> AnytimeResult:
     """A checked plan for ``instance`` as soon as possible, then better ones (makespan first,
     then sum of costs) until ``time_limit`` seconds have passed, ``cancel`` is set, or a
-    plan meets the lower bound.  ``on_improvement`` hears of every plan reported."""
+    plan meets the lower bound.  ``on_improvement`` hears of every plan reported.
+
+    ``watch``: the stop-watch of a solve that runs the planner (its time limit and cancel
+    replace ``time_limit`` and ``cancel``); ``bounds``: the lower bounds, when known.
+    """
     limit = DEFAULT_SECONDS if time_limit is None else time_limit
-    run = _Run(instance, domain, limit, cancel, on_improvement)
-    result = run.result
-    result.bound = makespan_bound(instance, domain)
-    result.sum_of_costs_bound = sum_of_costs_bound(instance, domain)
+    own = watch is None
+    if own:
+        watch = Watch(limit, cancel, clock=_clock)
+    elif watch.deadline is not None:
+        limit = watch.remaining()
+    try:
+        if bounds is None:
+            bounds = LowerBounds(makespan_bound(instance, domain), sum_of_costs_bound(instance, domain))
+        run = _Run(instance, domain, watch, bounds, on_improvement)
+        return _plan(run, limit, seed)
+    finally:
+        if own:
+            watch.close()
+
+
+def _plan(run: _Run, limit: float, seed: int) -> AnytimeResult:
+    """The steps of :func:`plan_anytime`: assignment, first plan, improvements."""
+    instance, domain, out_of_time, result = run.instance, run.domain, run.watch.out_of_time, run.result
     if not math.isfinite(result.bound):
-        result.status, result.minimal = "none", True
+        result.status, result.minimal = SolveStatus.NONE, True
         result.message = "some goal or order line can never be reached"
         return result
     grid = Grid(instance.cells)
     work = run.work = Work(instance, domain, grid, result.bound)
-    if not work.assign(min(ASSIGN_CAP, ASSIGN_SHARE * limit), run.out_of_time):
-        result.status = "cancelled" if run.cancelled() else "limit"
+    if not work.assign(min(ASSIGN_CAP, ASSIGN_SHARE * limit), out_of_time):
+        result.status = run.stopped()
         result.message = "no assignment of the work to the robots within the time limit"
         return result
     table = Reservations(instance, work.homes)
-    router = Router(grid, table, run.out_of_time)
-    tracks = first_tracks(work, router, table, run.out_of_time, seed)
-    result.stats["first_plan_seconds"] = round(run.elapsed(), 3)
+    router = Router(grid, table, out_of_time)
+    tracks = first_tracks(work, router, table, out_of_time, seed)
+    result.stats["first_plan_seconds"] = round(run.watch.elapsed(), 3)
     if tracks is None:
-        result.status = "cancelled" if run.cancelled() else "limit"
+        result.status = run.stopped()
         result.message = "no first plan within the time limit"
         return result
     if not run.offer(tracks, force=True):
-        result.status = "invalid"
+        result.status = SolveStatus.INVALID
         return result
     _improve(run, Improver(work, router, table, seed), table)
     if run.pending is not None:
         run.report()
-    if run.cancelled() and result.status != "found":
-        result.status = "cancelled"
+    if result.status is not SolveStatus.FOUND:
+        result.status = run.stopped(result.status)
     return result
 
 
@@ -196,12 +232,12 @@ def _improve(run: _Run, improver: Improver, table: Reservations) -> None:
     steps, recent = 0, deque(maxlen=RECENT_STEPS)
     while not run.reached_bound(table.tracks):
         reserve = 1.5 * run.check_seconds + 0.05
-        if run.out_of_time(keep=reserve + max(recent, default=0.0)):
+        if run.watch.out_of_time(keep=reserve + max(recent, default=0.0)):
             break
         steps += 1
-        began = time.perf_counter()
-        better = improver.step(partial(run.out_of_time, reserve))
-        recent.append(time.perf_counter() - began)
+        began = run.watch.clock()
+        better = improver.step(partial(run.watch.out_of_time, reserve))
+        recent.append(run.watch.clock() - began)
         if better and not run.offer(table.tracks):
             _go_back(table, run.good)
             improver.work.restore(run.good_work)

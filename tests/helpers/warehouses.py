@@ -8,7 +8,7 @@ import random
 from asprilo.checker import check
 from asprilo.domain import Domain
 from asprilo.encodings import find_encoding
-from asprilo.encodings.search import name_robots
+from asprilo.encodings.solving import name_robots
 from asprilo.model import Instance, Order, PickingStation, Product, Robot, Shelf
 from asprilo.reader import plan_from_atoms
 from asprilo.solver import Solver

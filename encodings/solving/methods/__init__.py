@@ -1,0 +1,48 @@
+"""The ways to solve, looked up by name in one table (:data:`METHODS`).
+
+``asp`` (:mod:`.exact`: a logic program over growing horizons, with :mod:`.assigned` for a
+task assignment and :mod:`.program` for what is grounded), ``flow`` (:mod:`.flow`: max-flow
+for M/Md) and ``anytime`` (:mod:`.anytime`).  A new method is a
+:class:`~asprilo.encodings.solving.method.Method` added to the table.
+"""
+
+from __future__ import annotations
+
+from asprilo.errors import InputError
+
+from ..method import Method
+from ..request import SolveRequest
+from .anytime import Anytime
+from .exact import ExactSearch
+from .flow import MaxFlow
+
+#: every method by its name, in the order the command line lists them
+METHODS: dict[str, Method] = {method.name: method for method in (ExactSearch(), MaxFlow(), Anytime())}
+
+
+def method_names() -> list[str]:
+    return list(METHODS)
+
+
+def find_method(name: str) -> Method:
+    """The method called ``name``; an unknown name is bad input."""
+    method = METHODS.get(name)
+    if method is None:
+        *others, last = METHODS
+        raise InputError(f"unknown method '{name}' (choose {', '.join(others)} or {last})")
+    return method
+
+
+def method_for(request: SolveRequest) -> Method:
+    """The method that serves ``request``, once the request is found fit for it (bad input:
+    :class:`~asprilo.errors.InputError`)."""
+    if request.horizon is not None and request.horizon < 0:
+        raise InputError(f"the horizon must be at least 0, got {request.horizon}")
+    method = find_method(request.method)
+    method.check(request)
+    if request.instance.assignment and request.assign:
+        raise InputError("the instance assigns goals to robots already; leave out --assign")
+    return method
+
+
+__all__ = ["METHODS", "Method", "find_method", "method_for", "method_names"]

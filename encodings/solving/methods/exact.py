@@ -1,0 +1,174 @@
+"""The exact method (``asp``): a logic program over growing horizons (:class:`HorizonSearch`).
+
+Without a horizon, the search starts at the admissible lower bound the request carries and
+goes up one step at a time.  Every horizon is grounded afresh (the encodings prune with
+distances to the horizon); incremental encodings instead ground one more ``step(t)`` part
+and move the ``query(t)`` external.  The first horizon with a plan is the minimal makespan
+when every horizon below it was refuted.  With a task assignment the search follows it
+(:mod:`.assigned`: the probe, the assignment, the tightening).
+
+The search takes an :class:`~asprilo.encodings.Encoding`, not a name: a reference encoding
+or a user's own program (single-shot with a ``horizon`` constant, or incremental with
+``step(t)``/``check(t)``/``query(t)``, with or without a clingcon/clingo-dl theory).
+"""
+
+from __future__ import annotations
+
+import time
+
+from asprilo.bounds import INFINITE
+from asprilo.solver import Result, Solver, Status
+
+from ...registry import Encoding, find_encoding
+from ..method import Method
+from ..outcome import Outcome
+from ..request import SolveRequest
+from ..status import Attempt, SolveStatus
+from ..watch import Watch
+from .program import Program
+
+#: the message of a search that cannot start: the lower bound is infinite
+UNREACHABLE = "some goal or order line can never be reached"
+
+
+class HorizonSearch:
+    """The search over horizons of one encoding on one instance: the program, the outcome
+    it fills in, and the attempts it reports."""
+
+    def __init__(self, request: SolveRequest, encoding: Encoding, watch: Watch):
+        self.request, self.watch = request, watch
+        self.program = Program(request.instance, request.domain, encoding, watch)
+        self.outcome = Outcome(SolveStatus.LIMIT, request.domain, ExactSearch.name, encoding.name)
+        self.outcome.lower_bound = request.lower_bound
+
+    def run(self) -> Outcome:
+        """The search without a task assignment."""
+        outcome, bound = self.outcome, self.request.lower_bound
+        if self.unreachable():
+            return outcome
+        first = int(bound) if self.request.horizon is None else self.request.horizon
+        self.upward(first, self.last_horizon(first))
+        if outcome.plan is not None:
+            outcome.horizon = outcome.plan.horizon
+            outcome.minimal = outcome.horizon <= bound or self.searched_up()
+        return outcome
+
+    def unreachable(self) -> bool:
+        """Whether the lower bound says that no plan exists (an upward search then ends at once)."""
+        if self.request.lower_bound != INFINITE or self.request.horizon is not None:
+            return False
+        outcome = self.outcome
+        outcome.status, outcome.minimal, outcome.message = SolveStatus.NONE, True, UNREACHABLE
+        return True
+
+    def last_horizon(self, first: int) -> int:
+        """The horizon the search gives up after: the one asked for, the largest one asked
+        for, or one no plan needs in practice."""
+        request = self.request
+        if request.horizon is not None:
+            return request.horizon
+        if request.max_horizon is not None:
+            return request.max_horizon
+        instance = request.instance
+        lines = sum(len(order.lines) for order in instance.orders.values())
+        return first + len(instance.cells) + len(instance.robots) + 2 * lines
+
+    def searched_up(self) -> bool:
+        """Whether the plan found ends an upward search in which every horizon below was
+        refuted (the probe's tries aside)."""
+        along = [attempt for attempt in self.outcome.horizons_tried if not attempt.note]
+        return self.request.horizon is None and all(a.result == "unsat" for a in along[:-1])
+
+    def upward(self, first: int, last: int) -> None:
+        """Try the horizons ``first`` .. ``last`` until one has a plan."""
+        if self.program.encoding.incremental:
+            self._incremental(first, last)
+        else:
+            self._single_shot(first, last)
+
+    def record(self, attempt: Attempt) -> None:
+        self.outcome.horizons_tried.append(attempt)
+        self.watch.progress(attempt)
+
+    def stopped(self) -> bool:
+        """Whether the caller cancelled or the time is up (the outcome says which)."""
+        if self.watch.cancelled:
+            self.outcome.status = SolveStatus.CANCELLED
+            return True
+        if self.watch.expired:
+            self.outcome.status = SolveStatus.LIMIT
+            return True
+        return False
+
+    def _tried(self, horizon: int, result: Result, seconds: float) -> bool:
+        """Record one horizon of the search; whether the search goes on."""
+        outcome = self.outcome
+        self.record(Attempt(horizon, result.status.value, seconds))
+        if result.status is Status.SAT:
+            outcome.status, outcome.plan = SolveStatus.FOUND, self.program.plan(result)
+            return False
+        if result.status is Status.UNSAT:
+            outcome.status = SolveStatus.NONE
+            return True
+        outcome.status = SolveStatus.CANCELLED if self.watch.cancelled else SolveStatus.LIMIT
+        return False
+
+    def _single_shot(self, first: int, last: int) -> None:
+        for horizon in range(first, last + 1):
+            if self.stopped():
+                return
+            started = time.perf_counter()
+            if not self._tried(horizon, self.program.solve_at(horizon), time.perf_counter() - started):
+                return
+        self._gave_up()
+
+    def _incremental(self, first: int, last: int) -> None:
+        """One solver for all horizons: ground one more step, move the query, solve again."""
+        solver = self.program.fresh(None)
+        started = time.perf_counter()
+        self.watch.phase("grounding", first)
+        solver.ground([("base", [])] + [("step", [t]) for t in range(1, first + 1)])
+        for horizon in range(first, last + 1):
+            if self.stopped():
+                return
+            if horizon > first:
+                started = time.perf_counter()
+                self.watch.phase("grounding", horizon)
+                solver.ground([("step", [horizon])])
+            if not self._incremental_step(solver, horizon, started):
+                return
+        self._gave_up()
+
+    def _incremental_step(self, solver: Solver, horizon: int, started: float) -> bool:
+        """Check and solve one more horizon of the incremental program; whether the search goes on."""
+        solver.ground([("check", [horizon])])
+        solver.assign_external(f"query({horizon})", True)
+        going_on = self._tried(horizon, self.program.solve(solver, horizon), time.perf_counter() - started)
+        solver.release_external(f"query({horizon})")
+        return going_on
+
+    def _gave_up(self) -> None:
+        """Every horizon up to the last refuted: an upward search ran out of horizons."""
+        if self.request.horizon is None:
+            self.outcome.status = SolveStatus.LIMIT
+
+
+class ExactSearch(Method):
+    """The minimal makespan by a logic program over growing horizons (``--method asp``)."""
+
+    name = "asp"
+    encoded = True
+
+    def label(self, request: SolveRequest) -> str:
+        return _encoding(request).name
+
+    def run(self, request: SolveRequest, watch: Watch) -> Outcome:
+        search = HorizonSearch(request, _encoding(request), watch)
+        if not request.assign:
+            return search.run()
+        from .assigned import AssignedSearch
+        return AssignedSearch(search).run()
+
+
+def _encoding(request: SolveRequest) -> Encoding:
+    return request.encoding if request.encoding is not None else find_encoding(request.domain)
