@@ -238,7 +238,10 @@ def _atoms_text(programs: list[tuple[str, str]], report=None) -> str:
 
 
 def _ground(sources: Sequence[Source]) -> list[clingo.Symbol]:
-    """Ground and solve in this process (for screened facts, and in a child for rules)."""
+    """Ground and solve in this process (for screened facts, and in a child for rules).
+
+    A Control of its own, not the driver's (:mod:`asprilo.solver` says why): untrusted text
+    gets nothing but the ``base`` part and the first answer set."""
     messages: list[str] = []
     control = clingo.Control(["--warn=none"], logger=lambda _code, message: messages.append(message))
     for source in sources:

@@ -6,16 +6,13 @@ The makespan bound of every plan is :func:`asprilo.bounds.makespan_bound`.
 
 from __future__ import annotations
 
-import math
 from itertools import permutations
 
 import clingo
 import numpy as np
 
-from asprilo.bounds import Floor, goal_cells
+from asprilo.bounds import INFINITE, Floor, goal_cells
 from asprilo.model import Cell, Instance
-
-INFINITE = math.inf
 
 
 def unusable_goals(instance: Instance, horizon: int, floor: Floor | None = None) -> list[tuple[int, tuple]]:

@@ -53,7 +53,7 @@ def one_shelf_for_two_stations(same_station: bool) -> Instance:
 # by hand: step 1 walk under the shelf, 2 lift it, 3-4 carry it to (1,1), 5 deliver; then
 # 6-7 carry it to (3,1) and 8 deliver -- or, both lines at (1,1), deliver again at 6 (A, B)
 # or close both lines with the one delivery at 5 (C).  The makespan bound reaches these
-# minima: the trip relaxation (asprilo/trip_bound.lp) knows that one shelf serves both
+# minima: the trip relaxation (asprilo/bounds/trip.lp) knows that one shelf serves both
 # stations, two cells apart, where each station alone is served at 5.
 @pytest.mark.parametrize(("same_station", "domain", "expected"), [
     (False, Domain.A, 8), (False, Domain.B, 8), (False, Domain.C, 8),
@@ -134,7 +134,7 @@ def assert_the_bound_is_the_minimum(seed: int, size: tuple[int, int, int], domai
 
 
 # Instances where a robot has to fetch a second shelf or move one out of the way: the
-# relaxation counts that robot's time (touch/3 in asprilo/trip_bound.lp), and its bound is
+# relaxation counts that robot's time (touch/3 in asprilo/bounds/trip.lp), and its bound is
 # the minimum the exact encoding finds (one or two steps more than before touch/3).
 @pytest.mark.parametrize(("seed", "size", "domain"), [
     (90, (2, 5, 4), Domain.C), (106, (2, 5, 4), Domain.B), (214, (2, 5, 4), Domain.B),
@@ -144,8 +144,8 @@ def test_the_bound_counts_the_robot_that_moves_a_shelf_aside(seed, size, domain)
 
 
 # Instances where the steps between two actions are longer than floor distances say: a shelf
-# is never set down where another one stands (asprilo/trip_bound.py, _gaps; seed 242: the
-# robot's cycle in asprilo/delivery_bound.py).  The bound is the minimum the exact encoding
+# is never set down where another one stands (asprilo/bounds/trip.py, _gaps; seed 242: the
+# robot's cycle in asprilo/bounds/delivery.py).  The bound is the minimum the exact encoding
 # finds (one or two steps more than before).
 @pytest.mark.parametrize(("seed", "size", "domain"), [
     (178, (2, 5, 4), Domain.A), (352, (2, 3, 3), Domain.A),

@@ -8,13 +8,13 @@ import numpy as np
 import pytest
 from helpers import EXAMPLES
 
-from asprilo.bounds import Floor, bottleneck_assignment, makespan_bound, mapf_bounds, min_cost_assignment
-from asprilo.delivery_bound import Deliveries
+from asprilo.bounds import INFINITE, Floor, bottleneck_assignment, makespan_bound, mapf_bounds, min_cost_assignment
+from asprilo.bounds.delivery import Deliveries
+from asprilo.bounds.trip import _gaps, _shelf_gaps
 from asprilo.domain import Domain
 from asprilo.model import Instance, Robot
 from asprilo.reader import read_instance
 from asprilo.sources import Source
-from asprilo.trip_bound import _gaps, _shelf_gaps
 
 
 def test_distances_around_a_wall():
@@ -180,25 +180,56 @@ def test_the_delivery_bound_never_exceeds_a_minimal_makespan(name, domain, minim
     assert 0 < bound <= minimal
 
 
-def test_the_python_and_the_scipy_searches_give_the_same_distances(monkeypatch):
-    import asprilo.bounds as bounds
+def _scipy_distances(cells: set, sources: list, targets: list) -> np.ndarray:
+    """An independent implementation: SciPy's shortest paths on the floor's adjacency matrix."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import shortest_path
+    index = {cell: i for i, cell in enumerate(sorted(cells))}
+    edges = [(i, index[(x + dx, y + dy)]) for (x, y), i in index.items()
+             for dx, dy in ((1, 0), (-1, 0), (0, 1), (0, -1)) if (x + dx, y + dy) in index]
+    graph = csr_matrix((np.ones(len(edges)), tuple(zip(*edges, strict=True))), shape=(len(index), len(index)))
+    rows = shortest_path(graph, unweighted=True, indices=[index.get(s, 0) for s in sources])
+    return np.array([[rows[k][index[t]] if s in index and t in index else math.inf for t in targets]
+                     for k, s in enumerate(sources)])
+
+
+@pytest.mark.parametrize("walls", [set(), {(10, 5), (11, 5), (10, 6)}, {(x, 5) for x in range(1, 20)}])
+def test_the_distances_are_those_of_an_independent_search(walls):
+    """With walls, without (a full rectangle: Manhattan distances) and cut in two (unreachable
+    halves); more sources than targets and fewer (the engine searches from the smaller side)."""
     instance = read_instance(EXAMPLES / "paper-m/2x3x5/x19_y9_n171_r19_s60_ps3_pr60_u60_o19_N001.lp")
-    cells = sorted(instance.cells)
-    floor = Floor(instance.cells - {(10, 5), (11, 5), (10, 6)})  # some walls
-    sources = cells[::7] + [(0, 0)]
-    by_python = floor.distances(sources, cells)
-    monkeypatch.setattr(bounds, "_PYTHON_SEARCH", 0)
-    by_scipy = Floor(instance.cells - {(10, 5), (11, 5), (10, 6)}).distances(sources, cells)
-    assert np.array_equal(by_python, by_scipy) and np.isinf(by_python[-1]).all()
+    cells = instance.cells - walls
+    floor = Floor(cells)
+    every = sorted(cells)
+    sources, targets = every[::7] + [(0, 0)], every[::2] + [(40, 40)]  # and one cell off the floor each
+    expected = _scipy_distances(cells, sources, targets)
+    assert np.array_equal(floor.distances(sources, targets), expected)
+    assert np.array_equal(floor.distances(targets, sources), expected.T)
+    assert np.isinf(expected[-1]).all() and np.isinf(expected[:, -1]).all()
+    assert np.isinf(expected[:-1, :-1]).any() == (len(walls) > 3)  # only the long wall cuts the floor
+
+
+def test_the_array_view_has_the_same_distances_and_keeps_to_the_passable_cells():
+    floor = Floor({(x, y) for x in range(1, 5) for y in range(1, 4)})  # 4x3
+    plane = floor.plane()
+    assert plane.shape == (6, 5) and plane.sum() == 12 and not plane[0].any() and not plane[:, 4].any()
+    everywhere = floor.plane_distances([(1, 1), (4, 3)])
+    assert everywhere[2, 2] == 2 and everywhere[4, 1] == 2 and everywhere[0, 0] == INFINITE
+    passable = plane.copy()
+    passable[2, 1:3] = False  # a wall from (2,1) to (2,2): around it through (2,3)
+    around = floor.plane_distances([(1, 1)], passable)
+    assert (around[1, 1], around[1, 3], around[2, 3], around[3, 1], around[2, 1]) == (0, 2, 3, 6, INFINITE)
+    # a source counts as passable though the mask says otherwise
+    assert floor.plane_distances([(2, 1)], passable)[3, 1] == 1
 
 
 def test_the_python_and_the_scipy_matchings_agree(monkeypatch):
-    import asprilo.bounds as bounds
+    from asprilo.bounds import mapf
     rng = np.random.default_rng(5)
     costs = [rng.integers(0, 9, size=(n, n + 2)).astype(float) for n in range(1, 9)]
     costs.append(np.array([[1, math.inf], [2, math.inf]]))  # two goals, one usable robot
     by_python = [(bottleneck_assignment(c), min_cost_assignment(c)) for c in costs]
-    monkeypatch.setattr(bounds, "_PYTHON_SEARCH", 0)
+    monkeypatch.setattr(mapf, "_PYTHON_MATCHING", 0)
     assert [(bottleneck_assignment(c), min_cost_assignment(c)) for c in costs] == by_python
     assert by_python[-1] == (math.inf, math.inf)
     # by hand: goal 0 <- robot 1 (1), goal 1 <- robot 0 (2): 3, better than 1 + 5 or 4 + 2

@@ -17,15 +17,19 @@ from pathlib import Path
 import clingo
 import numpy as np
 
-from asprilo.bounds import goal_cells
+from asprilo.bounds import INFINITE, goal_cells
 from asprilo.domain import Domain
 from asprilo.model import Cell, Instance
+from asprilo.solver import Solver, Status
 
-from .grid import FAR, Grid, distance_table
+from .grid import Grid
 
 HERE = Path(__file__).resolve().parent
 #: robots offered for each shelf or goal at first (the nearest ones); doubled while that is too few
 NEAREST = 12
+#: what a robot-shelf pair without a path costs in the matching of :func:`_carriers` (more than
+#: any pair with a path: the matching takes such a pair only where it cannot do otherwise)
+NO_PATH_COST = np.iinfo(np.int32).max // 2
 
 
 @dataclass
@@ -43,12 +47,11 @@ class Assigner:
     """One grounded assignment program and the facts it was grounded from."""
 
     def __init__(self, program: str, facts: list[str], constants: dict[str, str] | None = None):
-        arguments = ["--opt-strategy=bb,hier", "--warn=none", *(f"-c{k}={v}" for k, v in (constants or {}).items())]
-        self.control = clingo.Control(arguments)
-        self.control.load(str(HERE / program))
-        self.control.add("base", [], "\n".join(facts))
-        self.control.ground([("base", [])])
-        self.atoms = {atom.symbol for atom in self.control.symbolic_atoms}
+        self.solver = Solver(options=["--opt-strategy=bb,hier", "--warn=none"], constants=constants)
+        self.solver.load(HERE / program)
+        self.solver.add("\n".join(facts))
+        self.solver.ground()
+        self.atoms = {atom.symbol for atom in self.solver.control.symbolic_atoms}
         self.unsatisfiable = False  # the last solve call proved that no assignment exists
 
     def solve(self, keep: Iterable[clingo.Symbol] = (), drop: Iterable[clingo.Symbol] = (),
@@ -60,25 +63,11 @@ class Assigner:
         if any(atom not in self.atoms for atom in keep):
             return None  # a kept choice the program does not offer
         assumptions = [(a, True) for a in keep] + [(a, False) for a in drop if a in self.atoms]
-        best = Choice()
-        found = False
-
-        def record(model: clingo.Model) -> None:
-            nonlocal found
-            best.atoms, found = set(model.symbols(shown=True)), True
-
-        with self.control.solve(assumptions=assumptions, on_model=record, async_=True) as handle:
-            finished = handle.wait(budget)
-            while not finished and not found and not stopped():
-                finished = handle.wait(0.2)
-            if not finished:
-                handle.cancel()
-            result = handle.get()
-        self.unsatisfiable = finished and result.unsatisfiable
-        if not found:
+        result = self.solver.solve(time_limit=budget, assumptions=assumptions, stop_waiting=stopped)
+        self.unsatisfiable = result.status is Status.UNSAT
+        if not result.satisfiable:
             return None
-        best.optimal = finished and result.exhausted
-        return best
+        return Choice(set(result.symbols), optimal=result.exhausted)
 
 
 # --- domains M and Md ----------------------------------------------------------------------
@@ -98,10 +87,9 @@ def goal_problem(instance: Instance, grid: Grid, longest: float) -> GoalProblem:
     away (the bottleneck bound, so the best assignment is kept), and its nearest ones."""
     goals = goal_cells(instance)
     robots = sorted(instance.robots)
-    distance = distance_table(grid, [instance.robots[r].at for r in robots], goals)
+    distance = grid.table([instance.robots[r].at for r in robots], goals)
     labelled = instance.assigned_cells()
     facts = [f"goal({g})." for g in range(len(goals))]
-    limit = longest if math.isfinite(longest) else FAR - 1
     for i, robot in enumerate(robots):
         if robot in labelled:
             g = goals.index(labelled[robot])
@@ -109,7 +97,7 @@ def goal_problem(instance: Instance, grid: Grid, longest: float) -> GoalProblem:
             continue
         nearest = set(np.argsort(distance[i], kind="stable")[:NEAREST].tolist())
         for g in range(len(goals)):
-            if distance[i, g] < FAR and (distance[i, g] <= limit or g in nearest):
+            if distance[i, g] < INFINITE and (distance[i, g] <= longest or g in nearest):
                 facts.append(f"option({robot},{g},{int(distance[i, g])}).")
     return GoalProblem(goals, robots, distance, Assigner("assign_goals.lp", facts))
 
@@ -160,9 +148,9 @@ def _hauls(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: list
         distance = grid.distances([station.at], grid.floor & ~resting)
         for shelf in shelves:
             x, y = homes[shelf]
-            steps = min(int(distance[x + dx, y + dy]) for dx, dy in ((1, 0), (-1, 0), (0, 1), (0, -1)))
-            if steps < FAR:
-                haul[(shelf, station.id)] = steps + 1
+            steps = min(distance[x + dx, y + dy] for dx, dy in ((1, 0), (-1, 0), (0, 1), (0, -1)))
+            if steps < INFINITE:
+                haul[(shelf, station.id)] = int(steps) + 1
     return haul
 
 
@@ -178,13 +166,13 @@ def _carriers(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: l
     free = sorted(r.id for r in instance.robots.values() if r.carries is None)
     facts = [f"option({carried[s]},{s},0)." for s in shelves if s in carried]
     loose = [s for s in shelves if s not in carried]
-    distance = distance_table(grid, [instance.robots[r].at for r in free], [homes[s] for s in loose])
+    distance = grid.table([instance.robots[r].at for r in free], [homes[s] for s in loose])
     offered = {(int(row), column) for column in range(len(loose))
                for row in np.argsort(distance[:, column], kind="stable")[:nearest]}
     if free and loose:
-        copies = np.repeat(np.where(distance < FAR, distance, FAR), cap, axis=0)
+        copies = np.repeat(np.where(distance < INFINITE, distance, NO_PATH_COST), cap, axis=0)
         rows, columns = linear_sum_assignment(copies)
         offered |= {(int(row) // cap, int(column)) for row, column in zip(rows, columns, strict=True)}
     facts += [f"option({free[row]},{loose[column]},{int(distance[row, column])})."
-              for row, column in sorted(offered) if distance[row, column] < FAR]
+              for row, column in sorted(offered) if distance[row, column] < INFINITE]
     return facts

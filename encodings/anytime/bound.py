@@ -4,14 +4,14 @@ says which bound function is used)."""
 from __future__ import annotations
 
 from asprilo import bounds
-from asprilo.bounds import mapf_bounds
+from asprilo.bounds import Floor, mapf_bounds
 from asprilo.domain import Bound, Domain
 from asprilo.model import Instance
 
 
-def makespan_bound(instance: Instance, domain: Domain) -> float:
-    """No plan of ``domain`` is shorter (``inf``: there is no plan at all)."""
-    return bounds.makespan_bound(instance, domain)
+def makespan_bound(instance: Instance, domain: Domain, floor: Floor | None = None) -> float:
+    """No plan of ``domain`` is shorter (``INFINITE``: there is no plan at all)."""
+    return bounds.makespan_bound(instance, domain, floor)
 
 
 def sum_of_costs_bound(instance: Instance, domain: Domain) -> float | None:

@@ -12,10 +12,11 @@ from __future__ import annotations
 
 from collections import deque
 
+from asprilo.bounds import INFINITE
 from asprilo.model import DIRECTIONS, Cell, Instance
 
 from .errands import Task
-from .grid import FAR, Grid, cells_of
+from .grid import Grid, cells_of
 
 #: cells offered to a robot that has to make room
 ROOM_CELLS = 6
@@ -70,7 +71,7 @@ def room_task(instance: Instance, grid: Grid, robot: int, needed: set[Cell], she
     distance = grid.distances([start], passable)
     taken = {r.at for r in instance.robots.values()} | needed | {s.at for s in instance.stations.values()}
     highways = set(instance.highways.values())
-    free = sorted((c in highways, int(distance[c]), c) for c in cells_of(passable & (distance < FAR))
+    free = sorted((c in highways, int(distance[c]), c) for c in cells_of(passable & (distance < INFINITE))
                   if c not in taken)
     cells = tuple(c for *_, c in free[:ROOM_CELLS])
     return Task("park", cells or (start,), carried is not None, carried)

@@ -17,10 +17,11 @@ from pathlib import Path
 import clingo
 import numpy as np
 
+from asprilo.bounds import INFINITE
 from asprilo.model import Cell
 
 from .errands import Task
-from .grid import FAR, Grid, cells_of, widen
+from .grid import Grid, cells_of, widen
 from .reservations import FOREVER, Reservations
 
 PROGRAM = Path(__file__).resolve().parent / "route.lp"
@@ -119,7 +120,7 @@ class Router:
         shunned = self.grid.mask(avoid - {c for task in tasks for c in task.cells} - {begin})
         for task, allowed in zip(tasks, passable, strict=True):
             to_task = self.grid.distances(task.cells, allowed)
-            if to_task[start] >= FAR:
+            if to_task[start] == INFINITE:
                 return None
             kept = allowed & ~shunned
             to_task_kept = self.grid.distances(task.cells, kept)
@@ -141,9 +142,9 @@ class Router:
     def _corridor(self, start: Cell, from_start: np.ndarray, to_task: np.ndarray, allowed: np.ndarray,
                   level: Level, length: int) -> np.ndarray:
         if level.radius is None:
-            return allowed & (from_start.astype(np.int64) + to_task <= length + level.detour)
+            return allowed & (from_start + to_task <= length + level.detour)
         route = self.grid.mask(self.grid.path(start, to_task))
-        return widen(route, level.radius) & allowed & (from_start < FAR) & (to_task < FAR)
+        return widen(route, level.radius) & allowed & (from_start < INFINITE) & (to_task < INFINITE)
 
     # --- the facts and the solver --------------------------------------------------------------
 
@@ -202,6 +203,7 @@ class Router:
 
     def _solve(self, robot: int, legs: list[Leg], begin: Cell, step: int
                ) -> tuple[list[Cell], dict[int, Task]] | None:
+        # a Control of its own, not the driver's (asprilo.solver says why: hundreds of tiny calls)
         control = clingo.Control(["--warn=none"])
         control.load(str(PROGRAM))
         control.add("base", [], self._facts(robot, legs, begin, step))

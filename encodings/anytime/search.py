@@ -22,6 +22,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import partial
 
+from asprilo.bounds import Floor
 from asprilo.checker import Report, check
 from asprilo.domain import Domain
 from asprilo.model import Instance, Plan
@@ -184,23 +185,24 @@ def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = 
     elif watch.deadline is not None:
         limit = watch.remaining()
     try:
+        floor = Floor(instance.cells)
         if bounds is None:
-            bounds = LowerBounds(makespan_bound(instance, domain), sum_of_costs_bound(instance, domain))
+            bounds = LowerBounds(makespan_bound(instance, domain, floor), sum_of_costs_bound(instance, domain))
         run = _Run(instance, domain, watch, bounds, on_improvement)
-        return _plan(run, limit, seed)
+        return _plan(run, floor, limit, seed)
     finally:
         if own:
             watch.close()
 
 
-def _plan(run: _Run, limit: float, seed: int) -> AnytimeResult:
+def _plan(run: _Run, floor: Floor, limit: float, seed: int) -> AnytimeResult:
     """The steps of :func:`plan_anytime`: assignment, first plan, improvements."""
     instance, domain, out_of_time, result = run.instance, run.domain, run.watch.out_of_time, run.result
     if not math.isfinite(result.bound):
         result.status, result.minimal = SolveStatus.NONE, True
         result.message = "some goal or order line can never be reached"
         return result
-    grid = Grid(instance.cells)
+    grid = Grid(floor)
     work = run.work = Work(instance, domain, grid, result.bound)
     if not work.assign(min(ASSIGN_CAP, ASSIGN_SHARE * limit), out_of_time):
         result.status = run.stopped()

@@ -1,4 +1,4 @@
-"""Lower bounds on the makespan of domains A, B and C (used through :mod:`asprilo.bounds`).
+"""What the makespan bounds of domains A, B and C share, and the bounds by lines and stations.
 
 Every order line needs a shelf that holds its product at its order's picking station.  A
 shelf moves only on a robot: a robot must walk to it, lift it and carry it there, and a
@@ -9,8 +9,9 @@ before the next one comes in, so deliveries of different shelves at one station 
 least two steps apart (:func:`station_bound`).  Where every shelf serves one line at most
 (the paper's M-aligned instances), a scheduling relaxation in ASP also takes into account
 that a robot delivers one line at a time (:func:`schedule_bound`); where shelves serve
-several lines, :mod:`asprilo.trip_bound` places the delivery actions themselves.  In A, a
-product ordered beyond its stock leaves no plan at all.  Nothing here is ever more than a
+several lines, :mod:`asprilo.bounds.trip` places the delivery actions themselves
+(:func:`asprilo.bounds.makespan.delivery_bound` picks).  In A, a product ordered beyond its
+stock leaves no plan at all (:func:`short_of_stock`).  Nothing here is ever more than a
 valid plan needs.
 """
 
@@ -23,17 +24,17 @@ from pathlib import Path
 
 import numpy as np
 
-from .domain import Delivery, Domain
-from .model import DIRECTIONS, Cell, Instance
+from ..domain import Delivery, Domain
+from ..model import DIRECTIONS, Cell, Instance
+from .floor import INFINITE, Floor
 
-INFINITE = math.inf
 #: the scheduling relaxation: conflicts per horizon (a deterministic budget, smaller for big
 #: programs, whose conflicts cost more: at most SCHEDULE_WORK / (lines x robots x horizon))
 #: and horizons tried
 SCHEDULE_CONFLICTS = 20_000
 SCHEDULE_WORK = 400_000_000
 SCHEDULE_STEPS = 64
-_PROGRAM = Path(__file__).resolve().parent / "delivery_bound.lp"
+_PROGRAM = Path(__file__).resolve().parent / "delivery.lp"
 
 
 def carry_arrivals(cells: set[Cell], starts: dict[Cell, float], free_at: dict[Cell, float]) -> dict[Cell, float]:
@@ -75,7 +76,7 @@ class Deliveries:
     ``carriers`` (shelf -> robot, from a task assignment) restricts who may bring a shelf.
     """
 
-    def __init__(self, instance: Instance, domain: Domain, floor, carriers: dict[int, int] | None = None):
+    def __init__(self, instance: Instance, domain: Domain, floor: Floor, carriers: dict[int, int] | None = None):
         self.instance, self.domain, self.floor = instance, domain, floor
         self.carriers = carriers or {}
         carried = {r.carries: r.at for r in instance.robots.values() if r.carries is not None}
@@ -193,20 +194,19 @@ def _conflicts(facts: Deliveries, horizon: int) -> int:
 def _relaxed_schedule(text: str, horizon: int, conflicts: int) -> list | str:
     """A model of the relaxation at ``horizon`` (its deliver/3 atoms), or "unsat" / "unknown"
     (no answer within ``conflicts`` conflicts)."""
-    import clingo
+    from ..solver import Solver, Status
 
-    control = clingo.Control(["--warn=none", f"-c horizon={horizon}", f"--solve-limit={conflicts}"])
-    control.load(str(_PROGRAM))
-    control.add("base", [], text)
-    control.ground([("base", [])])
-    found: list = []
-    result = control.solve(on_model=lambda model: found.extend(model.symbols(shown=True)))
-    if result.unsatisfiable:
+    solver = Solver(options=["--warn=none"], constants={"horizon": horizon})
+    solver.load(_PROGRAM)
+    solver.add(text)
+    solver.ground()
+    result = solver.solve(conflicts=conflicts)
+    if result.status is Status.UNSAT:
         return "unsat"
-    return found if result.satisfiable else "unknown"
+    return result.symbols if result.satisfiable else "unknown"
 
 
-def assigned_bound(instance: Instance, domain: Domain, floor, carriers: dict[int, int], start: float) -> float:
+def assigned_bound(instance: Instance, domain: Domain, floor: Floor, carriers: dict[int, int], start: float) -> float:
     """A makespan bound of the plans in which each shelf in ``carriers`` is brought by its robot
     (a task assignment): the scheduling relaxation with those robots, from ``start`` on."""
     facts = Deliveries(instance, domain, floor, carriers)
@@ -215,7 +215,7 @@ def assigned_bound(instance: Instance, domain: Domain, floor, carriers: dict[int
     return schedule_bound(facts, start)
 
 
-def delivery_schedule(instance: Instance, domain: Domain, floor, horizon: int,
+def delivery_schedule(instance: Instance, domain: Domain, floor: Floor, horizon: int,
                       carriers: dict[int, int] | None = None) -> list[tuple[int, int, int]]:
     """``(order, product, step)`` of every line in a schedule of the relaxation at ``horizon``:
     a guess of when each line is delivered, for search heuristics (empty when the relaxation
@@ -275,21 +275,7 @@ def _cycle(facts: Deliveries) -> float:
     return best
 
 
-def delivery_bound(instance: Instance, domain: Domain, floor) -> float:
-    """An admissible makespan bound for A, B and C (``inf``: some line can never be served)."""
-    facts = Deliveries(instance, domain, floor)
-    if not facts.lines:
-        return 0.0
-    if not all(math.isfinite(facts.release(line)) for line in facts.lines) or _short_of_stock(facts):
-        return INFINITE
-    bound = station_bound(facts)
-    if schedulable(facts):
-        return schedule_bound(facts, bound)
-    from .trip_bound import trip_bound
-    return trip_bound(facts, bound)
-
-
-def _short_of_stock(facts: Deliveries) -> bool:
+def short_of_stock(facts: Deliveries) -> bool:
     """A: whether some product is ordered more often than the shelves hold it (no plan at all)."""
     if not facts.domain.counts_units:
         return False

@@ -1,84 +1,22 @@
-"""Lower bounds on the makespan (and, for M/Md, the sum of costs) of every plan.
+"""Lower bounds on the makespan and the sum of costs of M/Md plans: robots matched to goal cells.
 
-:func:`makespan_bound` is the one bound that ``check``, ``solve`` and the benchmark reports
-use.  Distances are 4-connected shortest paths over the floor's nodes; whatever they ignore
-(other robots, shelves that could move away) only makes them smaller, so every bound here
-is admissible: no valid plan does better.
+Every goal cell needs its own robot at the horizon; a robot is no sooner there than its
+floor distance says (:class:`~asprilo.bounds.floor.Floor`).  The least possible longest
+distance of a matching (:func:`bottleneck_assignment`) bounds the makespan, the least total
+(:func:`min_cost_assignment`) the sum of costs.  Whatever the distances ignore (other robots)
+only makes them smaller, so both bounds are admissible.
 """
 
 from __future__ import annotations
 
-from collections import deque
-from collections.abc import Iterable, Sequence
-from functools import cached_property
-
 import numpy as np
 
-from .domain import Bound, Domain
-from .model import DIRECTIONS, Cell, Instance
+from ..model import Cell, Instance
+from .floor import INFINITE, Floor
 
-INFINITE = float("inf")
-
-
-#: breadth-first searches in Python up to this many source cells x nodes, SciPy beyond
-#: (SciPy is faster on big floors but takes longer to import than a small search needs)
-_PYTHON_SEARCH = 100_000
-
-
-class Floor:
-    """The floor as a graph: one vertex per node, edges between adjacent nodes."""
-
-    def __init__(self, cells: Iterable[Cell]):
-        self.cells: list[Cell] = sorted(set(cells))
-        self.index = {cell: i for i, cell in enumerate(self.cells)}
-
-    @cached_property
-    def graph(self):
-        """The adjacency matrix (scipy.sparse)."""
-        from scipy.sparse import csr_matrix
-        rows, columns = [], []
-        for (x, y), i in self.index.items():
-            for dx, dy in DIRECTIONS:
-                j = self.index.get((x + dx, y + dy))
-                if j is not None:
-                    rows.append(i)
-                    columns.append(j)
-        size = len(self.cells)
-        return csr_matrix((np.ones(len(rows)), (rows, columns)), shape=(size, size))
-
-    def distances(self, sources: Sequence[Cell], targets: Sequence[Cell]) -> np.ndarray:
-        """``len(sources) x len(targets)`` shortest-path lengths (``inf``: unreachable).
-
-        A cell that is not a node is unreachable from and to everything.
-        """
-        result = np.full((len(sources), len(targets)), INFINITE)
-        known = [k for k, cell in enumerate(sources) if cell in self.index]
-        if not known or not targets:
-            return result
-        columns = [self.index.get(cell, -1) for cell in targets]
-        rows = self._from_cells([self.index[sources[k]] for k in known])
-        for k, row in zip(known, rows, strict=True):
-            result[k] = [row[c] if c >= 0 else INFINITE for c in columns]
-        return result
-
-    def _from_cells(self, starts: list[int]) -> np.ndarray:
-        """Distances from each start vertex to every vertex."""
-        if len(starts) * len(self.cells) > _PYTHON_SEARCH:
-            from scipy.sparse.csgraph import shortest_path
-            return np.atleast_2d(shortest_path(self.graph, method="D", unweighted=True, indices=starts))
-        rows = np.full((len(starts), len(self.cells)), INFINITE)
-        for row, start in zip(rows, starts, strict=True):
-            row[start] = 0
-            queue = deque([start])
-            while queue:
-                vertex = queue.popleft()
-                x, y = self.cells[vertex]
-                for dx, dy in DIRECTIONS:
-                    neighbour = self.index.get((x + dx, y + dy))
-                    if neighbour is not None and row[neighbour] == INFINITE:
-                        row[neighbour] = row[vertex] + 1
-                        queue.append(neighbour)
-        return rows
+#: matchings in Python up to this many goal x robot pairs, SciPy beyond (SciPy is faster
+#: on big problems but takes longer to import than a small one needs)
+_PYTHON_MATCHING = 2_500
 
 
 def bottleneck_assignment(costs: np.ndarray) -> float:
@@ -106,7 +44,7 @@ def bottleneck_assignment(costs: np.ndarray) -> float:
 
 def _matches_all(allowed: np.ndarray) -> bool:
     """Whether every row can get its own allowed column (an assignment of cost 0 exists)."""
-    if allowed.size > _PYTHON_SEARCH // 40:
+    if allowed.size > _PYTHON_MATCHING:
         from scipy.optimize import linear_sum_assignment  # slow to import: only for big problems
         rows, columns = linear_sum_assignment(~allowed)
         return bool(allowed[rows, columns].all())
@@ -139,7 +77,7 @@ def min_cost_assignment(costs: np.ndarray) -> float:
     finite = costs[np.isfinite(costs)]
     penalty = (finite.max() if finite.size else 0) * (goals + 1) + 1
     padded = np.where(np.isfinite(costs), costs, penalty)
-    if costs.size > _PYTHON_SEARCH // 40:
+    if costs.size > _PYTHON_MATCHING:
         from scipy.optimize import linear_sum_assignment  # slow to import: only for big problems
         rows, columns = linear_sum_assignment(padded)
     else:
@@ -227,17 +165,3 @@ def mapf_bounds(instance: Instance, floor: Floor | None = None, total: bool = Tr
         own = floor.distances([assigned[r] for r in robots], [instance.robots[r].at for r in robots]).diagonal()
         makespan, cost = max(makespan, float(own.max())), cost + float(own.sum())
     return makespan, cost
-
-
-def makespan_bound(instance: Instance, domain: Domain, floor: Floor | None = None) -> float:
-    """A makespan no valid plan of ``domain`` beats (``inf``: no plan exists at all).
-
-    M/Md: the bottleneck assignment of robots to goal cells.  A/B/C: the delivery bounds
-    of :mod:`asprilo.delivery_bound` (order lines released no earlier than a robot can bring
-    a shelf, stations serving one robot at a time, robots one line at a time).
-    """
-    floor = floor or Floor(instance.cells)
-    if domain.bound is Bound.MAPF:
-        return mapf_bounds(instance, floor, total=False)[0]
-    from .delivery_bound import delivery_bound
-    return delivery_bound(instance, domain, floor)

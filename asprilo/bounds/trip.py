@@ -1,6 +1,6 @@
-"""A makespan bound for A, B and C when shelves serve several order lines (see trip_bound.lp).
+"""A makespan bound for A, B and C when shelves serve several order lines (see trip.lp).
 
-:mod:`asprilo.delivery_bound` schedules lines when each shelf serves one line at most; here a
+:mod:`asprilo.bounds.delivery` schedules lines when each shelf serves one line at most; here a
 shelf may serve several lines at several stations, a robot may bring several shelves, and
 the relaxation decides the delivery actions themselves.  Its facts are floor distances, all
 no longer than real paths, so every horizon it refutes is one that no valid plan has.
@@ -13,9 +13,9 @@ from pathlib import Path
 
 import numpy as np
 
-from .bounds import INFINITE
-from .delivery_bound import Deliveries, carry_arrivals, robot_release, storage_to_shelves
-from .model import DIRECTIONS
+from ..model import DIRECTIONS
+from .delivery import Deliveries, carry_arrivals, robot_release, storage_to_shelves
+from .floor import INFINITE
 
 #: the conflicts per horizon (a deterministic budget: "unknown" refutes nothing), the
 #: horizons tried, and the largest program tried: candidate delivery actions per step,
@@ -25,7 +25,7 @@ TRIP_STEPS = 64
 TRIP_WORK = 2_000_000
 #: clingo's integers are 32 bits: A's unit sums are left out beyond this
 LARGEST_SUM = 2**31 - 1
-_PROGRAM = Path(__file__).resolve().parent / "trip_bound.lp"
+_PROGRAM = Path(__file__).resolve().parent / "trip.lp"
 
 
 def trip_bound(facts: Deliveries, start: float) -> float:
@@ -48,13 +48,13 @@ def trip_bound(facts: Deliveries, start: float) -> float:
 
 
 def _refuted(text: str, horizon: int) -> bool:
-    import clingo
+    from ..solver import Solver, Status
 
-    control = clingo.Control(["--warn=none", f"-c horizon={horizon}", f"--solve-limit={TRIP_CONFLICTS}"])
-    control.load(str(_PROGRAM))
-    control.add("base", [], text)
-    control.ground([("base", [])])
-    return bool(control.solve().unsatisfiable)
+    solver = Solver(options=["--warn=none"], constants={"horizon": horizon})
+    solver.load(_PROGRAM)
+    solver.add(text)
+    solver.ground()
+    return solver.solve(conflicts=TRIP_CONFLICTS).status is Status.UNSAT
 
 
 def _gaps(facts: Deliveries, stations: list, shelves: list[int]) -> dict:

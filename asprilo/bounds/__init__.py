@@ -1,0 +1,26 @@
+"""Lower bounds on the makespan (and, for M/Md, the sum of costs) of every plan, and the
+floor's distances they are made of.
+
+Modules, each importing only those below it (an import-linter contract):
+
+- ``makespan``: :func:`makespan_bound`, the one bound that ``check``, ``solve`` and the
+  benchmark reports use, picked by the domain's descriptor (``domain.bound``);
+- ``trip`` (+ ``trip.lp``): A/B/C when shelves serve several order lines;
+- ``delivery`` (+ ``delivery.lp``): what the A/B/C bounds share (lines, releases), the
+  stations' bound and the scheduling relaxation; ``mapf``: M/Md by robot-to-goal matching;
+- ``floor``: :class:`Floor`, the one engine for walking distances in asprilo, and
+  :data:`INFINITE`, which stands for "unreachable" and "no plan at all".
+
+Distances are 4-connected shortest paths over the floor's nodes; whatever they ignore (other
+robots, shelves that could move away) only makes them smaller, so every bound is admissible.
+"""
+
+from __future__ import annotations
+
+from .delivery import assigned_bound, delivery_schedule
+from .floor import INFINITE, Floor
+from .makespan import delivery_bound, makespan_bound
+from .mapf import bottleneck_assignment, goal_cells, mapf_bounds, min_cost_assignment
+
+__all__ = ["INFINITE", "Floor", "assigned_bound", "bottleneck_assignment", "delivery_bound", "delivery_schedule",
+           "goal_cells", "makespan_bound", "mapf_bounds", "min_cost_assignment"]
