@@ -1,10 +1,12 @@
 """Run a function in a child process under hard limits: wall-clock time and memory.
 
-clingo cannot be stopped while it grounds, and a program may ground for ever; a child
-process can always be killed.  The child runs ``function(*args, report=report)`` where
-``report(message)`` sends any picklable message to the parent at once (progress); the
-parent hands each message to ``on_message`` as it arrives and returns what the function
-returned, or says why there is nothing:
+The one engine for a child process under limits: ``solve(..., isolate=True)`` and the
+reading of rules (:mod:`asprilo.sources`) run their work here, and so does the benchmark
+runner (:mod:`asprilo.bench.limits`) each run.  clingo cannot be stopped while it grounds,
+and a program may ground for ever; a child process can always be killed.  The child runs
+``function(*args, report=report)`` where ``report(message)`` sends any picklable message to
+the parent at once (progress); the parent hands each message to ``on_message`` as it
+arrives and returns what the function returned, or says why there is nothing:
 
     outcome = run_isolated(ground_and_solve, (program,), time_limit=5, memory_mb=2048,
                            on_message=print)
@@ -13,18 +15,28 @@ returned, or says why there is nothing:
 
 An exception the function raises is raised again in the parent (it must be picklable,
 like :class:`~asprilo.errors.InputError`).  The child is started by ``fork`` where that is
-safe (no other thread running in the parent) and ``spawn`` otherwise.
+safe (no other thread running in the parent) and ``spawn`` otherwise.  A *standalone*
+child (``standalone=True``: a benchmark run) runs as a program of its own would: a fresh
+interpreter (its peak memory is its own; it imports nothing but what the function needs),
+in a session of its own that is killed as a whole (whatever it started goes with it), its
+output discarded.
 """
 
 from __future__ import annotations
 
+import contextlib
 import multiprocessing
+import os
+import pickle
 import resource
 import signal
+import subprocess
+import sys
 import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from multiprocessing.connection import Connection
 from typing import Any
 
 #: how long a killed child may take to go, and how often the parent looks at the clock
@@ -87,22 +99,80 @@ def _context() -> multiprocessing.context.BaseContext:
     return multiprocessing.get_context("spawn")
 
 
+def _start(function: Callable, args: tuple, memory_mb: int | None):
+    """A child process that runs :func:`_child`, and the end of the pipe it answers on."""
+    context = _context()
+    receiver, sender = context.Pipe(duplex=False)
+    process = context.Process(target=_child, args=(sender, function, args, memory_mb), daemon=True)
+    process.start()
+    sender.close()
+    return process, receiver
+
+
+class _Standalone:
+    """A standalone child: ``python -c`` in a session of its own, told what to run on its
+    standard input (a pickle), answering on a pipe as :func:`_child` does; a fresh
+    interpreter imports nothing of the parent's (not even its main module)."""
+
+    def __init__(self, function: Callable, args: tuple, memory_mb: int | None):
+        reading, writing = os.pipe()
+        try:
+            self.popen = subprocess.Popen(
+                [sys.executable, "-c", "from asprilo.isolation import _standalone_main; _standalone_main()"],
+                stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                pass_fds=(writing,), start_new_session=True)
+        except BaseException:
+            os.close(reading)
+            raise
+        finally:
+            os.close(writing)
+        self.receiver = Connection(reading, writable=False)
+        self.pid = self.popen.pid
+        with contextlib.suppress(OSError):  # a child that died at once says so through the pipe
+            self.popen.stdin.write(pickle.dumps((writing, function, args, memory_mb)))
+        with contextlib.suppress(OSError):
+            self.popen.stdin.close()
+
+    @property
+    def exitcode(self) -> int | None:
+        return self.popen.poll()
+
+    def is_alive(self) -> bool:
+        return self.popen.poll() is None
+
+    def kill(self) -> None:
+        """Kill the child's whole process group: whatever it started goes with it."""
+        with contextlib.suppress(OSError):
+            os.killpg(self.pid, signal.SIGKILL)
+
+    def join(self, timeout: float | None = None) -> None:
+        with contextlib.suppress(subprocess.TimeoutExpired):
+            self.popen.wait(timeout)
+
+
+def _standalone_main() -> None:
+    """The standalone child's side: read what to run, run it as :func:`_child` does."""
+    pipe, function, args, memory_mb = pickle.load(sys.stdin.buffer)
+    _child(Connection(pipe, readable=False), function, args, memory_mb)
+
+
 def run_isolated(function: Callable[..., Any], args: tuple = (), time_limit: float | None = None,
                  memory_mb: int | None = None, on_message: Callable[[Any], None] | None = None,
-                 cancel: threading.Event | None = None, on_tick: Callable[[float], None] | None = None
-                 ) -> Isolated:
+                 cancel: threading.Event | None = None, on_tick: Callable[[float], None] | None = None,
+                 standalone: bool = False) -> Isolated:
     """Run ``function(*args, report=...)`` in a child process; see the module docstring.
 
     ``time_limit`` (seconds) and ``memory_mb`` are hard: the child is killed at the
     deadline and cannot allocate beyond the limit.  Setting ``cancel`` kills it too (status
     ``timeout``).  ``on_tick(elapsed)`` is called about ten times a second while waiting.
+    ``standalone``: the child runs as a program of its own (see the module docstring).
     """
-    context = _context()
-    receiver, sender = context.Pipe(duplex=False)
-    process = context.Process(target=_child, args=(sender, function, args, memory_mb), daemon=True)
     started = time.perf_counter()
-    process.start()
-    sender.close()
+    if standalone:
+        process = _Standalone(function, args, memory_mb)
+        receiver = process.receiver
+    else:
+        process, receiver = _start(function, args, memory_mb)
     outcome = Isolated("crashed")
     try:
         outcome = _wait(process, receiver, started, time_limit, on_message, cancel, on_tick)

@@ -1,7 +1,6 @@
-"""The child process of a benchmark run: ``python -m asprilo.bench.worker JOB_JSON``.
-
-It limits its own address space, reads the instance, runs the solver and prints one JSON
-line: what the solver found, its statistics, the plan, and its own peak memory.  Jobs:
+"""What the child process of a benchmark run does (:mod:`asprilo.bench.limits` starts it
+under the limits): read the instance, run the solver and report what it found, its
+statistics, the plan, and the process's own peak memory.  Jobs:
 
 - ``{"kind": "makespan", ...}``: the minimal makespan of an instance in a domain: the flow
   solver for M/Md, else the horizon search; with task assignment, the shortest plan along
@@ -12,24 +11,17 @@ line: what the solver found, its statistics, the plan, and its own peak memory. 
 
 from __future__ import annotations
 
-import json
 import resource
-import sys
 import time
-
-
-def _limit_memory(memory_mb: int | None) -> None:
-    if memory_mb:
-        size = memory_mb * 2**20
-        resource.setrlimit(resource.RLIMIT_AS, (size, size))
 
 
 def _peak_mb() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 
 
-def run(job: dict) -> dict:
-    """Do one job and return its report."""
+def run(job: dict, report=None) -> dict:
+    """Do one job and return its report (a JSON object; ``report``: the child process's
+    channel for progress messages, unused)."""
     from asprilo.encodings import solve
     from asprilo.writer import format_plan
 
@@ -59,14 +51,3 @@ def run(job: dict) -> dict:
         "assignment": outcome.assignment.facts if outcome.assignment is not None else None,
         **({"history": outcome.history, "lower_bound": outcome.lower_bound} if job["kind"] == "anytime" else {}),
     }
-
-
-def main() -> int:
-    job = json.loads(sys.argv[1])
-    _limit_memory(job.get("memory_mb"))
-    print(json.dumps(run(job)), flush=True)
-    return 0
-
-
-if __name__ == "__main__":
-    sys.exit(main())
