@@ -141,7 +141,8 @@ class _Standalone:
         return self.popen.poll() is None
 
     def kill(self) -> None:
-        """Kill the child's whole process group: whatever it started goes with it."""
+        """Kill the child's whole process group: whatever it started goes with it (a group
+        whose leader has ended but is not yet reaped keeps its id, so no other group is hit)."""
         with contextlib.suppress(OSError):
             os.killpg(self.pid, signal.SIGKILL)
 
@@ -178,7 +179,7 @@ def run_isolated(function: Callable[..., Any], args: tuple = (), time_limit: flo
         outcome = _wait(process, receiver, started, time_limit, on_message, cancel, on_tick)
         outcome = _blame_memory(outcome, memory_mb)
     finally:
-        if process.is_alive():
+        if standalone or process.is_alive():  # standalone: nothing it started outlives it either
             process.kill()
         process.join(_GRACE)
         receiver.close()

@@ -33,6 +33,13 @@ def _start_a_grandchild_and_hang(path, report):
         time.sleep(1)
 
 
+def _leave_a_grandchild(path, report):
+    grandchild = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(600)"])
+    with open(path, "w") as stream:
+        stream.write(str(grandchild.pid))
+    return "done"
+
+
 def _ground_for_ever(report):
     import clingo
     control = clingo.Control()
@@ -65,6 +72,16 @@ def test_the_deadline_kills_a_standalone_child_with_whatever_it_started(tmp_path
     path = tmp_path / "grandchild"
     outcome = run_isolated(_start_a_grandchild_and_hang, (str(path),), time_limit=5, standalone=True)
     assert (outcome.status, outcome.messages) == ("timeout", ["started"])
+    grandchild = int(path.read_text())
+    deadline = time.time() + 10
+    while _alive(grandchild) and time.time() < deadline:
+        time.sleep(0.1)
+    assert not _alive(grandchild)
+
+
+def test_nothing_a_standalone_child_started_outlives_it(tmp_path):
+    path = tmp_path / "grandchild"
+    assert run_isolated(_leave_a_grandchild, (str(path),), time_limit=60, standalone=True).value == "done"
     grandchild = int(path.read_text())
     deadline = time.time() + 10
     while _alive(grandchild) and time.time() < deadline:
