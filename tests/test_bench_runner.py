@@ -10,7 +10,6 @@ import shutil
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -53,20 +52,44 @@ def test_an_invalid_plan_is_a_failure(write, tmp_path, monkeypatch, capsys):
     assert "M       1         plain     30(1) !1" in capsys.readouterr().out
 
 
+#: ``asprilo bench ARGS...`` that, once it has recorded its second run, says so and waits to
+#: be killed (its next run may be under way meanwhile): a runner killed at the same point on
+#: every machine
+BENCH_UNTIL_TWO_RUNS = """
+import sys, threading
+from asprilo.bench import runner
+from asprilo.cli import main
+
+append, recorded = runner.append_result, []
+
+def append_then_wait(folder, record):
+    append(folder, record)
+    recorded.append(record)
+    if len(recorded) == 2:
+        print("recorded 2 runs", flush=True)
+        threading.Event().wait()
+
+runner.append_result = append_then_wait
+sys.exit(main(sys.argv[1:]))
+"""
+
+
 def test_a_killed_runner_resumes_without_repeating_runs(write, tmp_path):
     suite = suite_file(write, [TINY, SMALL], "[{domain: m, encoding: [plain, split, clingcon, dl]}]")
     out = tmp_path / "out"
-    command = [sys.executable, "-m", "asprilo.cli", "bench", str(suite), "-o", str(out)]
-    first = subprocess.Popen(command, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                             start_new_session=True)
-    deadline = time.time() + 120
-    while time.time() < deadline and len(load_results(out)) < 2:
-        time.sleep(0.2)
-    os.killpg(first.pid, signal.SIGKILL)
-    first.wait()
+    arguments = ["bench", str(suite), "-o", str(out)]
+    first = subprocess.Popen([sys.executable, "-c", BENCH_UNTIL_TWO_RUNS, *arguments], stdout=subprocess.PIPE,
+                             stderr=subprocess.DEVNULL, text=True, start_new_session=True)
+    try:
+        assert first.stdout.readline() == "recorded 2 runs\n"  # (an empty line: it ended before)
+    finally:
+        os.killpg(first.pid, signal.SIGKILL)
+        first.wait()
+        first.stdout.close()
     done_before = {r["key"]: r for r in load_results(out)}
-    assert 2 <= len(done_before) < 8
-    result = subprocess.run(command, capture_output=True, text=True, timeout=300)
+    assert len(done_before) == 2
+    result = subprocess.run([sys.executable, "-m", "asprilo.cli", *arguments], capture_output=True, text=True,
+                            timeout=300)
     assert result.returncode == 0, result.stderr
     assert f"resuming: {len(done_before)} runs already recorded" in result.stderr
     records = load_results(out)

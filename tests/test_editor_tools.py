@@ -9,7 +9,6 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
 import re  # noqa: E402
 import threading  # noqa: E402
-import time  # noqa: E402
 from itertools import pairwise  # noqa: E402
 
 import pytest  # noqa: E402
@@ -111,19 +110,19 @@ def test_a_solve_out_of_time_points_to_the_anytime_method(window, qtbot, write):
 
 def test_solving_keeps_the_window_alive_and_can_be_cancelled(window, qtbot):
     window.open_files([str(SMALL_A)])  # its minimal makespan takes minutes to prove
-    ticks = []
+    ticks = []  # the progress line at each tick of a timer of the window
     timer = QTimer(window)
-    timer.timeout.connect(lambda: ticks.append(time.perf_counter()))
+    timer.timeout.connect(lambda: ticks.append(window.jobs.bar.label.text()))
     timer.start(50)
     window.jobs.solve()
     assert window.jobs.bar.isVisible() and window.jobs.bar.label.text() == "Solve…"
     # A on the small example: the search starts at the lower bound, and no horizon from there
     # on is settled within minutes; the progress line says what it works on meanwhile
     first = f"Solve: horizon {int(makespan_bound(read_instance(SMALL_A), Domain.A))}: solving…"
-    qtbot.waitUntil(lambda: window.jobs.bar.label.text() == first and len(ticks) >= 10,
-                    timeout=WAIT_MS)
-    assert window.jobs.job is not None  # still searching
-    assert max(b - a for a, b in pairwise(ticks)) < 1.0  # the window was never frozen for long
+    # the window's own events go on while clingo searches in the job's thread: its timer ticks
+    # again and again after the progress line said so
+    qtbot.waitUntil(lambda: ticks.count(first) >= 10, timeout=WAIT_MS)
+    assert window.jobs.job is not None and window.jobs.job.isRunning()  # still searching
     window.jobs.cancel()
     finish(qtbot, window)  # within WAIT_MS, below the solve's own limit: the cancel stopped it
     assert window.statusBar().currentMessage() == "Solve cancelled"
