@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 
 from asprilo.checker import check
 from asprilo.cli import main
-from asprilo.domain import Domain
+from asprilo.domain import Domain, domains
 from asprilo.encodings import solve
 from asprilo.encodings.anytime import plan_anytime
 from asprilo.encodings.anytime import search as anytime_search
@@ -52,7 +52,7 @@ def _assert_sound(result, instance, domain: Domain) -> None:
     assert result.minimal == (result.plan.horizon <= result.bound)
 
 
-SMALL = dict(domain=st.sampled_from(list(Domain)), seed=st.integers(1, 10**6), robots=st.integers(1, 4),
+SMALL = dict(domain=st.sampled_from(domains()), seed=st.integers(1, 10**6), robots=st.integers(1, 4),
              width=st.integers(4, 7), height=st.integers(3, 5))
 
 
@@ -81,7 +81,7 @@ def test_many_more_random_instances(domain, seed, robots, width, height):
 def test_tiny_delivery_instances_reach_their_minimal_makespan(name, minimal):
     instance = read_instance(REPO / f"{name}.lp")
     for domain, makespan in minimal.items():
-        result = plan_anytime(instance, Domain(domain), time_limit=10)
+        result = plan_anytime(instance, Domain.parse(domain), time_limit=10)
         assert (result.status, result.plan.horizon, result.minimal) == ("found", makespan, True)
 
 
