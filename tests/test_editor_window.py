@@ -261,7 +261,7 @@ def test_saving_mid_animation_writes_the_initial_state(window, qtbot, tmp_path):
     window.open_files([str(OUTCOME)])
     window.player.set_speed(64)
     window.player.play()
-    qtbot.waitUntil(lambda: window.player.time > 10, timeout=60_000)  # a guard against a hang only
+    qtbot.waitUntil(lambda: window.player.time > 10, timeout=60_000)  # a hang guard
     assert window.editor.save_as(tmp_path / "saved.lp")
     assert window.player.time > 10  # saving does not stop the animation
     assert read_instance(tmp_path / "saved.lp") == read_instance(OUTCOME)

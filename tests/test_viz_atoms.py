@@ -108,7 +108,7 @@ def test_editing_a_plan_atom_changes_the_animation_and_the_violations_and_undo_t
     original = read_plan(OUTCOME)
     assert not window.track.violations
     type_over(qtbot, atoms.plan_box, FIRST, "occurs(object(robot,1),action(move,(-1,0)),1).")
-    qtbot.waitUntil(lambda: window.scenario.plan != original, timeout=60_000)  # a guard against a hang only
+    qtbot.waitUntil(lambda: window.scenario.plan != original, timeout=60_000)  # a hang guard
     # robot 1 now drives left from (1,6) onto (0,6), which is no node; the ASP checker says
     # which rules that breaks, the window must say the same
     edited = window.scenario.plan
@@ -130,6 +130,6 @@ def test_a_plan_the_reader_refuses_is_shown_as_such_and_changes_nothing(window, 
     atoms = pane(window)
     original = window.scenario.plan
     type_over(qtbot, atoms.plan_box, FIRST, "occurs(object(robot,9),action(move,(1,0)),1).")
-    qtbot.waitUntil(lambda: "the plan shown stays" in atoms.plan_note.text(), timeout=60_000)  # a guard against a hang only
+    qtbot.waitUntil(lambda: "the plan shown stays" in atoms.plan_note.text(), timeout=60_000)  # a hang guard
     assert "the plan moves robot 9, but the instance has robots 1..3" in atoms.plan_note.text()
     assert window.scenario.plan is original and window.editor.document.history.count == 0

@@ -72,14 +72,14 @@ def test_play_to_the_end_and_loop(window, qtbot):
     player.time_changed.connect(seen.append)
     qtbot.keyClick(window, Qt.Key_Space)
     assert player.playing
-    qtbot.waitUntil(lambda: not player.playing, timeout=60_000)  # a guard against a hang only
+    qtbot.waitUntil(lambda: not player.playing, timeout=60_000)  # a hang guard
     assert player.time == 29 and seen == sorted(seen)
     assert any(0 < t < 29 and t != int(t) for t in seen)   # in-between frames were shown
     qtbot.keyClick(window, Qt.Key_L)
     assert player.loop
     seen.clear()
     qtbot.keyClick(window, Qt.Key_Space)                   # from the end: starts over
-    qtbot.waitUntil(lambda: any(b < a for a, b in pairwise(seen)), timeout=60_000)  # a guard against a hang only
+    qtbot.waitUntil(lambda: any(b < a for a, b in pairwise(seen)), timeout=60_000)  # a hang guard
     assert player.playing                                  # wrapped around, still playing
     qtbot.keyClick(window, Qt.Key_Space)
     assert not player.playing
