@@ -31,6 +31,7 @@ from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from enum import Enum
 from pathlib import Path
+from typing import cast
 
 import clingo
 import clingo.ast
@@ -144,7 +145,7 @@ class Solver:
         arguments = [*options, *(f"-c{name}={value}" for name, value in (constants or {}).items())]
         self.control = clingo.Control(arguments, logger=self._log)
         self.theory = _theory(theory)
-        if self.theory is not None:
+        if theory is not None:  # _theory made one (or refused the name)
             self.theory.register(self.control)
             for key, value in _THEORY_OPTIONS[theory].items():
                 self.theory.configure(key, value)
@@ -165,8 +166,9 @@ class Solver:
 
     # --- programs ------------------------------------------------------------------------
 
-    def load(self, path: str | Path) -> None:
-        """Load a program file (all of its ``#program`` parts).
+    def load(self, path: str | Path, renamed: Mapping[str, str] | None = None) -> None:
+        """Load a program file (all of its ``#program`` parts; ``renamed`` parts, old name ->
+        new name, under their new names).
 
         ``#include "file".`` is resolved here, next to the including file: clingo itself
         looks in the working directory first, where a user's own ``core.lp`` would win.
@@ -178,29 +180,43 @@ class Solver:
         if text is None:  # no includes: let clingo read the file and name it in messages
             self.messages.clear()
             try:
-                if self.theory is None:
+                if self.theory is None and not renamed:
                     self.control.load(str(path))
                 else:
                     with clingo.ast.ProgramBuilder(self.control) as builder:
-                        clingo.ast.parse_files([str(path)], lambda s: self.theory.rewrite_ast(s, builder.add),
-                                               logger=self._log)
+                        add = self._adder(builder, renamed)
+                        clingo.ast.parse_files([str(path)], add, logger=self._log)
             except RuntimeError:
                 raise self._error(str(path)) from None
             return
-        self.add(text, name=str(path))
+        self.add(text, name=str(path), renamed=renamed)
+
+    def _adder(self, builder: clingo.ast.ProgramBuilder,
+               renamed: Mapping[str, str] | None) -> Callable[[clingo.ast.AST], None]:
+        """What adds a parsed statement: renamed (its part), rewritten for the theory."""
+        add = builder.add if self.theory is None else (lambda s: self.theory.rewrite_ast(s, builder.add))
+        if not renamed:
+            return add
+
+        def rename(statement: clingo.ast.AST) -> None:
+            if statement.ast_type == clingo.ast.ASTType.Program and statement.name in renamed:
+                statement = statement.update(name=renamed[statement.name])
+            add(statement)
+
+        return rename
 
     def add(self, text: str, part: str = "base", parameters: Sequence[str] = (),
-            name: str = "<string>") -> None:
-        """Add program text to ``part`` (the text may switch parts with ``#program``)."""
+            name: str = "<string>", renamed: Mapping[str, str] | None = None) -> None:
+        """Add program text to ``part`` (the text may switch parts with ``#program``;
+        ``renamed`` as in :meth:`load`)."""
         self.messages.clear()
         try:
-            if self.theory is None:
+            if self.theory is None and not renamed:
                 self.control.add(part, list(parameters), text)
             else:
                 header = f"#program {part}({','.join(parameters)}).\n" if parameters else f"#program {part}.\n"
                 with clingo.ast.ProgramBuilder(self.control) as builder:
-                    clingo.ast.parse_string(header + text, lambda s: self.theory.rewrite_ast(s, builder.add),
-                                            logger=self._log)
+                    clingo.ast.parse_string(header + text, self._adder(builder, renamed), logger=self._log)
         except RuntimeError:
             raise self._error(name) from None
 
@@ -210,11 +226,11 @@ class Solver:
 
     def ground(self, parts: Iterable[Part] = (("base", ()),), context: object | None = None) -> None:
         """Ground program parts, e.g. ``[("step", [3])]``."""
-        parts = [(name, [_symbol(value) for value in values]) for name, values in parts]
+        symbols = [(name, [_symbol(value) for value in values]) for name, values in parts]
         self.messages.clear()
         started = time.perf_counter()
         try:
-            self.control.ground(parts, context=context)
+            self.control.ground(symbols, context=context)
         except RuntimeError:
             raise self._error("<program>") from None
         self.stats.ground_time += time.perf_counter() - started
@@ -246,7 +262,8 @@ class Solver:
             self.theory.prepare(self.control)
             self._prepared = True
         result = Result(Status.UNKNOWN)
-        self.control.configuration.solve.solve_limit = "umax" if conflicts is None else str(conflicts)
+        solve_options = cast(clingo.Configuration, self.control.configuration.solve)  # a group, not a value
+        solve_options.solve_limit = "umax" if conflicts is None else str(conflicts)
 
         def record(model: clingo.Model) -> None:
             if self.theory is not None:

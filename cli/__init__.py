@@ -100,11 +100,26 @@ def main(argv: Sequence[str] | None = None) -> int:
             _parser(name, name, summary, commands)
         else:
             commands.add_parser(name, help=summary)
-    args = parser.parse_args(argv)
+    args = _parse(parser, argv, chosen)
     if args.command is None:
         parser.print_help()
         return 2
     return run_command(args.run, args)
+
+
+def _parse(parser: argparse.ArgumentParser, argv: list[str], chosen: str | None) -> argparse.Namespace:
+    """The arguments; a command that runs clingo on a user's program (its module says
+    ``CLINGO_OPTIONS = True``) gets the options asprilo does not know as ``clingo_options``,
+    for clingo to accept or refuse."""
+    module = importlib.import_module(COMMANDS[chosen][0]) if chosen in COMMANDS else None
+    if not getattr(module, "CLINGO_OPTIONS", False):
+        return parser.parse_args(argv)
+    args, unknown = parser.parse_known_args(argv)
+    stray = [word for word in unknown if not word.startswith("-")]
+    if stray:
+        parser.error(f"unrecognized arguments: {' '.join(stray)} (clingo's options are given as --name=value)")
+    args.clingo_options = unknown
+    return args
 
 
 def _standalone(name: str) -> int:

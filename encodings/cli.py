@@ -1,15 +1,22 @@
-"""Find a plan for an instance with a reference encoding (or max-flow for M/Md).
+"""Find a plan for an instance with a reference encoding, your own encoding, or max-flow.
 
 Without --horizon the search starts at a lower bound of the makespan and goes up one step
 at a time, so the first plan found has minimal makespan.  --method anytime instead finds a
 plan fast and then better ones until the time limit (default 60 s) or the lower bound;
 each one is checked and reported with its gap to the bound.  The plan is checked, then
 printed as occurs/3 facts (stdout, or -o PLAN); a summary goes to stderr.
-Exit status: 0 plan found, 1 no plan within the limits, 2 bad input.
+
+--encoding FILE (repeated for several files) runs your own encoding: single-shot with a
+horizon constant, incremental (#include <incmode>, #program step(t)/check(t) and query(t)),
+or with &sum/&diff theory atoms (clingcon / clingo-dl); the summary says which style was
+recognised.  -c NAME=VALUE and clingo's own options (--name=value, e.g.
+--configuration=crafty) go to clingo.  Exit status: 0 a valid plan found, 1 no plan within
+the limits or a plan that breaks the rules (the violations are listed), 2 bad input.
 
 Examples:
   asprilo solve instance.lp
   asprilo solve instance.lp --encoding clingcon --time-limit 60 -o plan.lp
+  asprilo solve instance.lp --encoding my.lp --encoding goal.lp -c lanes=2
   asprilo solve instance.lp --horizon 12 --domain b
   asprilo solve instance.lp --assign
   asprilo solve m-instance.lp --method flow
@@ -24,15 +31,25 @@ import json
 import sys
 import threading
 import time
+from dataclasses import replace
+from pathlib import Path
 from typing import TextIO
 
 from asprilo.arguments import domain_argument, megabytes_argument, seconds_argument
+from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
+from asprilo.reader import read_instance
 from asprilo.writer import format_action, format_plan, refuse_overwriting, write_text
 
 from .anytime import DEFAULT_SECONDS as ANYTIME_SECONDS
-from .registry import reference_encodings
+from .own import own_encoding
+from .registry import Encoding, encoding_names, find_encoding, reference_encodings
 from .solving import Attempt, Outcome, Phase, method_names, solve
+
+#: options asprilo does not know are clingo's (the command line passes them on)
+CLINGO_OPTIONS = True
+#: the most violations the summary lists of a plan that breaks the rules
+SHOWN_VIOLATIONS = 20
 
 #: seconds ``asprilo solve`` may take unless told otherwise (the anytime method: its own default)
 DEFAULT_TIME_LIMIT = 300.0
@@ -41,8 +58,11 @@ DEFAULT_TIME_LIMIT = 300.0
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("instance", metavar="INSTANCE", nargs="?", help="instance file (- = stdin)")
     parser.add_argument("--domain", type=domain_argument, help="a|b|c|m|md (default: detected)")
-    parser.add_argument("--encoding", default="plain", metavar="NAME",
-                        help="reference encoding (default: plain; --list shows them)")
+    parser.add_argument("--encoding", action="append", metavar="NAME|FILE",
+                        help="a reference encoding by name (default: plain; --list shows them), or a file "
+                             "of your own encoding (repeat for several files)")
+    parser.add_argument("-c", "--const", action="append", default=[], metavar="NAME=VALUE",
+                        help="a constant for your encoding, as clingo's -c (-c horizon=H solves at H only)")
     parser.add_argument("--horizon", type=int, metavar="H", help="solve at this makespan only")
     parser.add_argument("--assign", action="store_true",
                         help="compute a task assignment first and plan along it (A/B/C: after a short "
@@ -72,21 +92,74 @@ def run(args: argparse.Namespace) -> int:
     time_limit = args.time_limit
     if time_limit is None:
         time_limit = ANYTIME_SECONDS if args.method == "anytime" else DEFAULT_TIME_LIMIT
+    instance = read_instance(args.instance)
+    domain = args.domain or detect_domain(instance)
+    encoding, horizon = chosen_encoding(args, domain)
     progress = SearchProgress(sys.stderr)
     try:
-        outcome = solve(args.instance, args.domain, encoding=args.encoding, horizon=args.horizon,
+        outcome = solve(instance, domain, encoding=encoding, horizon=horizon,
                         assign=args.assign, time_limit=time_limit, method=args.method, isolate=True,
                         memory_limit=args.memory_limit, on_progress=progress.attempt, on_phase=progress.phase)
     finally:
         progress.close()
     if outcome.plan is not None and outcome.found and args.output:
         write_text(args.output, format_plan(outcome.plan))
-    _summary(outcome)
+    _summary(outcome, encoding)
     if args.json:
         print(json.dumps(report(outcome), indent=2))
     elif outcome.found and not args.output:
         sys.stdout.write(format_plan(outcome.plan))
     return 0 if outcome.found else 1
+
+
+def chosen_encoding(args: argparse.Namespace, domain: Domain) -> tuple[Encoding, int | None]:
+    """The encoding the options name, and the horizon asked for (``--horizon``, or
+    ``-c horizon=H`` for a single-shot encoding of one's own)."""
+    values = args.encoding or ["plain"]
+    constants = [_constant(text) for text in args.const]
+    options = tuple(getattr(args, "clingo_options", None) or ())
+    files = [value for value in values if is_encoding_file(value)]
+    if not files:
+        if len(values) > 1:
+            raise InputError(f"name one reference encoding, not {len(values)}: {', '.join(values)}")
+        if constants:
+            raise InputError("-c sets constants of your own encoding; the reference encodings take none")
+        reference = find_encoding(domain, values[0])
+        return replace(reference, options=reference.options + options), args.horizon
+    if len(files) < len(values):
+        names = [value for value in values if value not in files]
+        raise InputError(f"--encoding {names[0]}: no such file (a reference encoding is named alone; "
+                         f"{', '.join(encoding_names(domain))} for domain {domain.label})")
+    encoding = own_encoding(files, constants, options)
+    given = dict(encoding.constants)
+    if "horizon" not in given:
+        return encoding, args.horizon
+    horizon = _horizon_constant(given.pop("horizon"), args.horizon)
+    return replace(encoding, constants=tuple(given.items())), horizon
+
+
+def is_encoding_file(value: str) -> bool:
+    """Whether ``--encoding VALUE`` names a file (a path, or a name with a suffix) rather
+    than a reference encoding."""
+    path = Path(value)
+    return path.suffix != "" or len(path.parts) > 1 or path.is_file()
+
+
+def _constant(text: str) -> tuple[str, str]:
+    name, equals, value = text.partition("=")
+    if not equals or not name.strip() or not value.strip():
+        raise InputError(f"-c {text}: expected NAME=VALUE")
+    return name.strip(), value.strip()
+
+
+def _horizon_constant(value: str, horizon: int | None) -> int:
+    try:
+        number = int(value)
+    except ValueError:
+        raise InputError(f"-c horizon={value}: the horizon is a number of steps") from None
+    if horizon is not None and horizon != number:
+        raise InputError(f"-c horizon={value} and --horizon {horizon} disagree")
+    return number
 
 
 class SearchProgress:
@@ -143,37 +216,54 @@ class SearchProgress:
                 self.stream.flush()
 
 
-def _summary(outcome: Outcome) -> None:
-    stats = outcome.stats
+def _summary(outcome: Outcome, encoding: Encoding | None = None) -> None:
     lines = [f"domain {outcome.domain.label}, method {outcome.method}, encoding {outcome.encoding}, "
              f"lower bound {outcome.lower_bound:g}"]
+    if encoding is not None and encoding.own and outcome.method == "asp":
+        lines.append(f"your encoding ({', '.join(str(file) for file in encoding.files)}): {encoding.summary}")
+        lines += [f"  assumed: {note}" for note in encoding.assumed]
     if outcome.assignment is not None:
         assignment = outcome.assignment
         state = assignment.origin if assignment.origin != "optimised" else (
             f"{'optimal' if assignment.optimal else 'best found'}, cost {assignment.cost}")
         lines.append(f"assignment ({state}): " + " ".join(assignment.facts))
+    lines += _verdict(outcome)
+    lines.append(_figures(outcome))
+    print("\n".join(lines), file=sys.stderr)
+
+
+def _verdict(outcome: Outcome) -> list[str]:
+    """What was found: the plan, the violations of a plan that breaks the rules, or why there
+    is none (with the horizons refuted)."""
     if outcome.found:
         proof = "proven minimal" if outcome.minimal else "not proven minimal"
-        lines.append(f"plan: horizon {outcome.horizon} ({proof}), {len(outcome.plan)} actions, checked: valid")
-    else:
-        lines.append({"none": "no plan exists", "limit": "no plan within the limits",
-                      "cancelled": "cancelled", "invalid": "no valid plan"}[outcome.status.value]
-                     + (f": {outcome.message}" if outcome.message else ""))
-        if outcome.refuted and outcome.status.value == "limit":
-            lines.append(f"refuted horizons {_spans(outcome.refuted)}: no plan is shorter than "
-                         f"{outcome.proven_bound:g}")
-        if outcome.status.value == "limit" and outcome.method == "asp":
-            lines.append("for a plan fast (not proven minimal), try --method anytime")
+        return [f"plan: horizon {outcome.horizon} ({proof}), {len(outcome.plan)} actions, checked: valid"]
+    if outcome.check is not None and not outcome.check.valid:
+        errors = outcome.check.errors
+        lines = [error.message for error in errors[:SHOWN_VIOLATIONS]]
+        if len(errors) > SHOWN_VIOLATIONS:
+            lines.append(f"... and {len(errors) - SHOWN_VIOLATIONS} more (asprilo check lists them all)")
+        return lines + [f"no valid plan: the plan of makespan {outcome.plan.horizon} breaks the rules "
+                        f"({len(errors)} violation{'s' * (len(errors) != 1)})"]
+    lines = [{"none": "no plan exists", "limit": "no plan within the limits", "cancelled": "cancelled",
+              "invalid": "no valid plan"}[outcome.status.value] + (f": {outcome.message}" if outcome.message else "")]
+    if outcome.refuted and outcome.status.value == "limit":
+        lines.append(f"refuted horizons {_spans(outcome.refuted)}: no plan is shorter than {outcome.proven_bound:g}")
+    if outcome.status.value == "limit" and outcome.method == "asp":
+        lines.append("for a plan fast (not proven minimal), try --method anytime")
+    return lines
+
+
+def _figures(outcome: Outcome) -> str:
+    """The method's statistics in one line."""
+    stats = outcome.stats
     if outcome.method == "flow":
-        lines.append(f"max-flow {stats['solve_time']:.2f} s")
-    elif outcome.method == "anytime":
-        lines.append(f"first plan {stats.get('first_plan_seconds', 0):.2f} s, {len(outcome.history)} plans reported, "
-                     f"{stats.get('neighbourhoods', 0)} neighbourhoods tried")
-    else:
-        lines.append(f"ground {stats['ground_time']:.2f} s, solve {stats['solve_time']:.2f} s, "
-                     f"rules {stats['rules']}, atoms {stats['atoms']}, "
-                     f"choices {stats['choices']}, conflicts {stats['conflicts']}")
-    print("\n".join(lines), file=sys.stderr)
+        return f"max-flow {stats['solve_time']:.2f} s"
+    if outcome.method == "anytime":
+        return (f"first plan {stats.get('first_plan_seconds', 0):.2f} s, {len(outcome.history)} plans reported, "
+                f"{stats.get('neighbourhoods', 0)} neighbourhoods tried")
+    return (f"ground {stats['ground_time']:.2f} s, solve {stats['solve_time']:.2f} s, rules {stats['rules']}, "
+            f"atoms {stats['atoms']}, choices {stats['choices']}, conflicts {stats['conflicts']}")
 
 
 def report(outcome: Outcome) -> dict:

@@ -14,23 +14,41 @@ HERE = Path(__file__).resolve().parent
 
 @dataclass(frozen=True)
 class Encoding:
-    """One reference encoding of one domain.
+    """One encoding: a reference encoding of one domain, or a user's own (``own``, for any
+    domain: :func:`asprilo.encodings.own.own_encoding`).
 
-    ``program`` is the main file (it includes the rest); ``theory`` the clingo extension it
-    needs (``"clingcon"``, ``"dl"`` or ``None``); an ``incremental`` encoding has
-    ``#program step(t)`` / ``check(t)`` parts and a ``query(t)`` external instead of a
-    ``horizon`` constant.  ``names`` is the program that turns a model of an encoding
-    with anonymous robots into a plan (``None``: the model shows ``occurs/3`` itself).
+    ``program`` is the main file (it includes the rest), ``extra`` the files loaded after it;
+    ``theory`` the clingo extension it needs (``"clingcon"``, ``"dl"`` or ``None``); an
+    ``incremental`` encoding has ``#program step(t)`` / ``check(t)`` parts and a ``query(t)``
+    external instead of a ``horizon`` constant, a ``fixed`` one neither (it is solved once).
+    ``names`` is the program that turns a model of an encoding with anonymous robots into a
+    plan (``None``: the model shows ``occurs/3`` itself).  ``options`` and ``constants``
+    (``-c``) go to clingo; ``renamed`` parts (old, new) and ``additions`` (program text) run an
+    older style as its author meant, and ``assumed`` says so in words.  A reference
+    encoding is given the facts it can use but need not compute (distances, hints); a
+    user's own gets the instance only.
     """
 
     name: str
-    domain: Domain
+    domain: Domain | None
     program: Path
     theory: str | None
     incremental: bool
     summary: str
     names: Path | None = None
-    options: tuple[str, ...] = ()  # clingo options it is solved with
+    options: tuple[str, ...] = ()
+    extra: tuple[Path, ...] = ()
+    constants: tuple[tuple[str, str], ...] = ()
+    renamed: tuple[tuple[str, str], ...] = ()
+    additions: str = ""
+    own: bool = False
+    fixed: bool = False
+    assumed: tuple[str, ...] = ()
+
+    @property
+    def files(self) -> tuple[Path, ...]:
+        """Every file of the encoding, in loading order."""
+        return (self.program, *self.extra)
 
 
 def _path(name: str) -> Path:

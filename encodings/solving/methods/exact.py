@@ -17,6 +17,7 @@ from __future__ import annotations
 import time
 
 from asprilo.bounds import INFINITE
+from asprilo.errors import InputError
 from asprilo.solver import Result, Solver, Status
 
 from ...registry import Encoding, find_encoding
@@ -29,6 +30,9 @@ from .program import Program
 
 #: the message of a search that cannot start: the lower bound is infinite
 UNREACHABLE = "some goal or order line can never be reached"
+#: what a user's encoding must show (said when a model shows none of it)
+INTERFACE = ("its model has no occurs(object(robot,R),action(Name,Args),T) atoms: an encoding reads the "
+             "instance's init/2 facts and shows the plan as occurs/3 (e.g. #show occurs/3.)")
 
 
 class HorizonSearch:
@@ -44,6 +48,8 @@ class HorizonSearch:
     def run(self) -> Outcome:
         """The search without a task assignment."""
         outcome, bound = self.outcome, self.request.lower_bound
+        if self.program.encoding.fixed:
+            return self.once()
         if self.unreachable():
             return outcome
         first = int(bound) if self.request.horizon is None else self.request.horizon
@@ -51,6 +57,25 @@ class HorizonSearch:
         if outcome.plan is not None:
             outcome.horizon = outcome.plan.horizon
             outcome.minimal = outcome.horizon <= bound or self.searched_up()
+        return outcome
+
+    def once(self) -> Outcome:
+        """A program without a horizon: grounded and solved once, as it is."""
+        outcome = self.outcome
+        if self.stopped():
+            return outcome
+        started = time.perf_counter()
+        solver = self.program.fresh(None)
+        self.watch.phase("grounding", 0)
+        solver.ground()
+        result = self.program.solve(solver, 0)
+        plan = self.program.plan(result) if result.status is Status.SAT else None
+        self._tried(plan.horizon if plan is not None else 0, result, time.perf_counter() - started)
+        if result.status is Status.UNSAT:
+            outcome.message = "the encoding has no answer set on this instance (it sets its horizon itself)"
+        if outcome.plan is not None:
+            outcome.horizon = outcome.plan.horizon
+            outcome.minimal = outcome.horizon <= self.request.lower_bound
         return outcome
 
     def unreachable(self) -> bool:
@@ -106,12 +131,20 @@ class HorizonSearch:
         self.record(Attempt(horizon, result.status.value, seconds))
         if result.status is Status.SAT:
             outcome.status, outcome.plan = SolveStatus.FOUND, self.program.plan(result)
+            if self._shows_no_plan(result):
+                outcome.status, outcome.plan, outcome.message = SolveStatus.INVALID, None, INTERFACE
             return False
         if result.status is Status.UNSAT:
             outcome.status = SolveStatus.NONE
             return True
         outcome.status = SolveStatus.CANCELLED if self.watch.cancelled else SolveStatus.LIMIT
         return False
+
+    def _shows_no_plan(self, result: Result) -> bool:
+        """Whether a user's encoding answered with a model that shows no plan although the
+        instance asks for one (the lower bound is above 0)."""
+        return self.program.encoding.own and self.request.lower_bound > 0 and \
+            not any(symbol.match("occurs", 3) for symbol in result.symbols)
 
     def _single_shot(self, first: int, last: int) -> None:
         for horizon in range(first, last + 1):
@@ -158,6 +191,12 @@ class ExactSearch(Method):
 
     name = "asp"
     encoded = True
+
+    def check(self, request: SolveRequest) -> None:
+        encoding = request.encoding
+        if encoding is not None and encoding.fixed and request.horizon is not None:
+            raise InputError(f"the encoding {encoding.name} has no horizon constant and no step(t) parts: "
+                             "it is solved as it is, --horizon does not apply")
 
     def label(self, request: SolveRequest) -> str:
         return _encoding(request).name

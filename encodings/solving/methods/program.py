@@ -59,7 +59,8 @@ class Program:
             solver.ground([("base", []), *steps, ("check", [horizon])])
             solver.assign_external(f"query({horizon})", True)
             return solver, False
-        solver = Solver(self.encoding.theory, self.encoding.options, constants={"horizon": horizon})
+        solver = Solver(self.encoding.theory, self.encoding.options,
+                        constants={**dict(self.encoding.constants), "horizon": horizon})
         hinted = self._load(solver, horizon)
         self.watch.attach(solver)
         self.watch.phase("grounding", horizon)
@@ -69,7 +70,7 @@ class Program:
     def fresh(self, horizon: int | None) -> Solver:
         """A solver with the program loaded (not grounded), attached to the watch: for an
         incremental encoding (``horizon`` ``None``) the one solver of all horizons."""
-        solver = Solver(self.encoding.theory, self.encoding.options)
+        solver = Solver(self.encoding.theory, self.encoding.options, constants=dict(self.encoding.constants))
         self._load(solver, horizon)
         self.watch.attach(solver)
         return solver
@@ -122,6 +123,9 @@ class Program:
         """Load the instance, what the encoding may use, and the encoding; whether the
         program has search hints."""
         solver.add(self.facts)
+        if self.encoding.own:
+            self._load_own(solver)
+            return False
         if self.assignment is not None:
             solver.add(self.assignment.text())
         elif horizon is not None and self.domain.work is Job.GOALS and len(self.instance.robots) >= HINTED_ROBOTS:
@@ -137,6 +141,16 @@ class Program:
             hinted = bool(schedule)
         solver.load(self.encoding.program)
         return hinted
+
+    def _load_own(self, solver: Solver) -> None:
+        """A user's encoding: its files (older parts renamed) and what runs it as meant."""
+        if self.assignment is not None:
+            solver.add(self.assignment.text())
+        renamed = dict(self.encoding.renamed)
+        for file in self.encoding.files:
+            solver.load(file, renamed)
+        if self.encoding.additions:
+            solver.add(self.encoding.additions)
 
     def _station_distances(self) -> str:
         """``to_station/3`` facts (abc/distance.lp would compute them layer by layer)."""
