@@ -45,6 +45,8 @@ INCREMENTAL_PARTS = {"step", "check", *ICLINGO_PARTS}
 _QUOTED = re.compile(r'%\*.*?\*%|%[^\n]*|"(?:[^"\\\n]|\\.)*"', re.S)
 _CSP = re.compile(r"#include\s*<csp>\s*\.|\$(?:<=|>=|!=|<|>|=|\+|\*|-|\w)")
 _INCMODE = re.compile(r"#include\s*<incmode>\s*\.")
+_INCLUDES = re.compile(r'#include\s*(?:"[^"]*"|<[^>]*>)\s*\.')
+_INCLUDED = re.compile(r'#include\s*"([^"]*)"\s*\.')
 
 
 @dataclass
@@ -133,6 +135,11 @@ def _code(text: str) -> str:
     return _QUOTED.sub(" ", text)
 
 
+def _uncommented(text: str) -> str:
+    """``text`` without its comments (strings kept)."""
+    return _QUOTED.sub(lambda match: match.group(0) if match.group(0).startswith('"') else " ", text)
+
+
 def _refuse_clingcon3(path: Path, text: str) -> None:
     match = _CSP.search(_code(text))
     if match:
@@ -154,27 +161,46 @@ def _check_options(options: Sequence[str]) -> None:
 
 
 def _features(files: list[Path]) -> _Features:
-    """Parse the files (clingo follows their includes) and collect what they use; a syntax
-    error is clingo's message, located in its file."""
+    """Parse every file of the program (the given ones and those they include, found next
+    to the including file) and collect what they use; a syntax error is clingo's message,
+    located in its file."""
     features = _Features()
     messages: list[str] = []
-    try:
-        clingo.ast.parse_files([str(file) for file in files], lambda statement: _collect(statement, features),
-                               logger=lambda _code, message: messages.append(message))
-    except RuntimeError:
-        raise _located(messages) from None
+    for file in _program_files(files):
+        messages.clear()
+        text = _INCLUDES.sub(lambda match: "\n" * match.group(0).count("\n"), file.read_text(encoding="utf-8"))
+        try:
+            clingo.ast.parse_string(text, lambda statement: _collect(statement, features),
+                                    logger=lambda _code, message: messages.append(message))
+        except RuntimeError:
+            raise _located(messages, file) from None
     return features
 
 
-def _located(messages: list[str]) -> InputError:
-    """clingo's first error message as bad input with its file and line."""
+def _program_files(files: list[Path]) -> list[Path]:
+    """The files and, after each, those it includes (``#include "file".``, relative to it),
+    each once."""
+    seen: list[Path] = []
+    stack = list(reversed(files))
+    while stack:
+        file = stack.pop().resolve()
+        if file in seen:
+            continue
+        seen.append(file)
+        text = _uncommented(file.read_text(encoding="utf-8"))
+        included = [file.parent / name for name in _INCLUDED.findall(text)]
+        stack.extend(reversed(included))
+    return seen
+
+
+def _located(messages: list[str], file: Path) -> InputError:
+    """clingo's first error message on ``file`` as bad input with its line."""
     text = next((m for m in messages if ": error:" in m), messages[0] if messages else "syntax error")
-    match = re.match(r"^(.*?):(\d+):(\d+)(?:-\d+(?::\d+)?)?: error: (.*)", text, re.S)
+    match = re.match(r"^.*?:(\d+):(\d+)(?:-\d+(?::\d+)?)?: error: (.*)", text, re.S)
     if not match:
-        return InputError(text.strip().splitlines()[0])
-    file, line, column, what = match.groups()
-    what = " ".join(what.split())
-    return InputError(f"column {column}: {what}", file, int(line))
+        return InputError(text.strip().splitlines()[0], str(file))
+    line, column, what = match.groups()
+    return InputError(f"column {column}: {' '.join(what.split())}", str(file), int(line))
 
 
 def _collect(statement: clingo.ast.AST, features: _Features) -> None:
