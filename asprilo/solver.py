@@ -26,6 +26,7 @@ Two places build a ``clingo.Control`` of their own, on purpose:
 from __future__ import annotations
 
 import re
+import tempfile
 import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -151,8 +152,12 @@ class Solver:
                 self.theory.configure(key, value)
         self.stats = Statistics()
         self._prepared = False
+        self._copies: tempfile.TemporaryDirectory | None = None
+        self._originals: dict[str, str] = {}  # a copy of a program file (see _loadable) -> the file
 
     def _log(self, _code: clingo.MessageCode, message: str) -> None:
+        for copy, original in self._originals.items():
+            message = message.replace(copy, original)
         self.messages.append(message)
 
     def _error(self, default_name: str) -> InputError:
@@ -166,9 +171,9 @@ class Solver:
 
     # --- programs ------------------------------------------------------------------------
 
-    def load(self, path: str | Path, renamed: Mapping[str, str] | None = None) -> None:
+    def load(self, path: str | Path, renamed: Mapping[str, str] | None = None, dropped: Sequence[str] = ()) -> None:
         """Load a program file (all of its ``#program`` parts; ``renamed`` parts, old name ->
-        new name, under their new names).
+        new name, under their new names; ``#include <name>.`` of the ``dropped`` names left out).
 
         ``#include "file".`` is resolved here, next to the including file: clingo itself
         looks in the working directory first, where a user's own ``core.lp`` would win.
@@ -176,20 +181,47 @@ class Solver:
         path = Path(path)
         if not path.is_file():
             raise InputError("no such file" if not path.exists() else "is not a file", str(path))
-        text = included_text(path)
-        if text is None:  # no includes: let clingo read the file and name it in messages
-            self.messages.clear()
-            try:
-                if self.theory is None and not renamed:
-                    self.control.load(str(path))
-                else:
-                    with clingo.ast.ProgramBuilder(self.control) as builder:
-                        add = self._adder(builder, renamed)
-                        clingo.ast.parse_files([str(path)], add, logger=self._log)
-            except RuntimeError:
-                raise self._error(str(path)) from None
-            return
-        self.add(text, name=str(path), renamed=renamed)
+        loaded = self._loadable(path, {}, tuple(dropped))
+        self.messages.clear()
+        try:
+            if self.theory is None and not renamed:
+                self.control.load(str(loaded))
+            else:
+                with clingo.ast.ProgramBuilder(self.control) as builder:
+                    clingo.ast.parse_files([str(loaded)], self._adder(builder, renamed), logger=self._log)
+        except RuntimeError:
+            raise self._error(str(path)) from None
+
+    def _loadable(self, path: Path, done: dict[Path, Path], dropped: tuple[str, ...] = ()) -> Path:
+        """``path`` itself, or -- when it includes files -- a copy whose ``#include "file".``
+        directives name the files by absolute path, next to the including file (clingo would
+        look in the working directory first), so that clingo still reads every file and names
+        it in its messages; a copy is made for every included file that includes others (or
+        one of the ``dropped`` system includes)."""
+        path = path.resolve()
+        if path in done:
+            return done[path]
+        original = path.read_text(encoding="utf-8")
+        text = original
+        if dropped:
+            text = re.sub(r"#include\s*<(?:" + "|".join(map(re.escape, dropped)) + r")>\s*\.", "", original)
+        if text == original and not _INCLUDE.search(text):
+            done[path] = path
+            return path
+        if self._copies is None:
+            self._copies = tempfile.TemporaryDirectory(prefix="asprilo-program-")
+        copy = Path(self._copies.name) / f"{len(self._originals)}-{path.name}"
+        done[path] = copy
+        self._originals[str(copy)] = str(path)
+
+        def absolute(match: re.Match) -> str:
+            target = (path.parent / match.group(1)).resolve()
+            if not target.is_file():
+                raise InputError(f"#include of a missing file {match.group(1)!r}", str(path))
+            return f'#include "{self._loadable(target, done, dropped)}".'
+
+        copy.write_text(_INCLUDE.sub(absolute, text), encoding="utf-8")
+        return copy
 
     def _adder(self, builder: clingo.ast.ProgramBuilder,
                renamed: Mapping[str, str] | None) -> Callable[[clingo.ast.AST], None]:

@@ -48,8 +48,8 @@ from .solving import Attempt, Outcome, Phase, method_names, solve
 
 #: options asprilo does not know are clingo's (the command line passes them on)
 CLINGO_OPTIONS = True
-#: the most violations the summary lists of a plan that breaks the rules
-SHOWN_VIOLATIONS = 20
+#: the most violations the summary lists of a plan that breaks the rules, and of clingo's warnings
+SHOWN_VIOLATIONS, SHOWN_WARNINGS = 20, 5
 
 #: seconds ``asprilo solve`` may take unless told otherwise (the anytime method: its own default)
 DEFAULT_TIME_LIMIT = 300.0
@@ -222,6 +222,7 @@ def _summary(outcome: Outcome, encoding: Encoding | None = None) -> None:
     if encoding is not None and encoding.own and outcome.method == "asp":
         lines.append(f"your encoding ({', '.join(str(file) for file in encoding.files)}): {encoding.summary}")
         lines += [f"  assumed: {note}" for note in encoding.assumed]
+        lines += [f"  clingo: {' '.join(warning.split())}" for warning in outcome.warnings[:SHOWN_WARNINGS]]
     if outcome.assignment is not None:
         assignment = outcome.assignment
         state = assignment.origin if assignment.origin != "optimised" else (

@@ -31,7 +31,6 @@ import clingo.ast
 from clingo.ast import ASTType
 
 from asprilo.errors import InputError
-from asprilo.solver import included_text
 
 from .registry import Encoding
 
@@ -43,7 +42,8 @@ INCREMENTAL_PARTS = {"step", "check", *ICLINGO_PARTS}
 
 #: strings and comments, which say nothing of a program's style
 _QUOTED = re.compile(r'%\*.*?\*%|%[^\n]*|"(?:[^"\\\n]|\\.)*"', re.S)
-_CSP = re.compile(r"#include\s*<csp>\s*\.|\$(?:<=|>=|!=|<|>|=|\+|\*|-|\w)")
+_CSP = re.compile(r"#include\s*<csp>\s*\.")
+_CSP3 = re.compile(r"\$(?:<=|>=|!=|<|>|=|\+|\*|-|\w)")
 _INCMODE = re.compile(r"#include\s*<incmode>\s*\.")
 _INCLUDES = re.compile(r'#include\s*(?:"[^"]*"|<[^>]*>)\s*\.')
 _INCLUDED = re.compile(r'#include\s*"([^"]*)"\s*\.')
@@ -72,6 +72,7 @@ class Style:
     renamed: Mapping[str, str] = field(default_factory=dict)
     additions: str = ""
     assumed: tuple[str, ...] = ()
+    csp: bool = False  # it includes <csp> (clingcon 4): left out, clingcon 5 needs no include
 
     @property
     def fixed(self) -> bool:
@@ -96,13 +97,15 @@ def own_encoding(paths: Sequence[str | Path], constants: Iterable[tuple[str, str
     files = [_existing(Path(path)) for path in paths]
     if not files:
         raise InputError("no encoding file given")
-    texts = {file: _text(file) for file in files}
-    for file, text in texts.items():
-        _refuse_clingcon3(file, text)
+    program = _program_files(files)
+    codes = {file: _code(_text(file)) for file in program}
+    for file, code in codes.items():
+        _refuse_clingcon3(file, code)
     constants = tuple((name, str(value)) for name, value in constants)
     _check_options(options)
-    features = _features(files)
-    style = _style(features, any(_INCMODE.search(_code(text)) for text in texts.values()))
+    features = _features(program)
+    style = _style(features, any(_INCMODE.search(code) for code in codes.values()),
+                   any(_CSP.search(code) for code in codes.values()))
     given = {name for name, _ in constants}
     if style.incremental and "horizon" in given:
         raise InputError("-c horizon=H is for single-shot encodings; an incremental one takes --horizon H")
@@ -110,7 +113,7 @@ def own_encoding(paths: Sequence[str | Path], constants: Iterable[tuple[str, str
     return Encoding(name, None, files[0], style.theory, style.incremental, style.describe(),
                     options=tuple(options), extra=tuple(files[1:]), additions=style.additions,
                     renamed=tuple(style.renamed.items()), constants=constants, own=True, fixed=style.fixed,
-                    assumed=style.assumed)
+                    assumed=style.assumed, dropped=("csp",) if style.csp else ())
 
 
 def _existing(path: Path) -> Path:
@@ -122,10 +125,8 @@ def _existing(path: Path) -> Path:
 
 
 def _text(path: Path) -> str:
-    """The program of ``path`` with the files it includes (each once)."""
     try:
-        text = included_text(path)
-        return path.read_text(encoding="utf-8") if text is None else text
+        return path.read_text(encoding="utf-8")
     except UnicodeDecodeError:
         raise InputError("not a UTF-8 text file", str(path)) from None
 
@@ -140,10 +141,10 @@ def _uncommented(text: str) -> str:
     return _QUOTED.sub(lambda match: match.group(0) if match.group(0).startswith('"') else " ", text)
 
 
-def _refuse_clingcon3(path: Path, text: str) -> None:
-    match = _CSP.search(_code(text))
+def _refuse_clingcon3(path: Path, code: str) -> None:
+    match = _CSP3.search(code)
     if match:
-        line = _code(text).count("\n", 0, match.start()) + 1
+        line = code.count("\n", 0, match.start()) + 1
         raise InputError("written for clingcon 3 ('#include <csp>.' and $-constraints such as $<=), which "
                          "clingcon 5 cannot read: state the constraints with &sum{...} and &dom{...} "
                          "(docs/OWN_ENCODINGS.md)", str(path), line)
@@ -160,13 +161,12 @@ def _check_options(options: Sequence[str]) -> None:
                          f"{message}") from None
 
 
-def _features(files: list[Path]) -> _Features:
-    """Parse every file of the program (the given ones and those they include, found next
-    to the including file) and collect what they use; a syntax error is clingo's message,
-    located in its file."""
+def _features(program: list[Path]) -> _Features:
+    """Parse every file of the program (the given ones and those they include) and collect
+    what they use; a syntax error is clingo's message, located in its file."""
     features = _Features()
     messages: list[str] = []
-    for file in _program_files(files):
+    for file in program:
         messages.clear()
         text = _INCLUDES.sub(lambda match: "\n" * match.group(0).count("\n"), file.read_text(encoding="utf-8"))
         try:
@@ -186,8 +186,10 @@ def _program_files(files: list[Path]) -> list[Path]:
         file = stack.pop().resolve()
         if file in seen:
             continue
+        if not file.is_file():
+            raise InputError("#include of a missing file", str(seen[-1]) if seen else str(file))
         seen.append(file)
-        text = _uncommented(file.read_text(encoding="utf-8"))
+        text = _uncommented(_text(file))
         included = [file.parent / name for name in _INCLUDED.findall(text)]
         stack.extend(reversed(included))
     return seen
@@ -240,7 +242,7 @@ def _walk(node: clingo.ast.AST, features: _Features) -> None:
                 stack.extend(item for item in child if isinstance(item, clingo.ast.AST))
 
 
-def _style(features: _Features, incmode: bool) -> Style:
+def _style(features: _Features, incmode: bool, csp: bool) -> Style:
     parts = {name for name, arity in features.parts if arity == 1 and name in INCREMENTAL_PARTS}
     incremental = incmode or bool(parts)
     renamed = {old: new for old, new in ICLINGO_PARTS.items() if old in parts}
@@ -251,8 +253,10 @@ def _style(features: _Features, incmode: bool) -> Style:
         assumed.append("query(t) declared #external in check(t), as clingo 4's incmode did")
     if incremental and "query" not in features.names:
         assumed.append("no query(t): nothing ties the goal to the horizon, so the first horizon solved is the answer")
+    if csp:
+        assumed.append("#include <csp>. left out: clingcon 5 reads &sum/&dom without it (clingcon 4's style)")
     return Style(incremental, not incremental and "horizon" in features.names | features.constants,
-                 _theory(features.theory_atoms), renamed, additions, tuple(assumed))
+                 _theory(features.theory_atoms), renamed, additions, tuple(assumed), csp)
 
 
 def _theory(atoms: set[str]) -> str | None:

@@ -41,6 +41,7 @@ class Encoding:
     constants: tuple[tuple[str, str], ...] = ()
     renamed: tuple[tuple[str, str], ...] = ()
     additions: str = ""
+    dropped: tuple[str, ...] = ()  # system includes left out (``#include <csp>.``: clingcon 5 needs none)
     own: bool = False
     fixed: bool = False
     assumed: tuple[str, ...] = ()

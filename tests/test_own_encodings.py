@@ -67,6 +67,22 @@ def test_clingo4_incremental_files_are_run_as_their_author_meant(capsys):
         "  assumed: query(t) declared #external in check(t), as clingo 4's incmode did"]
 
 
+def test_clingcon4_programs_run_without_their_csp_include(capsys):
+    code, _out, err = _solve(capsys, M_TINY, "--encoding", OWN / "m-clingcon4.clp", "-o", "/dev/null")
+    assert code == 0
+    assert ("  assumed: #include <csp>. left out: clingcon 5 reads &sum/&dom without it (clingcon 4's style)"
+            in err.splitlines())
+
+
+def test_clingo_warnings_on_the_encoding_are_said_with_their_file(tmp_path, capsys):
+    typo = tmp_path / "typo.lp"
+    typo.write_text(f'#include "{OWN / "m-single.lp"}".\n:- goal(C), not under(C).\n')
+    outcome = solve(read_instance(M_TINY), encoding=own_encoding([typo]), max_horizon=5)
+    assert outcome.status is SolveStatus.LIMIT and outcome.refuted == [4, 5]
+    warning, = outcome.warnings
+    assert warning.startswith(f"{typo}:2:17-") and "info: atom does not occur in any rule head" in warning
+
+
 def test_includes_are_found_next_to_the_including_file(tmp_path, monkeypatch, capsys):
     (tmp_path / "m-moves.lp").write_text("this is not the file the encoding means\n")
     monkeypatch.chdir(tmp_path)
@@ -151,7 +167,7 @@ def test_a_reference_encoding_s_anonymous_model_is_no_plan_of_its_own():
 def test_clingcon3_programs_are_refused_naming_why(capsys):
     code, _out, err = _solve(capsys, M_TINY, "--encoding", OWN / "m-clingcon3.clp")
     assert code == 2
-    assert err == (f"error: {OWN / 'm-clingcon3.clp'}:2: written for clingcon 3 ('#include <csp>.' and "
+    assert err == (f"error: {OWN / 'm-clingcon3.clp'}:4: written for clingcon 3 ('#include <csp>.' and "
                    "$-constraints such as $<=), which clingcon 5 cannot read: state the constraints with "
                    "&sum{...} and &dom{...} (docs/OWN_ENCODINGS.md)\n")
 

@@ -38,6 +38,7 @@ class Outcome:
     check: Report | None = None  # the ASP checker's verdict on the plan
     message: str = ""
     history: list[dict[str, Any]] = field(default_factory=list)  # method anytime: the plans reported
+    warnings: list[str] = field(default_factory=list)  # clingo's warnings on a user's encoding
 
     @property
     def found(self) -> bool:

@@ -68,6 +68,7 @@ class HorizonSearch:
         solver = self.program.fresh(None)
         self.watch.phase("grounding", 0)
         solver.ground()
+        self.program.heard(solver)
         result = self.program.solve(solver, 0)
         plan = self.program.plan(result) if result.status is Status.SAT else None
         self._tried(plan.horizon if plan is not None else 0, result, time.perf_counter() - started)
@@ -113,6 +114,7 @@ class HorizonSearch:
 
     def record(self, attempt: Attempt) -> None:
         self.outcome.horizons_tried.append(attempt)
+        self.outcome.warnings = self.program.warnings
         self.watch.progress(attempt)
 
     def stopped(self) -> bool:
@@ -168,6 +170,7 @@ class HorizonSearch:
                 started = time.perf_counter()
                 self.watch.phase("grounding", horizon)
                 solver.ground([("step", [horizon])])
+            self.program.heard(solver)
             if not self._incremental_step(solver, horizon, started):
                 return
         self._gave_up()

@@ -49,6 +49,8 @@ class Program:
         self.facts = format_instance(instance, [])
         self.assignment: Assignment | None = None
         self._distances: str | None = None
+        #: clingo's warnings on a user's encoding (each once, e.g. an atom no rule derives)
+        self.warnings: list[str] = []
 
     def grounded(self, horizon: int) -> tuple[Solver, bool]:
         """The encoding grounded for exactly this horizon in a fresh solver, and whether it has hints."""
@@ -57,6 +59,7 @@ class Program:
             self.watch.phase("grounding", horizon)
             steps = [("step", [t]) for t in range(1, horizon + 1)]
             solver.ground([("base", []), *steps, ("check", [horizon])])
+            self.heard(solver)
             solver.assign_external(f"query({horizon})", True)
             return solver, False
         solver = Solver(self.encoding.theory, self.encoding.options,
@@ -65,6 +68,7 @@ class Program:
         self.watch.attach(solver)
         self.watch.phase("grounding", horizon)
         solver.ground()
+        self.heard(solver)
         return solver, hinted
 
     def fresh(self, horizon: int | None) -> Solver:
@@ -74,6 +78,12 @@ class Program:
         self._load(solver, horizon)
         self.watch.attach(solver)
         return solver
+
+    def heard(self, solver: Solver) -> None:
+        """Keep clingo's warnings on a user's encoding (those of grounding and loading)."""
+        if self.encoding.own:
+            self.warnings += [message.strip() for message in solver.messages
+                              if message.strip() and message.strip() not in self.warnings]
 
     def solve(self, solver: Solver, horizon: int, limit: float | None = None, hinted: bool = False) -> Result:
         """Solve the grounded program within ``limit`` seconds and the watch's time."""
@@ -148,7 +158,7 @@ class Program:
             solver.add(self.assignment.text())
         renamed = dict(self.encoding.renamed)
         for file in self.encoding.files:
-            solver.load(file, renamed)
+            solver.load(file, renamed, self.encoding.dropped)
         if self.encoding.additions:
             solver.add(self.encoding.additions)
 
