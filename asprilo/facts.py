@@ -130,7 +130,7 @@ _OCCURS = re.compile(
 _SKIP = re.compile(r"(?:\s+|%(?!\*)[^\n]*|#program\s+base\s*\.)+")
 
 
-def _init_args(match: re.Match) -> tuple:
+def _init_args(match: re.Match) -> tuple[str, int, str, tuple[int, int] | int]:
     kind, ident, attribute, x, y, single = match.groups()
     return (kind, int(ident), attribute, (int(x), int(y)) if single is None else int(single))
 
@@ -147,7 +147,8 @@ def scan_facts(text: str, most: int | None = None) -> list[tuple[str, tuple, int
     ``init`` has ``(Type, Id, Attribute, Value)`` and ``occurs`` has ``(Type, Id, Name, Args,
     T)``; ``None`` when the text holds anything else.  Scanning stops after ``most + 1``
     facts (the caller refuses that many)."""
-    facts, position, end = [], 0, len(text)
+    facts: list[tuple[str, tuple, int]] = []
+    position, end = 0, len(text)
     skip, init, occurs = _SKIP.match, _INIT.match, _OCCURS.match
     while True:
         gap = skip(text, position)
@@ -170,7 +171,7 @@ def scan_facts(text: str, most: int | None = None) -> list[tuple[str, tuple, int
 
 # --- taking grounded atoms apart ---------------------------------------------------------
 
-def init_terms(atom: clingo.Symbol) -> tuple:
+def init_terms(atom: clingo.Symbol) -> tuple[Any, Any, Any, Any]:
     """``(Type, Id, Attribute, Value)`` of an ``init/2`` atom (:class:`InputError` if it has
     another shape)."""
     match = _INIT.fullmatch(str(atom) + ".")
@@ -179,7 +180,8 @@ def init_terms(atom: clingo.Symbol) -> tuple:
     obj, val = atom.arguments
     if not (obj.match("object", 2) and val.match("value", 2)):
         raise InputError(f"expected {INIT_SHAPE}, got {atom}")
-    return tuple(value_of(term) for term in (*obj.arguments, *val.arguments))
+    (kind, ident), (attribute, value) = obj.arguments, val.arguments
+    return value_of(kind), value_of(ident), value_of(attribute), value_of(value)
 
 
 def assign_terms(atom: clingo.Symbol) -> tuple[int, str, int]:

@@ -92,7 +92,7 @@ def _child(connection, function: Callable, args: tuple, memory_mb: int | None) -
     connection.send(("result", result))
 
 
-def _context() -> multiprocessing.context.BaseContext:
+def _context() -> multiprocessing.context.ForkContext | multiprocessing.context.SpawnContext:
     """``fork`` when this process runs no other thread (fast, nothing to import again)."""
     if threading.active_count() == 1 and "fork" in multiprocessing.get_all_start_methods():
         return multiprocessing.get_context("fork")
@@ -128,10 +128,12 @@ class _Standalone:
             os.close(writing)
         self.receiver = Connection(reading, writable=False)
         self.pid = self.popen.pid
+        stdin = self.popen.stdin
+        assert stdin is not None  # stdin=PIPE
         with contextlib.suppress(OSError):  # a child that died at once says so through the pipe
-            self.popen.stdin.write(pickle.dumps((writing, function, args, memory_mb)))
+            stdin.write(pickle.dumps((writing, function, args, memory_mb)))
         with contextlib.suppress(OSError):
-            self.popen.stdin.close()
+            stdin.close()
 
     @property
     def exitcode(self) -> int | None:

@@ -12,6 +12,7 @@ from __future__ import annotations
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, fields, replace
+from typing import Any
 
 from .errors import InputError
 from .model import Instance, Plan
@@ -38,7 +39,7 @@ class Limits:
 
     def with_options(self, options: list[str], allow_rules: bool = False) -> Limits:
         """These limits changed by ``--limit NAME=N`` options and ``--allow-rules``."""
-        changes: dict[str, object] = {"allow_rules": self.allow_rules or allow_rules}
+        changes: dict[str, Any] = {"allow_rules": self.allow_rules or allow_rules}  # field -> value of its type
         for option in options:
             name, value = parse_option(option)
             changes[name] = value

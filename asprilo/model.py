@@ -11,6 +11,9 @@ from dataclasses import dataclass, field
 from typing import Any, NamedTuple
 
 Cell = tuple[int, int]
+#: a term of a fact as a Python value (:func:`asprilo.facts.value_of`): a number, a tuple of
+#: terms, or the text of any other term
+Term = int | str | tuple["Term", ...]
 
 #: The four moves, as (DX,DY) with (1,1) top-left and Y growing downwards.
 DIRECTIONS: tuple[Cell, ...] = ((1, 0), (-1, 0), (0, 1), (0, -1))
@@ -104,7 +107,8 @@ class Instance:
 
     def assigned_cells(self) -> dict[int, Cell]:
         """Robot id -> the cell its labelled goal (shelf or destination) starts on."""
-        tables = {"shelf": self.shelves, "destination": self.destinations}
+        tables: dict[str, dict[int, Shelf] | dict[int, Destination]] = {
+            "shelf": self.shelves, "destination": self.destinations}
         return {robot: tables[kind][goal].at for robot, (kind, goal) in self.assignment.items()}
 
     # --- inventory -----------------------------------------------------------------------
@@ -147,12 +151,13 @@ class Action(NamedTuple):
 
     ``args`` is the action's argument term as a Python value: a tuple such as ``(1,0)`` or
     ``()`` for well-formed actions; ints and strings (the term's text) stand for other
-    terms.  ``kind`` is the object type named in the fact; anything but ``robot`` is a
-    plan error.
+    terms.  ``robot`` is a robot id where the plan is well-formed, but any term as read
+    (``object(robot,r1)``, ``object(robot,(1,2))``).  ``kind`` is the object type named in
+    the fact; anything but ``robot`` is a plan error.
     """
 
     step: int
-    robot: int | str
+    robot: Term
     name: str
     args: Any = ()
     kind: str = "robot"

@@ -13,9 +13,9 @@ import clingo
 from .errors import InputError, InputWarning
 from .facts import action_of, assign_terms, format_action, format_value, init_fact, init_terms, value_of
 from .limits import Limits, current, require_plan_fits
-from .model import Action, Instance, Order, Plan, Product, Robot
+from .model import Action, Destination, Instance, Order, Plan, Product, Robot, Shelf
 from .objects import KINDS, ObjectKind, placed_kinds
-from .sources import Source, SourceLike, as_sources, line_of, load_facts, locate
+from .sources import ScannedFact, Source, SourceLike, as_sources, line_of, load_facts, locate
 
 #: value_of is the tools' way to read single terms
 __all__ = ["instance_from_atoms", "plan_from_atoms", "read_instance", "read_instance_and_plan", "read_plan",
@@ -87,14 +87,14 @@ class _InstanceBuilder:
 
     def add(self, kind: Any, ident: Any, attribute: Any, value: Any, origin: Any) -> None:
         known = KINDS.get(kind)
-        attributes = None if known is None else known.attributes
-        if attributes is None or attribute not in attributes:
-            what = f"object type '{format_value(kind)}'" if attributes is None else \
+        if known is None or attribute not in known.attributes:
+            what = f"object type '{format_value(kind)}'" if known is None else \
                 f"attribute '{format_value(attribute)}' of {kind}"
             self.unknown.setdefault(what, origin)
-            self.instance.other_facts.append(init_fact(*map(format_value, (kind, ident, attribute)), value))
+            self.instance.other_facts.append(
+                init_fact(format_value(kind), format_value(ident), format_value(attribute), value))
             return
-        expected = attributes[attribute]
+        expected = known.attributes[attribute]
         if not isinstance(ident, int):
             raise self.fail(f"{kind} id must be an integer, got {format_value(ident)}", origin)
         if not expected.shape(value):
@@ -147,9 +147,10 @@ class _InstanceBuilder:
         self.single((kind.words, ident, "at"), value, origin, f"{kind.words} {ident} is at two places")
         kind.place(self.instance, ident, value)
 
-    def _robot(self, ident, attribute, value, origin):
+    def _robot(self, ident: int, attribute: str, value: Any, origin: Any) -> None:
         robot = self.instance.robots.get(ident)
         if robot is None:
+            # no cell yet: the robot's at fact may come later (finish() requires one)
             robot = self.instance.robots[ident] = Robot(ident, None)  # type: ignore[arg-type]
         if attribute == "at":
             self.single(("robot", ident, "at"), value, origin, f"robot {ident} is at two places")
@@ -158,7 +159,7 @@ class _InstanceBuilder:
             self.single(("robot", ident, "carries"), value, origin, f"robot {ident} carries two shelves")
             robot.carries = value
 
-    def _product(self, ident, _attribute, value, origin):
+    def _product(self, ident: int, _attribute: str, value: Any, origin: Any) -> None:
         shelf, units = value if isinstance(value, tuple) else (value, None)
         self.single(("product", ident, shelf), units, origin,
                     f"product {ident} has two quantities on shelf {shelf}")
@@ -167,7 +168,7 @@ class _InstanceBuilder:
             product = self.instance.products[ident] = Product(ident)
         product.stock[shelf] = units
 
-    def _order(self, ident, attribute, value, origin):
+    def _order(self, ident: int, attribute: str, value: Any, origin: Any) -> None:
         order = self.instance.orders.get(ident)
         if order is None:
             order = self.instance.orders[ident] = Order(ident)
@@ -181,7 +182,7 @@ class _InstanceBuilder:
                     f"order {ident} has two quantities for product {product}")
         order.lines[product] = units
 
-    def _grid(self, _ident, attribute, value, origin):
+    def _grid(self, _ident: int, attribute: str, value: Any, origin: Any) -> None:
         if value < 1:
             raise self.fail(f"grid {attribute} must be at least 1, got {value}", origin)
         if value > self.limits.coordinate:
@@ -198,14 +199,15 @@ class _InstanceBuilder:
         self.check_cells()
         if self.grid:
             self._expand_grid()
-        tables = {"shelf": instance.shelves, "destination": instance.destinations}
-        for robot, (kind, goal) in self.goals.items():
-            origin = self.seen[("assign", robot)][1]
-            if robot not in instance.robots:
-                raise self.fail(f"assign names robot {robot}, which the instance lacks", origin)
+        tables: dict[str, dict[int, Shelf] | dict[int, Destination]] = {
+            "shelf": instance.shelves, "destination": instance.destinations}
+        for ident, (kind, goal) in self.goals.items():
+            origin = self.seen[("assign", ident)][1]
+            if ident not in instance.robots:
+                raise self.fail(f"assign names robot {ident}, which the instance lacks", origin)
             if goal not in tables[kind]:
                 raise self.fail(f"assign names {kind} {goal}, which the instance lacks", origin)
-            instance.assignment[robot] = (kind, goal)
+            instance.assignment[ident] = (kind, goal)
         return instance
 
     def _expand_grid(self) -> None:
@@ -242,13 +244,14 @@ def _no_facts(what: str, sources: Sequence[Source]) -> InputError:
     return InputError(f"no {what} found", names)
 
 
-def _build_instance(sources: Sequence[Source], facts: list | None, atoms: list[clingo.Symbol],
+def _build_instance(sources: Sequence[Source], facts: list[ScannedFact] | None, atoms: list[clingo.Symbol],
                     limits: Limits | None = None) -> Instance:
     builder = _InstanceBuilder(sources, limits or current())
     if facts is not None:
         for name, args, origin in facts:
             if name == "init":
-                builder.add(*args, origin)
+                kind, ident, attribute, value = args
+                builder.add(kind, ident, attribute, value, origin)
     else:
         for atom in atoms:
             if atom.match("init", 2):
@@ -277,7 +280,7 @@ def _action_of(atom: clingo.Symbol, sources: Sequence[Source]) -> Action:
         raise error.at(*locate(sources, atom)) from None
 
 
-def _build_plan(sources: Sequence[Source], facts: list | None, atoms: list[clingo.Symbol],
+def _build_plan(sources: Sequence[Source], facts: list[ScannedFact] | None, atoms: list[clingo.Symbol],
                 limits: Limits | None = None) -> Plan:
     if facts is not None:
         actions = [Action(args[4], args[1], args[2], args[3], args[0]) for fact, args, _origin in facts

@@ -155,15 +155,19 @@ def answer_facts(text: str, name: str) -> str:
 
 # --- facts ------------------------------------------------------------------------------
 
+#: a fact as scanned: ``(name, arguments, (source, offset))`` (see :func:`asprilo.facts.scan_facts`)
+ScannedFact = tuple[str, tuple, tuple[Source, int]]
+
+
 def load_facts(sources: Sequence[Source], limits: Limits | None = None
-               ) -> tuple[list[tuple[str, tuple, int]] | None, list[clingo.Symbol]]:
+               ) -> tuple[list[ScannedFact] | None, list[clingo.Symbol]]:
     """The sources' facts, scanned directly when they are plain facts (fast), else grounded.
 
     Returns ``(facts, [])`` with ``facts`` as ``(name, arguments, (source, offset))`` when
     scanning worked, or ``(None, atoms)`` with the ground atoms of the program.
     """
     limits = limits or current()
-    scanned = []
+    scanned: list[ScannedFact] = []
     for source in sources:
         text, room = _program_text(source), limits.facts - len(scanned)
         facts = scan_facts(text, None if len(text) <= _SHORTEST_FACT * room else room)

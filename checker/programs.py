@@ -20,7 +20,7 @@ import clingo.ast
 from asprilo.domain import Domain
 from asprilo.facts import format_action
 from asprilo.facts import instance_facts as all_facts
-from asprilo.model import Instance, Plan
+from asprilo.model import Instance, Plan, Term
 from asprilo.solver import Solver, Statistics
 
 HERE = Path(__file__).resolve().parent
@@ -53,7 +53,7 @@ def plan_facts(instance: Instance, plan: Plan, packed: bool | None = None) -> st
         return "\n".join(format_action(action) + "." for action in actions)
     import numpy as np
     robots = sorted(instance.robots)
-    row = {robot: i for i, robot in enumerate(robots)}
+    row: dict[Term, int] = {robot: i for i, robot in enumerate(robots)}
     rows = np.array([row.get(a.robot, -1) if a.kind == "robot" else -1 for a in actions], dtype=np.int64)
     steps = np.array([a.step for a in actions], dtype=np.int64)
     codes = np.array([_PACKED[a.args] if a.name == "move" and a.args in _PACKED and type(a.args[0]) is int

@@ -13,7 +13,7 @@ import numpy as np
 from asprilo.bounds import Floor, makespan_bound, mapf_bounds
 from asprilo.domain import Bound, Domain, Goal
 from asprilo.facts import value_of
-from asprilo.model import Instance, Plan
+from asprilo.model import Instance, Plan, Term
 from asprilo.simulate import Timeline, Violation, simulate, sort_violations
 
 
@@ -51,11 +51,9 @@ def _json(value: Any) -> Any:
     return [_json(v) for v in value] if isinstance(value, tuple) else value
 
 
-def diagnostics(atoms: list[clingo.Symbol], timeline: Timeline | None) -> list[Violation]:
+def diagnostics(atoms: list[clingo.Symbol], timeline: Timeline) -> list[Violation]:
     """``err(Module,Check,Params)`` atoms as violations in plain words (``timeline``, the
     replay of the same plan, supplies the words: positions, quantities, names)."""
-    if not atoms:
-        return []
     replayed = {violation.atom: violation for violation in timeline.violations}
     errors = []
     for atom in atoms:
@@ -79,7 +77,7 @@ def metrics(instance: Instance, plan: Plan, domain: Domain, errors: list[Violati
     bounds (those in ``known`` are not computed again) and the ratios plan/bound (``None``
     where a bound is 0 or infinite)."""
     robots = list(instance.robots)
-    row = {robot: i for i, robot in enumerate(robots)}
+    row: dict[Term, int] = {robot: i for i, robot in enumerate(robots)}
     rows = np.array([row.get(a.robot, -1) if a.kind == "robot" else -1 for a in plan.actions], dtype=np.int64)
     steps = np.array([a.step for a in plan.actions], dtype=np.int64)
     horizon = max(int(steps.max()), 0) if len(steps) else 0
@@ -121,9 +119,9 @@ def _bounds(instance: Instance, domain: Domain, known: Known) -> tuple[float, fl
     return makespan, total
 
 
-def _number(value: float) -> int | None:
+def _number(value: float | None) -> int | None:
     """A bound as JSON shows it: an integer, or ``None`` when no plan can reach the goal."""
-    return int(value) if math.isfinite(value) else None
+    return int(value) if value is not None and math.isfinite(value) else None
 
 
 def _ratio(value: float, bound: float | None) -> float | None:
@@ -136,7 +134,6 @@ def build_report(instance: Instance, plan: Plan, domain: Domain, atoms: list[cli
                  statistics: dict[str, float | int], known: Known = (None, None)) -> Report:
     """The report for a plan whose checker derived ``atoms`` (``known``: lower bounds the
     caller knows already)."""
-    timeline = simulate(instance, plan, domain) if atoms else None
-    errors = diagnostics(atoms, timeline)
+    errors = diagnostics(atoms, simulate(instance, plan, domain)) if atoms else []
     measured = metrics(instance, plan, domain, errors, known)
     return Report(domain, measured["horizon"], errors, measured, statistics)

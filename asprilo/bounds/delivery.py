@@ -65,7 +65,7 @@ class Line:
 
     order: int
     product: int
-    station: Cell | None
+    station: Cell
     holders: tuple[int, ...]
     deliveries: int  # how many deliveries it needs at least (A: quantities)
 
@@ -74,6 +74,8 @@ class Deliveries:
     """What the bounds of one instance share: lines, shelf positions, robot distances.
 
     ``carriers`` (shelf -> robot, from a task assignment) restricts who may bring a shelf.
+    ``stationless`` are the lines still to be delivered whose order names no station of the
+    instance, as ``(order, product)``: no plan delivers them.
     """
 
     def __init__(self, instance: Instance, domain: Domain, floor: Floor, carriers: dict[int, int] | None = None):
@@ -83,7 +85,7 @@ class Deliveries:
         self.carried = carried
         self.shelves = {s.id: s.at for s in instance.shelves.values()} | carried
         self.stock = instance.shelf_stock()
-        self.lines = self._lines()
+        self.lines, self.stationless = self._lines()
         self.robots = sorted(instance.robots)
         ids = sorted(self.shelves)
         walks = floor.distances([self.shelves[s] for s in ids], [instance.robots[r].at for r in self.robots])
@@ -101,18 +103,21 @@ class Deliveries:
             self._from_station[station] = dict(zip(ids, row, strict=True))
         return float(self._from_station[station][shelf])
 
-    def _lines(self) -> list[Line]:
-        lines = []
+    def _lines(self) -> tuple[list[Line], list[tuple[int, int]]]:
+        lines, stationless = [], []
         for order in self.instance.orders.values():
-            station = self.instance.stations.get(order.station)
+            station = None if order.station is None else self.instance.stations.get(order.station)
             for product, units in order.lines.items():
                 if units == 0:
                     continue
                 stock = self.instance.products[product].stock if product in self.instance.products else {}
                 holders = tuple(sorted(s for s in stock if s in self.shelves))
-                lines.append(Line(order.id, product, station.at if station else None, holders,
-                                  self._deliveries(product, units, holders)))
-        return lines
+                if station is None:
+                    stationless.append((order.id, product))
+                else:
+                    deliveries = self._deliveries(product, units, holders)
+                    lines.append(Line(order.id, product, station.at, holders, deliveries))
+        return lines, stationless
 
     def _deliveries(self, product: int, units: int | None, holders: tuple[int, ...]) -> int:
         """A: the fewest shelves whose stock covers the line (each shelf gives at most once)."""
@@ -137,8 +142,6 @@ class Deliveries:
 
     def release(self, line: Line) -> float:
         """The earliest step of the line's first delivery."""
-        if line.station is None:
-            return INFINITE
         return min((self.arrival(s, line.station) + 1 for s in line.holders), default=INFINITE)
 
 
@@ -165,9 +168,11 @@ def station_bound(facts: Deliveries) -> float:
 def schedulable(facts: Deliveries) -> bool:
     """Whether the scheduling relaxation applies: no shelf serves two lines, every line has
     a shelf and a station, and there are robots."""
+    if facts.stationless:
+        return False
     served: dict[int, int] = {}
     for line in facts.lines:
-        if line.station is None or not line.holders:
+        if not line.holders:
             return False
         for shelf in line.holders:
             served[shelf] = served.get(shelf, 0) + 1

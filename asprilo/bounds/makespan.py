@@ -35,9 +35,10 @@ def delivery_bound(instance: Instance, domain: Domain, floor: Floor) -> float:
     the stations' bound, raised by the scheduling relaxation where every shelf serves one line
     at most (:mod:`asprilo.bounds.delivery`), else by the trip relaxation (:mod:`asprilo.bounds.trip`)."""
     facts = Deliveries(instance, domain, floor)
-    if not facts.lines:
+    if not facts.lines and not facts.stationless:
         return 0.0
-    if not all(math.isfinite(facts.release(line)) for line in facts.lines) or short_of_stock(facts):
+    if facts.stationless or not all(math.isfinite(facts.release(line)) for line in facts.lines) \
+            or short_of_stock(facts):
         return INFINITE
     bound = station_bound(facts)
     if schedulable(facts):

@@ -138,7 +138,7 @@ def goal_cells(instance: Instance) -> list[Cell]:
     the shelves holding ordered products (M); each cell once."""
     if instance.destinations:
         return sorted({d.at for d in instance.destinations.values()})
-    cells = set()
+    cells: set[Cell] = set()
     for order in instance.orders.values():
         for product in order.lines:
             stock = instance.products[product].stock if product in instance.products else {}

@@ -129,7 +129,9 @@ def _trip_facts(facts: Deliveries, stations: list, shelves: list[int], gaps: dic
             out.append(f"{name}({','.join(str(index.get(part, part)) for part in key)},{int(steps)}).")
     distances = facts.floor.distances(stations, stations)
     out.extend(f"apart({i},{j},{int(distances[i][j])})." for i in range(len(stations)) for j in range(len(stations)))
-    out.append(f"#const delivery = {facts.domain.delivery.value}.")
+    delivery = facts.domain.delivery
+    assert delivery is not None  # the bounds of the domains with deliveries
+    out.append(f"#const delivery = {delivery.value}.")
     return "\n".join(out)
 
 
@@ -139,7 +141,7 @@ def _shelf_gaps(facts: Deliveries, shelves: list[int]) -> list[str]:
     puts it down, walks to S2 and lifts it."""
     storage = sorted(facts.instance.storage_cells)
     to_shelves = storage_to_shelves(facts, storage, shelves)
-    out = []
+    out: list[str] = []
     for i, s in enumerate(shelves):
         through = (to_shelves[:, i:i + 1] + to_shelves).min(axis=0, initial=INFINITE) + 2
         out.extend(f"between({s},{s2},{int(through[j])})." for j, s2 in enumerate(shelves)

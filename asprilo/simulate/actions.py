@@ -52,6 +52,13 @@ def effective_actions(instance: Instance, plan: Plan, domain: Domain, report: Re
     return effective
 
 
+def robot_of(action: Action) -> int:
+    """The robot of an effective action: one of the instance's, whose ids are ints."""
+    robot = action.robot
+    assert type(robot) is int, action
+    return robot
+
+
 def _acts(action: Action, instance: Instance, report: Report) -> bool:
     """Whether a robot of the instance acts at a step >= 1 (else reported)."""
     if action.kind != "robot":

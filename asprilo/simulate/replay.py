@@ -12,8 +12,8 @@ from typing import Any
 import numpy as np
 
 from ..domain import Delivery, Domain
-from ..model import Action, Cell, Instance, Plan
-from .actions import Report, effective_actions
+from ..model import Action, Cell, Instance, Plan, Term
+from .actions import Report, effective_actions, robot_of
 from .checks import Start, check_goal, check_instance, pairs_sharing
 from .timeline import CLOSED, Changes, History, Line, Positions, Snapshot, Stock
 from .violations import Finding
@@ -38,7 +38,7 @@ def replay(instance: Instance, plan: Plan, domain: Domain) -> tuple[History, lis
 def robot_positions(instance: Instance, effective: dict[int, list[Action]], horizon: int) -> Positions:
     """Where every robot stands after every step, from its effective moves."""
     robot_ids = sorted(instance.robots)
-    index = {robot: i for i, robot in enumerate(robot_ids)}
+    index: dict[Term, int] = {robot: i for i, robot in enumerate(robot_ids)}
     moves = np.zeros((horizon + 1, len(index), 2), dtype=np.int32)
     for step, actions in effective.items():
         for action in actions:
@@ -164,7 +164,7 @@ class _ShelfReplay:
         """Check the actions of one step, then apply what takes effect."""
         pending = _Pending()
         for action in actions:
-            self._CHECKS[action.name](self, step, action, pending)
+            self._CHECKS[action.name](self, step, robot_of(action), action, pending)
         changes = Changes()
         self.put_down(pending.putdowns, changes)
         self.lift(step, pending.lifts, changes)
@@ -174,13 +174,11 @@ class _ShelfReplay:
 
     # --- one check per action ------------------------------------------------------------
 
-    def _move(self, step: int, action: Action, _pending: _Pending) -> None:
-        robot = action.robot
+    def _move(self, step: int, robot: int, _action: Action, _pending: _Pending) -> None:
         if robot in self.now.carries and self.resting_at.get(self.positions.at(robot, step)):
             self.report("move", "ontoShelf", robot, step)
 
-    def _pickup(self, step: int, action: Action, pending: _Pending) -> None:
-        robot = action.robot
+    def _pickup(self, step: int, robot: int, _action: Action, pending: _Pending) -> None:
         cell = self.positions.at(robot, step - 1)
         if robot in self.now.carries:
             self.report("pickup", "carrying", robot, step)
@@ -189,8 +187,8 @@ class _ShelfReplay:
         else:
             pending.lifts[min(self.resting_at[cell])].append(robot)
 
-    def _putdown(self, step: int, action: Action, pending: _Pending) -> None:
-        robot, report = action.robot, self.report
+    def _putdown(self, step: int, robot: int, _action: Action, pending: _Pending) -> None:
+        report = self.report
         shelf = self.now.carries.get(robot)
         if shelf is None:
             report("putdown", "notCarrying", robot, step)
@@ -206,9 +204,9 @@ class _ShelfReplay:
             report("putdown", "ontoShelf", robot, step)
         pending.putdowns.append((robot, shelf, cell))
 
-    def _deliver(self, step: int, action: Action, pending: _Pending) -> None:
-        shelf = self.now.carries.get(action.robot)
-        if self.check_delivery(step, action, shelf):
+    def _deliver(self, step: int, robot: int, action: Action, pending: _Pending) -> None:
+        shelf = self.now.carries.get(robot)
+        if self.check_delivery(step, robot, action, shelf) and shelf is not None:  # (False without a shelf)
             pending.deliveries.append((shelf, action))
 
     _CHECKS = {"move": _move, "pickup": _pickup, "putdown": _putdown, "deliver": _deliver}
@@ -234,9 +232,9 @@ class _ShelfReplay:
             changes.carries.append((robot, shelf))
             changes.resting.append((shelf, None))
 
-    def check_delivery(self, step: int, action: Action, shelf: int | None) -> bool:
+    def check_delivery(self, step: int, robot: int, action: Action, shelf: int | None) -> bool:
         """Report what is wrong with a well-formed delivery; whether it takes effect."""
-        report, robot = self.report, action.robot
+        report = self.report
         order = self.instance.orders.get(action.args[0])
         if shelf is None:
             report("deliver", "notCarrying", robot, step)
@@ -244,7 +242,8 @@ class _ShelfReplay:
         if order is None:
             report("deliver", "unknownOrder", robot, step)
         else:
-            at_station = self.station_cell.get(order.station) == self.positions.at(robot, step - 1)
+            at_station = (order.station is not None
+                          and self.station_cell.get(order.station) == self.positions.at(robot, step - 1))
             if not at_station:
                 report("deliver", "wrongStation", robot, step)
             self._check_line(step, action)
@@ -275,8 +274,9 @@ class _ShelfReplay:
             if (order_id, product) in lines:
                 lines[(order_id, product)] = max(0, lines[(order_id, product)] - units)
                 changes.lines.append(((order_id, product), lines[(order_id, product)]))
-            stock[(shelf, product)] = max(0, stock[(shelf, product)] - units)
-            changes.stock.append(((shelf, product), stock[(shelf, product)]))
+            left = max(0, stock[(shelf, product)] - units)
+            stock[(shelf, product)] = left
+            changes.stock.append(((shelf, product), left))
             return
         if self.domain.delivery is Delivery.LINE:
             closing = [(order_id, product)] if (order_id, product) in lines else []

@@ -168,7 +168,7 @@ class History:
     def _open_lines(self, snapshot: Snapshot, robots: dict[int, Cell],
                     shelves: dict[int, Cell]) -> dict[Line, int | None]:
         if self.domain.counts_units:
-            return {line: units for line, units in snapshot.lines.items() if units > 0}
+            return {line: units for line, units in snapshot.lines.items() if units is not None and units > 0}
         if self.domain.goal is Goal.SHELVES:
             occupied = set(robots.values())
             return {line: units for line, units in snapshot.lines.items()

@@ -58,6 +58,8 @@ def explain(timeline: Timeline, module: str, check: str, params: tuple) -> Viola
     step = params[-1] if params and isinstance(params[-1], int) else 0
     describe = timeline.domain.messages.get((module, check)) or MESSAGES.get((module, check))
     try:
+        if describe is None:
+            raise KeyError((module, check))
         text, highlight = describe(timeline, *params)
     except (TypeError, KeyError, IndexError, ValueError):  # no words for it (raw facts only)
         text, highlight = f"{module} rule '{check}' is broken ({format_value(params)})", {}
