@@ -8,6 +8,23 @@ Python orchestrates; the search is done by the logic programs beside this file
 (``route.lp``, ``assign_goals.lp``, ``assign_shelves.lp``); see encodings/README.md.
 """
 
-from .search import DEFAULT_SECONDS, AnytimeResult, Improvement, plan_anytime
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+#: the time limit when none is given (seconds)
+DEFAULT_SECONDS = 60.0
+
+if TYPE_CHECKING:
+    from .search import AnytimeResult, Improvement, plan_anytime
 
 __all__ = ["DEFAULT_SECONDS", "AnytimeResult", "Improvement", "plan_anytime"]
+
+
+def __getattr__(name: str) -> Any:
+    """The planner's names, imported when first asked for (its modules are many: a command
+    that only needs the default time limit does not load them)."""
+    if name in ("AnytimeResult", "Improvement", "plan_anytime"):
+        from . import search
+        return getattr(search, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

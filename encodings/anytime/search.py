@@ -30,6 +30,7 @@ from asprilo.model import Instance, Plan
 from ..solving.bounds import LowerBounds
 from ..solving.status import IMPROVED, Attempt, SolveStatus
 from ..solving.watch import Watch
+from . import DEFAULT_SECONDS
 from .bound import makespan_bound, sum_of_costs_bound
 from .grid import Grid
 from .improve import Improver
@@ -39,8 +40,6 @@ from .reservations import Reservations, Track
 from .router import Router
 from .work import ASSIGN_CAP, ASSIGN_SHARE, Work
 
-#: the time limit when none is given (seconds)
-DEFAULT_SECONDS = 60.0
 #: the least time between two checks, and how many check durations to wait between two
 CHECK_GAP, CHECK_FACTOR = 0.5, 3.0
 #: how many of the last neighbourhoods' durations say how long the next one may take
