@@ -65,7 +65,8 @@ SUITE_HEAD = "name: t\ninstances:\n  x: {files: [a]}\nruns:\n"
     ("name: t\ninstances:\n  x: {batch: nope.yml}\nruns: [{domain: m}]\n", "3: instances.x.batch: no such file "),
     ("name: t\ntime_limit: -1\n", "2: time_limit: must be a positive number of seconds"),
     ("colour: red\n",
-     "1: colour: unknown key (known: name, time_limit, memory_limit, makespan_time_limit, instances, runs)"),
+     "1: colour: unknown key (known: name, time_limit, memory_limit, makespan_time_limit, encodings, instances, "
+     "runs)"),
     ("instances:\n  x:\n    files: [a]\n    first: 0\nruns: [{domain: m}]\n",
      "4: instances.x.first: must be a positive number of files per folder"),
     (SUITE_HEAD + "  - domain: m\n    sets: [y]\n", "6: runs[0].sets: no instance set 'y'"),
@@ -114,23 +115,25 @@ def test_summary_table_counts_unsolved_runs_at_the_limit():
                record("4", encoding="split", time=1.0),
                record("5", label="A", encoding="plain", status="invalid", time=3.0, horizon=20),
                record("6", label="A", encoding="plain", status="solved", time=5.0, horizon=20, set_="medium")]
-    text = report.summary(records, ["small", "medium"])
-    assert text.splitlines()[2:] == [
-        "domain  makespan  encoding  small     medium",
-        "------  --------  --------  --------  ------",
-        "M       6/-       plain     3.0(0)*   -",
-        "                  split     30(1)     -",
-        "A       20/20     plain     60(1) !1  5.0(0)",
+    text = report.summary(records, ["small", "medium"]).text()
+    assert text.splitlines()[2:7] == [
+        "domain  makespan   encoding  small    medium",
+        "------  ---------  --------  -------  ------",
+        "M       6.0/-      plain     3.0(0)*  -",
+        "                   split     30(1)    -",
+        "A       20.0/20.0  plain     -(0) x1  5.0(0)",  # the invalid plan is not a time
     ]
+    assert [line[:10] for line in text.splitlines()[8:] if line[5:6] != " "] == [
+        "Key: T(N) ", "     xN   ", "     *    ", "     -(0) ", "     a/b  ", "     -    "]
 
 
 def test_tables_by_robot_count_and_csv():
     records = [record("1", robots=2, time=1.0), record("2", robots=5, time=3.0)]
     (table,) = report.by_robots(records)
-    assert table.splitlines()[2:] == [
+    assert table.text().splitlines()[2:5] == [
         "domain  makespan  encoding  2       5",
         "------  --------  --------  ------  ------",
-        "M       6         plain     1.0(0)  3.0(0)",
+        "M       6.0       plain     1.0(0)  3.0(0)",
     ]
     rows = report.to_csv(records).splitlines()
     assert rows[0].startswith("key,set,instance,robots,domain,label,encoding,assign,status,time")
@@ -138,7 +141,7 @@ def test_tables_by_robot_count_and_csv():
 
 
 def test_plots_are_written(tmp_path):
-    records = [record("1"), record("2", encoding="split", status="timeout", time=60.0)]
+    records = [record("1"), record("1", encoding="split", status="timeout", time=60.0)]  # one instance
     paths = report.plot(records, tmp_path)
-    assert [p.name for p in paths] == ["cactus.png", "time-by-robots.png"]
+    assert [p.name for p in paths] == ["cactus.png", "time-by-robots.png", "scatter-plain-split.png"]
     assert all(p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" for p in paths)

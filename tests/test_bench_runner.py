@@ -47,9 +47,17 @@ def test_an_invalid_plan_is_a_failure(write, tmp_path, monkeypatch, capsys):
     suite = load_suite(suite_file(write, [TINY], "[{domain: m}]"))
     records = Runner(suite, tmp_path / "out").run()
     assert [(r["status"], r["horizon"]) for r in records] == [("invalid", 1)]
-    assert "err(" in records[0]["error"]
-    assert main(["bench", "report", str(tmp_path / "out")]) == 0
-    assert "M       1         plain     30(1) !1" in capsys.readouterr().out
+    assert records[0]["violations"] == ["err(goal,unfilledOrder,(1,1,1,1))", "err(goal,unfilledOrder,(2,2,3,1))",
+                                        "err(move,offFloor,(1,1))"]
+    assert records[0]["error"] == (
+        "the plan breaks the rules: step 1 (the horizon): order 1 is not fulfilled: no robot stands under a shelf "
+        "holding product 1; step 1 (the horizon): order 2 is not fulfilled: no robot stands under a shelf holding "
+        "product 2; step 1: robot 1 moves to (1,0), which is not a floor node")
+    assert main(["bench", "report", str(tmp_path / "out"), "--plots", "none"]) == 0
+    out = capsys.readouterr().out
+    assert "M       1.0       plain     -(0) x1" in out  # not averaged in as a time
+    assert f"Failed runs (1; not in the averages, not in PAR): domain encoding, set instance, why M plain: " \
+           f"tiny {TINY}: invalid plan: {records[0]['error']}" in " ".join(out.split())
 
 
 #: ``asprilo bench ARGS...`` that, once it has recorded its second run, says so and waits to
@@ -105,9 +113,11 @@ BTOOL = shutil.which("btool", path=f"{Path(sys.executable).parent}{os.pathsep}{o
 
 
 def masked(summary: str) -> str:
-    """A report with the run times (and so the best-encoding marks, which follow them, and the
-    column widths) left out."""
-    return re.sub(r" +", " ", re.sub(r"-{2,}", "-", re.sub(r"\b\d+(\.\d)?\((\d+)\)( !\d+)?\*?", r"T(\2)\3", summary)))
+    """A report with the run times (and so the best-encoding marks, which follow them, the
+    PAR columns and the column widths) left out."""
+    summary = re.sub(r"(?m)^(.* \d+/\d+ +\d+ +\d+ +\d+ +)\S+ +\S+$", r"\1P P", summary)
+    return re.sub(r" +", " ", re.sub(r"-{2,}", "-", re.sub(r"\b\d+(\.\d)?\((\d+)\)( !\d+)?( x\d+)?\*?",
+                                                           r"T(\2)\3\4", summary)))
 
 
 needs_runlim = pytest.mark.skipif(
@@ -149,7 +159,7 @@ def test_the_btool_round_trip_gives_the_local_summary(write, tmp_path, capsys):
     local = capsys.readouterr().out
     assert masked(from_btool) == masked(local)
     assert masked(local).splitlines()[2:6] == [  # M's makespans: 1 (2x2) and 6 (the paper's r02 instance)
-        "domain makespan encoding tiny small", "- - - - -", "M 1/6 plain T(0) T(0)", " split T(0) T(0)"]
+        "domain makespan encoding tiny small", "- - - - -", "M 1.0/6.0 plain T(0) T(0)", " split T(0) T(0)"]
     assert sorted((r["set"], r["label"], r["encoding"], r["status"]) for r in records) == [
         ("small", "M", "plain", "solved"), ("small", "M", "split", "solved"), ("tiny", "A", "plain", "solved"),
         ("tiny", "M", "plain", "solved"), ("tiny", "M", "split", "solved")]
@@ -173,7 +183,7 @@ def test_a_run_that_runlim_stops_counts_as_a_memout(write, tmp_path, capsys):
         ("M", "memout", 60.0, 60.0, 2)]
     capsys.readouterr()
     assert main(["bench", "report", str(cluster / "results.xml")]) == 0
-    assert "M       -         plain     60(1)\n" in capsys.readouterr().out  # unsolved, at the limit
+    assert "M       -         plain     60(1)\n" in capsys.readouterr().out  # out of limits, at the limit
 
 
 def test_a_rerun_with_other_limits_is_refused_or_restarted(write, tmp_path, monkeypatch, capsys):

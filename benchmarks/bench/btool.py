@@ -14,6 +14,10 @@ bench``) and writes into DIR::
     benchmarks/<set>/*.lp         the instances; <name>.makespans.json beside an instance caches
                                   its minimal makespans, <name>.assignments.json the assignments
                                   the searches with assignment followed (the runs follow them)
+    encodings/<name>/...          the files of the suite's own encodings (and the files they
+                                  #include, in the same folders relative to each other)
+    encodings/<name>.json         such an encoding: its files (relative to this file), constants
+                                  and options; its settings name it (``--own-encoding``)
 
 Minimal makespans are not computed here: each run finds its instance's minimal makespan
 (under the suite's makespan_time_limit) unless the cache beside the instance knows it, and
@@ -28,6 +32,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import sys
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
@@ -35,12 +40,12 @@ from xml.sax.saxutils import quoteattr
 
 from asprilo import __version__
 from asprilo.errors import InputError
-from asprilo.writer import write_text
+from asprilo.writer import write_bytes, write_text
 
 from .btool_files import PARSER, SLURM, TEMPLATE
 from .results import run_key
 from .runner import ASSIGNMENTS, Runner, SuiteInstance, fact_lists, read_assignments, read_json_object, read_makespans
-from .suite import RunSpec, Suite
+from .suite import OwnEncoding, RunSpec, Suite
 
 SYSTEM = "asprilo"
 #: seconds a run gets beyond its time limit and makespan search (Python start-up, checking the plan)
@@ -81,8 +86,12 @@ def export(suite: Suite, folder: str | Path, runner: Runner, jobs: int = 1) -> P
     known = read_makespans(runner.folder / "makespans.json", runner.stream)
     runner.assignments = read_assignments(runner.folder / ASSIGNMENTS)
     files = _copy_instances(instances, folder, known, runner)
+    for own in suite.encodings.values():
+        _copy_encoding(own, folder)
     program = folder / "programs" / f"{SYSTEM}-{__version__}"
-    write_text(program, f"#!/bin/sh\nexec {sys.executable} -m asprilo.bench.single \"$@\"\n")
+    # --root: the export folder, which the settings' --own-encoding is relative to
+    write_text(program, f"#!/bin/sh\nexec {sys.executable} -m asprilo.bench.single "
+                        f"--root \"$(dirname \"$0\")/..\" \"$@\"\n")
     runlim = folder / "programs" / "runlim"
     write_text(runlim, "#!/bin/sh\n# runlim (Debian: apt-get install runlim); replace this file by a runlim binary "
                        "if there is none on the PATH\nexec runlim \"$@\"\n")
@@ -94,6 +103,48 @@ def export(suite: Suite, folder: str | Path, runner: Runner, jobs: int = 1) -> P
     runscript = folder / "runscripts" / f"{suite.name}.xml"
     write_text(runscript, _runscript(suite, runner, files, jobs))
     return runscript
+
+
+#: ``#include "file".`` (not ``<incmode>``): the files an encoding includes, relative to it
+_INCLUDED = re.compile(r'#include\s*"([^"]*)"\s*\.')
+#: comments, which include nothing
+_COMMENT = re.compile(r"%\*.*?\*%|%[^\n]*", re.S)
+
+
+def _included(files: tuple[str, ...]) -> list[Path]:
+    """The files of an encoding and those they include by relative paths (each once; an
+    absolute ``#include`` is found where it says, on the cluster too)."""
+    seen: list[Path] = []
+    stack = [Path(file).resolve() for file in reversed(files)]
+    while stack:
+        file = stack.pop()
+        if file in seen or not file.is_file():
+            continue
+        seen.append(file)
+        text = _COMMENT.sub(" ", file.read_text(encoding="utf-8", errors="replace"))
+        stack += [(file.parent / name).resolve() for name in reversed(_INCLUDED.findall(text))
+                  if not Path(name).is_absolute()]
+    return seen
+
+
+def own_description(name: str) -> str:
+    """The file (relative to the export folder) that describes the suite's own encoding ``name``."""
+    return f"encodings/{name}.json"
+
+
+def _copy_encoding(own: OwnEncoding, folder: Path) -> None:
+    """Copy an encoding of the suite's own to encodings/<name>/ (with the files it includes, in
+    the same places relative to each other) and describe it in encodings/<name>.json (its
+    files relative to that file, its constants and options: JSON, so that no word of them
+    passes through a shell or btool's XML)."""
+    program = _included(own.files)
+    root = Path(os.path.commonpath([file.parent for file in program]))
+    target = folder / "encodings" / own.name
+    for file in program:
+        write_bytes(target / file.relative_to(root), file.read_bytes())
+    files = [f"{own.name}/{Path(file).resolve().relative_to(root).as_posix()}" for file in own.files]
+    write_text(folder / own_description(own.name),
+               json.dumps({**own.job(), "files": files, "style": own.style}, indent=1) + "\n")
 
 
 def _copy_instances(instances: list[SuiteInstance], folder: Path, known: dict,
@@ -126,7 +177,8 @@ def _runscript(suite: Suite, runner: Runner, files: dict[str, list[str]], jobs: 
     settings = "\n".join(
         f'    <setting name={quoteattr(setting_name(spec))} '
         f'tag="{" ".join(tag for name, tag in tags.items() if spec.runs_on(name))}" '
-        f'cmdline={quoteattr(_arguments(spec))} dist_template="templates/single.dist"/>' for spec in suite.runs)
+        f'cmdline={quoteattr(_arguments(spec))} '
+        f'dist_template="templates/single.dist"/>' for spec in suite.runs)
     benchmarks = "\n".join(
         f'  <benchmark name={quoteattr(name)}>\n    <files path="benchmarks">\n'
         + "".join(f'      <add file={quoteattr(f"{name}/{file}")}/>\n' for file in names)
@@ -155,15 +207,17 @@ def _runscript(suite: Suite, runner: Runner, files: dict[str, list[str]], jobs: 
 
 
 def _arguments(spec: RunSpec) -> str:
+    """A setting's arguments (an encoding of the suite's own: with the file that describes it)."""
     if spec.anytime:
         return f"--domain {spec.domain.value} --method anytime"
-    return f"--domain {spec.domain.value} --encoding {spec.encoding}" + (" --assign" if spec.assign else "")
+    own = f" --own-encoding {own_description(spec.encoding)}" if spec.own is not None else ""
+    return f"--domain {spec.domain.value} --encoding {spec.encoding}{own}" + (" --assign" if spec.assign else "")
 
 
 # --- reading btool eval's output ---------------------------------------------------------
 
 #: record fields that btool's measures carry as text
-_TEXT = ("set", "instance", "domain", "label", "encoding", "status", "method")
+_TEXT = ("set", "instance", "domain", "label", "encoding", "status", "method", "error")
 #: record fields that btool's measures carry as numbers, and their Python types
 _NUMBERS = {"robots": int, "horizon": int, "time": float, "time_limit": float, "memory_mb": float, "assign": bool,
             "ground_time": float, "solve_time": float, "rules": int, "atoms": int, "choices": int,

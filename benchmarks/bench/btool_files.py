@@ -53,7 +53,7 @@ import os
 import re
 from xml.sax.saxutils import escape
 
-TEXT = ("key", "set", "instance", "domain", "label", "encoding", "status", "method")
+TEXT = ("key", "set", "instance", "domain", "label", "encoding", "status", "method", "error")
 NUMBERS = ("robots", "horizon", "time", "time_limit", "memory_mb", "ground_time", "solve_time", "rules",
            "atoms", "choices", "conflicts", "lower_bound")
 OUT_OF_LIMITS = ("timeout", "memout", "no-makespan")
@@ -110,6 +110,7 @@ def parse(path, runspec, instance, run):
         record["status"] = "timeout"
     elif "status" not in record:
         record["status"] = "error"
+        record["error"] = "the run ended without a record" + (f" (runlim: {stopped})" if stopped else "")
     if record["status"] != "solved":
         record["time"] = record["time_limit"]
     measures = {name: ("string", escape(str(record[name]), {'"': "&quot;"})) for name in TEXT if name in record}

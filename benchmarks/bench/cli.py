@@ -6,9 +6,11 @@
       one JSON line per run to DIR/results.jsonl and print the summary table;
       rerunning resumes where a previous run stopped (with the same limits: results of
       other limits are not mixed in; --restart discards them)
-  asprilo bench report DIR | RESULTS.xml
-      print the paper's summary table and the tables by robot count, and write
-      DIR/report/{summary.txt,results.csv,cactus.png,time-by-robots.png}; reads
+  asprilo bench report DIR | RESULTS.xml [--plots png,pdf] [--scatter A:B ...] [--no-latex]
+      print the paper's summary table, solved runs with PAR2/PAR10, the tables by robot
+      count and the failed runs with their reasons, each with a key of its marks, and
+      write DIR/report/: summary.txt, results.csv, each table as LaTeX (<table>.tex), and
+      the plots (cactus, time-by-robots, scatter-A-B) in each format of --plots; reads
       DIR/results.jsonl, or what `btool eval` printed (RESULTS.xml, written to
       RESULTS-report/)
   asprilo bench export-btool SUITE.yml DIR
@@ -34,6 +36,7 @@ from asprilo.generator.output import check_output_folder
 from asprilo.writer import write_text
 
 from . import btool, report
+from .report import FORMATS
 from .results import RESULTS, load_results
 from .runner import Runner, forget_unknown_makespans
 from .suite import load_suite
@@ -51,6 +54,32 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="only the runs of this domain (a|b|c|m|md; may be repeated)")
     parser.add_argument("--restart", action="store_true",
                         help="discard the output folder's results (e.g. to run again with other limits)")
+    shown = parser.add_argument_group("the report (also after a run)")
+    shown.add_argument("--plots", type=_formats, default=("png", "pdf"), metavar="FORMATS",
+                       help=f"plot formats, comma-separated ({', '.join(FORMATS)}; default png,pdf; none: no plots)")
+    shown.add_argument("--scatter", type=_pair, action="append", metavar="A:B",
+                       help="a scatter plot of encoding A (x) against B (y), per instance; may be repeated "
+                            "(default: the first encoding, plain where it ran, against every other)")
+    shown.add_argument("--latex", action=argparse.BooleanOptionalAction, default=True,
+                       help="write every table as LaTeX (booktabs) too (default: yes)")
+
+
+def _formats(text: str) -> tuple[str, ...]:
+    words = [word.strip().lower() for word in text.split(",") if word.strip()]
+    if words == ["none"]:
+        return ()
+    unknown = [word for word in words if word not in FORMATS]
+    if unknown or not words:
+        raise argparse.ArgumentTypeError(f"{unknown[0] if unknown else text!r}: choose among "
+                                         f"{', '.join(FORMATS)} (comma-separated), or none")
+    return tuple(dict.fromkeys(words))
+
+
+def _pair(text: str) -> tuple[str, str]:
+    first, colon, second = text.partition(":")
+    if not colon or not first or not second:
+        raise argparse.ArgumentTypeError(f"{text!r}: expected ENCODING:ENCODING, e.g. plain:mine")
+    return first, second
 
 
 def run(args: argparse.Namespace) -> int:
@@ -58,7 +87,7 @@ def run(args: argparse.Namespace) -> int:
     if words[0] == "report":
         if len(words) != 2:
             raise InputError("usage: asprilo bench report DIR")
-        return _report(Path(words[1]))
+        return _report(Path(words[1]), args)
     if words[0] == "export-btool":
         if len(words) != 3:
             raise InputError("usage: asprilo bench export-btool SUITE.yml DIR")
@@ -74,9 +103,14 @@ def run(args: argparse.Namespace) -> int:
     _same_limits(folder, limits, args.restart)
     folder.mkdir(parents=True, exist_ok=True)
     write_text(folder / SUITE_ORDER, json.dumps({"name": suite.name, "sets": [s.name for s in suite.sets],
-                                                  "limits": limits}) + "\n")
+                                                  "limits": limits, "encodings": _described(suite)}) + "\n")
     runner.run()
-    return _report(folder)
+    return _report(folder, args)
+
+
+def _described(suite) -> dict[str, str]:
+    """The suite's own encodings in words (files, style, constants, options), for the report's key."""
+    return {name: own.describe().partition(": ")[2] for name, own in suite.encodings.items()}
 
 
 #: how each limit is set, for messages
@@ -120,7 +154,8 @@ def _export(suite_file: str, folder: Path, args: argparse.Namespace) -> int:
     check_output_folder(folder, "export-btool DIR")
     runner = _runner(suite, folder / "prepared", args)
     runscript = btool.export(suite, folder, runner, args.jobs)
-    write_text(folder / SUITE_ORDER, json.dumps({"name": suite.name, "sets": [s.name for s in suite.sets]}) + "\n")
+    write_text(folder / SUITE_ORDER, json.dumps({"name": suite.name, "sets": [s.name for s in suite.sets],
+                                                  "encodings": _described(suite)}) + "\n")
     print(f"wrote {runscript.relative_to(folder.resolve())} and what it needs below {folder}; run it with:\n"
           f"  cd {folder} && btool gen {runscript.relative_to(folder.resolve())}\n"
           f"  ./output/{suite.name}-seq/cluster/start.py     # here, or on Slurm: "
@@ -143,7 +178,7 @@ def _runner(suite, folder: Path, args: argparse.Namespace) -> Runner:
     return Runner(suite, folder, args.jobs, args.time_limit, args.memory_limit)
 
 
-def _report(path: Path) -> int:
+def _report(path: Path, args: argparse.Namespace | None = None) -> int:
     """The report of a results folder (results.jsonl), or of the XML that ``btool eval`` printed."""
     if path.is_file():
         records, folder = btool.read_results(path), path.parent / f"{path.stem}-report"
@@ -155,15 +190,42 @@ def _report(path: Path) -> int:
         raise InputError("no such folder or file", str(path))
     if not records:
         raise InputError("no results here (neither results.jsonl nor btool eval's results.xml)", str(path))
-    order_file = (path if path.is_dir() else path.parent) / SUITE_ORDER
-    order = json.loads(order_file.read_text())["sets"] if order_file.exists() else None
-    anytime = report.anytime_table(records, order)
-    text = "\n\n".join([report.summary(records, order), *report.by_robots(records, order),
-                        *([anytime] if anytime else [])])
+    formats = getattr(args, "plots", ("png", "pdf"))
+    pairs = getattr(args, "scatter", None)
+    _known_pairs(records, pairs)
+    order, described = _suite_facts((path if path.is_dir() else path.parent) / SUITE_ORDER)
+    tables = report.tables(records, order, described)
+    text = "\n\n".join(table.text() for table in tables)
     print(text)
     out = folder / "report" if path.is_dir() else folder
     write_text(out / "summary.txt", text + "\n")
     write_text(out / "results.csv", report.to_csv(records))
-    for picture in report.plot(records, out, order):
-        print(f"wrote {picture}", file=sys.stderr)
+    if getattr(args, "latex", True):
+        for table in tables:
+            write_text(out / f"{table.name}.tex", table.latex())
+        print(f"wrote {len(tables)} LaTeX tables (booktabs) to {out}", file=sys.stderr)
+    if formats:
+        for picture in report.plot(records, out, order, formats, pairs):
+            print(f"wrote {picture}", file=sys.stderr)
     return 0
+
+
+def _suite_facts(path: Path) -> tuple[list[str] | None, dict[str, str]]:
+    """The set order and the own encodings in words that the run of the suite recorded."""
+    try:
+        facts = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return None, {}
+    if not isinstance(facts, dict):
+        return None, {}
+    described = facts.get("encodings")
+    return facts.get("sets"), described if isinstance(described, dict) else {}
+
+
+def _known_pairs(records: list[dict], pairs: list[tuple[str, str]] | None) -> None:
+    names = report.encodings_of(records)
+    for pair in pairs or []:
+        unknown = [name for name in pair if name not in names]
+        if unknown:
+            raise InputError(f"--scatter {':'.join(pair)}: no runs of encoding '{unknown[0]}' in these results "
+                             f"(encodings: {', '.join(names)})")

@@ -51,7 +51,7 @@ def run_limited(job: dict, time_limit: float, memory_mb: int | None) -> LimitedR
         child = run_isolated(run, (job,), time_limit=time_limit + GRACE, memory_mb=memory_mb, cancel=stop,
                              standalone=True)
     except Exception as error:  # noqa: BLE001 - the job's own error: the run failed
-        return _failed(error, time.perf_counter() - started)
+        return failure(error, time.perf_counter() - started)
     finally:
         RUNNING.discard(stop)
     if child.status == DONE:
@@ -60,10 +60,10 @@ def run_limited(job: dict, time_limit: float, memory_mb: int | None) -> LimitedR
         return LimitedRun(TIMEOUT, child.seconds, {})
     if child.status == "memout":
         return LimitedRun(MEMOUT, child.seconds, {})
-    return LimitedRun(ERROR, child.seconds, {}, child.detail)
+    return LimitedRun(ERROR, child.seconds, {}, f"the run's process ended without a result ({child.detail})")
 
 
-def _failed(error: Exception, wall: float) -> LimitedRun:
+def failure(error: Exception, wall: float) -> LimitedRun:
     """A run whose job raised ``error``: a mem-out when it ran out of memory (C++ code says
     ``bad_alloc``), else an error with the last line of the error's traceback."""
     text = "".join(traceback.format_exception_only(type(error), error))

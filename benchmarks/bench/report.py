@@ -1,47 +1,105 @@
-"""Tables and plots of benchmark results, shaped like the paper's (Table 2 and the appendix).
+"""Tables and plots of benchmark results, shaped like the paper's (Table 2 and the appendix),
+for comparing encodings in a paper.
 
-Average run times count every unsolved run (time-out, mem-out, no known makespan,
-invalid plan, error) at the time limit; the number in parentheses counts the unsolved
-runs, and ``!N`` flags N of them that failed (invalid plan or error) rather than ran out of
-time or memory.  ``*`` marks the best encoding of each domain and instance set: fewest
-unsolved runs, then least average time.
+A run ends in one of four ways:
+
+- **solved**: a plan that passes the checker; its time counts;
+- **out of limits**: a time-out, a mem-out, or no known minimal makespan (its search ran out
+  of time): counted at the time limit;
+- **invalid**: a plan that the checker rejected (a wrong answer);
+- **error**: the run failed (its encoding refused at run time, a crash, no plan at the
+  minimal makespan...).
+
+Invalid plans and errors are never averaged in as times: the cells count them apart
+(``xN``, ``!N``) and the list of failed runs says why.  The time tables give the average run
+time over the solved runs and those out of limits (``T(N)``: N out of limits); ``*`` marks
+the best encoding of each domain and column: fewest unsolved runs (of any kind), then least
+average time.  The table of solved runs gives PAR2 and PAR10: the penalised average run
+time, each run out of limits counted at 2 (10) times the time limit.  Every table ends with
+a key for the marks it prints, and is written as LaTeX (booktabs) too.
+
+Plots (PNG, PDF, SVG; drawn without a display): a cactus plot (one panel per domain, all
+encodings on one log time axis), average time by number of robots (one panel per instance
+set), and per-instance scatter plots of one encoding against another.
 """
 
 from __future__ import annotations
 
 import csv
 import io
+import math
+import textwrap
 from collections import defaultdict
-from collections.abc import Iterable
-from dataclasses import dataclass
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
 from pathlib import Path
 from statistics import mean
+from typing import Any
 
-from .results import FAILED, SOLVED
+from .results import ERROR, INVALID, OUT_OF_LIMITS, SOLVED
+
+#: what a run came to, for the report
+LIMIT, FAILED_RUN = "limit", "failed"
+#: the plot formats ``plot`` may write
+FORMATS = ("png", "pdf", "svg")
+#: the failed runs listed at most (all of them are in results.csv)
+LISTED = 50
+
+
+def outcome(record: dict) -> str:
+    """``solved``, ``limit`` (out of time or memory, or no known makespan), ``invalid`` or ``error``."""
+    status = record.get("status")
+    if status == SOLVED:
+        return SOLVED
+    if status in OUT_OF_LIMITS:
+        return LIMIT
+    return INVALID if status == INVALID else ERROR
+
+
+def _timed(record: dict) -> bool:
+    """Whether a run has a time for the averages: solved, or out of limits (at the limit)."""
+    return outcome(record) in (SOLVED, LIMIT)
+
+
+def _time(record: dict) -> float:
+    return record["time"] if record["status"] == SOLVED else record["time_limit"]
+
+
+def _seconds(value: float) -> str:
+    return f"{value:.1f}" if value < 10 else f"{value:.0f}"
 
 
 @dataclass
 class Cell:
     """The runs of one (domain, encoding) on one group of instances."""
 
-    times: list[float]
-    unsolved: int
-    failed: int
+    times: list[float]   # the solved runs' times, and the time limit for each run out of limits
+    unsolved: int        # runs out of limits
+    invalid: int = 0     # plans the checker rejected
+    errors: int = 0      # runs that failed
 
     @property
-    def average(self) -> float:
-        return mean(self.times) if self.times else 0.0
+    def failed(self) -> int:
+        return self.invalid + self.errors
+
+    @property
+    def average(self) -> float | None:
+        return mean(self.times) if self.times else None
+
+    def rank(self) -> tuple[int, float]:
+        """Fewest unsolved runs of any kind, then least average time."""
+        return self.unsolved + self.failed, math.inf if self.average is None else self.average
 
     def text(self, best: bool = False) -> str:
-        seconds = f"{self.average:.1f}" if self.average < 10 else f"{self.average:.0f}"
-        flag = f" !{self.failed}" if self.failed else ""
-        return f"{seconds}({self.unsolved}){flag}{'*' if best else ''}"
+        seconds = "-" if self.average is None else _seconds(self.average)
+        flags = (f" !{self.errors}" if self.errors else "") + (f" x{self.invalid}" if self.invalid else "")
+        return f"{seconds}({self.unsolved}){flags}{'*' if best else ''}"
 
 
 def _cell(records: list[dict]) -> Cell:
-    times = [r["time"] if r["status"] == SOLVED else r["time_limit"] for r in records]
-    unsolved = sum(r["status"] != SOLVED for r in records)
-    return Cell(times, unsolved, sum(r["status"] in FAILED for r in records))
+    kinds = [outcome(r) for r in records]
+    return Cell([_time(r) for r in records if _timed(r)], kinds.count(LIMIT), kinds.count(INVALID),
+                kinds.count(ERROR))
 
 
 def _ordered(values: Iterable, order: list) -> list:
@@ -51,7 +109,8 @@ def _ordered(values: Iterable, order: list) -> list:
 
 #: row order as in the paper: domains from simple to hard, each without then with assignment
 LABELS = ["M", "M_a", "Md", "Md_a", "C", "C_a", "B", "B_a", "A", "A_a"]
-ENCODINGS = ["plain", "split", "clingcon", "dl"]
+#: the reference encodings first, in the paper's order; encodings of one's own after them, by name
+ENCODINGS = ["plain", "split", "clingcon", "dl", "plain-inc", "split-inc", "clingcon-inc"]
 
 
 def _rank(value: str, order: list[str]) -> tuple:
@@ -64,7 +123,85 @@ def _rows(records: list[dict]) -> list[tuple[str, str]]:
     return sorted(rows, key=lambda row: (_rank(row[0], LABELS), _rank(row[1], ENCODINGS)))
 
 
-def _table(header: list[str], rows: list[list[str]]) -> str:
+def encodings_of(records: list[dict]) -> list[str]:
+    """The encodings of the runs at the minimal makespan, in report order."""
+    return sorted({r["encoding"] for r in records if r.get("method") != "anytime"},
+                  key=lambda name: _rank(name, ENCODINGS))
+
+
+def _time_limit(records: list[dict]) -> str:
+    limits = {r["time_limit"] for r in records}
+    return f" ({limits.pop():g} s)" if len(limits) == 1 else ""
+
+
+# --- tables ------------------------------------------------------------------------------
+
+
+@dataclass
+class Table:
+    """A table: its caption, header and rows, the key of the marks it prints, the columns
+    that hold text (the others hold numbers), and where its row groups (domains) start."""
+
+    name: str                      # file name of its LaTeX form: <name>.tex
+    caption: str
+    header: list[str]
+    rows: list[list[str]]
+    key: list[tuple[str, str]] = field(default_factory=list)   # (mark, meaning)
+    text_columns: int = 1
+    groups: list[int] = field(default_factory=list)            # row numbers where a new group starts
+    align: str = ""                                            # LaTeX column types (default: l for text, r)
+    listing: bool = False                                      # as text: a list, one wrapped entry per row
+
+    def text(self, width: int = 100) -> str:
+        """The table (or the list), then its key (wrapped at ``width`` characters)."""
+        if self.listing:
+            entries = ["\n".join(textwrap.wrap(": ".join(row), width, initial_indent="  ", subsequent_indent="      ",
+                                               break_on_hyphens=False)) for row in self.rows]
+            parts = [f"{self.caption}\n\n" + "\n".join(entries)]
+        else:
+            parts = [f"{self.caption}\n\n{_text_table(self.header, self.rows)}"]
+        if self.key:
+            marks = max(len(mark) for mark, _ in self.key)
+            lines = []
+            for number, (mark, meaning) in enumerate(self.key):
+                head = f"{'Key:' if number == 0 else '':4} {mark.ljust(marks)}  "
+                lines += textwrap.wrap(meaning, width, initial_indent=head, subsequent_indent=" " * len(head),
+                                       break_on_hyphens=False)
+            parts.append("\n".join(lines))
+        return "\n\n".join(parts)
+
+    def latex(self) -> str:
+        """The table as a LaTeX float with booktabs rules (no vertical rules); the key below it."""
+        align = self.align or "l" * self.text_columns + "r" * (len(self.header) - self.text_columns)
+        lines = [r"\begin{table}[tbp]", r"  \centering", f"  \\caption{{{latex_text(self.caption)}}}",
+                 f"  \\label{{tab:{self.name}}}", f"  \\begin{{tabular}}{{{align}}}", r"    \toprule",
+                 "    " + " & ".join(latex_text(text) for text in self.header) + r" \\", r"    \midrule"]
+        for number, row in enumerate(self.rows):
+            if number in self.groups and number > 0:
+                lines.append(r"    \addlinespace")
+            lines.append("    " + " & ".join(_latex_cell(text) for text in row) + r" \\")
+        lines += [r"    \bottomrule", r"  \end{tabular}"]
+        if self.key:
+            key = "; ".join(f"{latex_text(mark)}: {latex_text(meaning)}" for mark, meaning in self.key)
+            lines += [r"  \par\smallskip\footnotesize", f"  Key. {key}."]
+        lines.append(r"\end{table}")
+        return "\n".join(lines) + "\n"
+
+
+_LATEX = {"\\": r"\textbackslash{}", "&": r"\&", "%": r"\%", "$": r"\$", "#": r"\#", "_": r"\_", "{": r"\{",
+          "}": r"\}", "~": r"\textasciitilde{}", "^": r"\textasciicircum{}"}
+
+
+def latex_text(text: str) -> str:
+    """``text`` with LaTeX's special characters escaped."""
+    return "".join(_LATEX.get(char, char) for char in text)
+
+
+def _latex_cell(text: str) -> str:
+    return "--" if text == "-" else latex_text(text)
+
+
+def _text_table(header: list[str], rows: list[list[str]]) -> str:
     widths = [max(len(row[i]) for row in [header, *rows]) for i in range(len(header))]
     lines = ["  ".join(text.ljust(width) for text, width in zip(row, widths, strict=True)).rstrip()
              for row in [header, *rows]]
@@ -76,13 +213,48 @@ def _makespans(records: list[dict], label: str, sets: list[str]) -> str:
     parts = []
     for name in sets:
         spans = {(r["instance"], r["horizon"]) for r in records
-                 if r["label"] == label and r["set"] == name and r.get("horizon") is not None}
-        parts.append(f"{mean(h for _i, h in spans):.0f}" if spans else "-")
+                 if r["label"] == label and r["set"] == name and r.get("horizon") is not None
+                 and r.get("method") != "anytime"}
+        parts.append(f"{mean(h for _i, h in spans):.1f}" if spans else "-")
     return "/".join(parts)
 
 
-def grouped_table(records: list[dict], column_of, columns: list, caption: str,
-                  set_order: list[str] | None = None) -> str:
+def _dashes(rows: list[list[str]], first: int) -> bool:
+    """Whether a cell from column ``first`` on is ``-``."""
+    return any(text == "-" for row in rows for text in row[first:])
+
+
+def _time_key(records: list[dict], cells: dict[tuple, Cell], best: set, makespans: list[str], sets: list[str],
+              described: dict[str, str], empty: bool) -> list[tuple[str, str]]:
+    """The key of a time table (``cells`` by (label, encoding, column)): a line for every mark it prints."""
+    shown = list(cells.values())
+    key = [("T(N)", f"T: average run time in seconds over the solved runs and the runs out of limits, these at "
+                    f"the time limit{_time_limit(records)}; N: how many ran out of limits (time-out, mem-out, or "
+                    f"no known minimal makespan)")]
+    if any(cell.errors for cell in shown):
+        key.append(("!N", "N runs ended in an error: not in the average (why: under Failed runs)"))
+    if any(cell.invalid for cell in shown):
+        key.append(("xN", "N plans the checker rejected: not in the average (why: under Failed runs)"))
+    if best:
+        key.append(("*", "the best encoding of the domain in this column: fewest unsolved runs of any kind, "
+                         "then least average time"))
+    if any(cell.average is None for cell in shown):
+        key.append(("-(0)", "no run solved or ran out of limits: every run failed"))
+    if len(sets) > 1 and any("/" in text for text in makespans):
+        key.append(("a/b", f"makespan: the average minimal makespan of the instances of each set "
+                           f"({'/'.join(sets)}); - unknown"))
+    else:
+        key.append(("makespan", "the average minimal makespan of the instances; - unknown"))
+    if empty:
+        key.append(("-", "no runs"))
+    key += [(name, described[name]) for name in sorted({e for _l, e, _c in cells}, key=lambda e: _rank(e, ENCODINGS))
+            if name in described]
+    return key
+
+
+def grouped_table(records: list[dict], column_of: Callable[[dict], Any], columns: list, caption: str,
+                  set_order: list[str] | None = None, name: str = "table",
+                  described: dict[str, str] | None = None) -> Table:
     """Rows (domain, encoding), one column per value of ``column_of(record)``."""
     groups: dict[tuple, list[dict]] = defaultdict(list)
     for record in records:
@@ -92,44 +264,95 @@ def grouped_table(records: list[dict], column_of, columns: list, caption: str,
     best = set()
     for label in {label for label, _e in rows}:
         for column in columns:
-            candidates = [(cells[(label, e, column)].unsolved, cells[(label, e, column)].average, e)
-                          for row_label, e in rows if row_label == label and (label, e, column) in cells
+            candidates = [(cells[(label, e, column)].rank(), e) for row_label, e in rows
+                          if row_label == label and (label, e, column) in cells
                           and e != "anytime"]  # its time is the time to a first plan: not comparable
             if len(candidates) > 1:
-                best.add((label, min(candidates)[2], column))
+                best.add((label, min(candidates)[1], column))
     sets = _ordered({r["set"] for r in records}, set_order or [])
-    body, previous = [], None
+    body: list[list[str]] = []
+    starts: list[int] = []
+    makespans: list[str] = []
+    previous = None
     for label, encoding in rows:
         first = label != previous
         previous = label
         makespan = _makespans(records, label, sets) if first else ""
+        if first:
+            starts.append(len(body))
+            makespans.append(makespan)
         body.append([label if first else "", makespan, encoding] +
                     [cells[(label, encoding, c)].text((label, encoding, c) in best)
                      if (label, encoding, c) in cells else "-" for c in columns])
     header = ["domain", "makespan", "encoding", *map(str, columns)]
-    return f"{caption}\n\n{_table(header, body)}"
+    key = _time_key(records, cells, best, makespans, sets, (described or {}) if name == "summary" else {},
+                    _dashes(body, 3))
+    return Table(name, caption, header, body, key, text_columns=3, groups=starts)
 
 
-def summary(records: list[dict], set_order: list[str] | None = None) -> str:
-    """The paper's summary table: average time (unsolved runs) per domain x encoding x set."""
+def summary(records: list[dict], set_order: list[str] | None = None,
+            described: dict[str, str] | None = None) -> Table:
+    """The paper's summary table: average time (runs out of limits) per domain x encoding x set."""
     sets = _ordered({r["set"] for r in records}, set_order or [])
     return grouped_table(records, lambda r: r["set"], sets,
-                         "Average run time in seconds (unsolved runs); unsolved runs count at the time limit",
-                         sets)
+                         "Average run time in seconds (runs out of limits); runs out of limits count at the "
+                         "time limit, failed runs apart", sets, "summary", described)
 
 
-def by_robots(records: list[dict], set_order: list[str] | None = None) -> list[str]:
+def by_robots(records: list[dict], set_order: list[str] | None = None) -> list[Table]:
     """One table per instance set with a column per robot count (the paper's appendix)."""
     tables = []
     for name in _ordered({r["set"] for r in records}, set_order or []):
         runs = [r for r in records if r["set"] == name]
         counts = sorted({r["robots"] for r in runs})
         tables.append(grouped_table(runs, lambda r: r["robots"], counts,
-                                    f"Instance set {name}: average run time (unsolved runs) by number of robots"))
+                                    f"Instance set {name}: average run time (runs out of limits) by number "
+                                    f"of robots", None, f"robots-{name}"))
     return tables
 
 
-def anytime_table(records: list[dict], set_order: list[str] | None = None) -> str | None:
+def par(records: list[dict], factor: int) -> float | None:
+    """The penalised average run time (PAR-``factor``) of the runs that solved or ran out of
+    limits: a solved run counts its time, one out of limits ``factor`` times its time limit;
+    invalid plans and errors are left out (``None``: no such run)."""
+    scored = [r["time"] if r["status"] == SOLVED else factor * r["time_limit"] for r in records if _timed(r)]
+    return sum(scored) / len(scored) if scored else None
+
+
+def solved_table(records: list[dict]) -> Table | None:
+    """Per domain and encoding over all instances: runs solved, out of limits, invalid and
+    failed, PAR2 and PAR10 (``None`` without runs at the minimal makespan)."""
+    runs = [r for r in records if r.get("method") != "anytime"]
+    if not runs:
+        return None
+    body: list[list[str]] = []
+    starts: list[int] = []
+    previous = None
+    for label, encoding in _rows(runs):
+        group = [r for r in runs if (r["label"], r["encoding"]) == (label, encoding)]
+        kinds = [outcome(r) for r in group]
+        if label != previous:
+            starts.append(len(body))
+        scores = [par(group, factor) for factor in (2, 10)]
+        body.append([label if label != previous else "", encoding, f"{kinds.count(SOLVED)}/{len(group)}",
+                     str(kinds.count(LIMIT)), str(kinds.count(INVALID)), str(kinds.count(ERROR)),
+                     *("-" if score is None else f"{score:.1f}" for score in scores)])
+        previous = label
+    header = ["domain", "encoding", "solved", "out of limits", "invalid", "errors", "PAR2", "PAR10"]
+    limit = _time_limit(runs)
+    key = [("solved", "runs with a plan that passes the checker, of all runs"),
+           ("out of limits", "time-outs, mem-outs and runs without a known minimal makespan: the unsolved runs "
+                             "of PAR"),
+           ("invalid", "plans the checker rejected; errors: runs that failed; neither is in PAR"),
+           ("PAR2, PAR10", f"penalised average run time in seconds over the solved runs and the unsolved runs, "
+                           f"each unsolved run counted at 2 (10) times the time limit{limit}")]
+    if _dashes(body, 6):
+        key.append(("-", "no run solved or ran out of limits"))
+    return Table("solved", "Solved runs and penalised average run time (PAR2, PAR10) over all instances",
+                 header, body, key, text_columns=2, groups=starts)
+
+
+def anytime_table(records: list[dict], set_order: list[str] | None = None) -> Table | None:
     """The anytime runs: per domain and instance set, how many found a plan, the average time
     to the first plan, and the average makespan at the end over its lower bound and over
     the minimal makespan (where another run of the suite knows it); ``None`` without such runs."""
@@ -138,8 +361,10 @@ def anytime_table(records: list[dict], set_order: list[str] | None = None) -> st
         return None
     minimal = {(r["instance"], r["label"]): r["horizon"] for r in records
                if r.get("method") != "anytime" and r.get("horizon") is not None}
-    body = []
+    body: list[list[str]] = []
+    starts: list[int] = []
     for label in _ordered({r["label"] for r in runs}, LABELS):
+        starts.append(len(body))
         for name in _ordered({r["set"] for r in runs if r["label"] == label}, set_order or []):
             group = [r for r in runs if r["label"] == label and r["set"] == name]
             solved = [r for r in group if r["status"] == SOLVED]
@@ -150,7 +375,42 @@ def anytime_table(records: list[dict], set_order: list[str] | None = None) -> st
                          f"{mean(r['time'] for r in solved):.1f}" if solved else "-",
                          f"{mean(bound):.2f}" if bound else "-", f"{mean(optimum):.2f}" if optimum else "-"])
     header = ["domain", "set", "plans", "first plan (s)", "makespan/bound", "makespan/minimal"]
-    return "Anytime runs: plans found, time to the first plan, makespan at the end\n\n" + _table(header, body)
+    key = [("plans", "runs that returned a plan passing the checker, of all runs"),
+           ("first plan (s)", "average seconds to the first plan of those runs"),
+           ("makespan/bound", "average makespan at the end over the instance's lower bound"),
+           ("makespan/minimal", "the same over the minimal makespan (where a run at the minimal makespan knows it)")]
+    if _dashes(body, 2):
+        key.append(("-", "none"))
+    return Table("anytime", "Anytime runs: plans found, time to the first plan, makespan at the end",
+                 header, body, key, text_columns=2, groups=starts)
+
+
+def failed_runs(records: list[dict]) -> Table | None:
+    """The runs that failed (invalid plans and errors) with the reason in words (the first
+    :data:`LISTED`; ``None`` if none failed)."""
+    failed = sorted((r for r in records if not _timed(r)),
+                    key=lambda r: (_rank(r["label"], LABELS), _rank(r["encoding"], ENCODINGS), r["set"],
+                                   r["instance"]))
+    if not failed:
+        return None
+    words = {INVALID: "invalid plan", ERROR: "error"}
+    body = [[f"{r['label']} {r['encoding']}", f"{r['set']} {r['instance']}", words[outcome(r)],
+             " ".join(str(r.get("error") or "no reason recorded").split())] for r in failed[:LISTED]]
+    caption = f"Failed runs ({len(failed)}; not in the averages, not in PAR): domain encoding, set instance, why"
+    key = []
+    if len(failed) > LISTED:
+        key.append(("...", f"and {len(failed) - LISTED} more: every run's reason is in results.csv (column error)"))
+    return Table("failed", caption, ["run", "instance", "outcome", "reason"], body, key,
+                 text_columns=4, align=r"lllp{0.45\linewidth}", listing=True)
+
+
+def tables(records: list[dict], set_order: list[str] | None = None,
+           described: dict[str, str] | None = None) -> list[Table]:
+    """Every table of the report, in order: the summary, solved runs and PAR, by robots, the
+    anytime runs, the failed runs."""
+    found = [summary(records, set_order, described), solved_table(records), *by_robots(records, set_order),
+             anytime_table(records, set_order), failed_runs(records)]
+    return [table for table in found if table is not None]
 
 
 CSV_FIELDS = ["key", "set", "instance", "robots", "domain", "label", "encoding", "assign", "status",
@@ -167,54 +427,150 @@ def to_csv(records: list[dict]) -> str:
     return stream.getvalue()
 
 
-def plot(records: list[dict], folder: Path, set_order: list[str] | None = None) -> list[Path]:
-    """A cactus plot (solved runs over time, one line per encoding, one panel per domain)
-    and a plot of average time by number of robots (one panel per instance set)."""
-    import matplotlib
-    import matplotlib.ticker
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+# --- plots -------------------------------------------------------------------------------
 
-    written = []
-    labels = _ordered({r["label"] for r in records}, LABELS)
-    figure, axes = plt.subplots(1, len(labels), figsize=(4.5 * len(labels), 3.8), squeeze=False)
-    for axis, label in zip(axes[0], labels, strict=True):
-        for _l, encoding in [row for row in _rows(records) if row[0] == label]:
-            times = sorted(r["time"] for r in records
+#: the shortest time a log axis shows (a run that took no measurable time)
+FLOOR = 0.01
+
+
+def _figure(panels: int, columns: int = 3, **share: Any):
+    """A figure (no display: it is never shown, only saved) with a grid of ``panels`` axes;
+    the grid's spare axes are hidden.  The figure and its visible axes."""
+    from matplotlib.figure import Figure
+
+    columns = max(1, min(columns, panels))
+    rows = max(1, math.ceil(panels / columns))
+    figure = Figure(figsize=(4.4 * columns, 3.6 * rows), layout="constrained")
+    grid = figure.subplots(rows, columns, squeeze=False, **share)
+    axes = [axis for row in grid for axis in row]
+    for spare in axes[panels:]:
+        spare.set_visible(False)
+    return figure, axes[:panels]
+
+
+def _limit_line(axis, records: list[dict], horizontal: bool = True) -> None:
+    limits = {r["time_limit"] for r in records}
+    if len(limits) == 1:
+        limit = limits.pop()
+        (axis.axhline if horizontal else axis.axvline)(limit, color="grey", linestyle=":", linewidth=1)
+
+
+def cactus_figure(records: list[dict]):
+    """Solved runs over time: one panel per domain (label), one line per encoding, every panel
+    on one shared log time axis; runs of the anytime planner are left out (their time is the
+    time to a first plan)."""
+    import matplotlib.ticker
+
+    runs = [r for r in records if r.get("method") != "anytime"]
+    labels = _ordered({r["label"] for r in runs}, LABELS)
+    figure, axes = _figure(max(1, len(labels)), sharey=True)
+    for axis, label in zip(axes, labels, strict=False):
+        for _l, encoding in [row for row in _rows(runs) if row[0] == label]:
+            times = sorted(max(r["time"], FLOOR) for r in runs
                            if r["label"] == label and r["encoding"] == encoding and r["status"] == SOLVED)
             axis.plot(range(1, len(times) + 1), times, marker="o", markersize=3, label=encoding)
-        axis.set(title=label, xlabel="solved runs", ylabel="time (s)")
+        _limit_line(axis, [r for r in runs if r["label"] == label])
+        axis.set(title=label, xlabel="solved runs", ylabel="time (s)", yscale="log")
         axis.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
-        axis.grid(alpha=0.3)
+        axis.grid(alpha=0.3, which="both")
         axis.legend(fontsize="small")
-    figure.tight_layout()
-    written.append(_save(figure, folder / "cactus.png"))
-    plt.close(figure)
+    return figure
 
+
+def robots_figure(records: list[dict], set_order: list[str] | None = None):
+    """Average time (runs out of limits at the limit, failed runs left out) by number of
+    robots: one panel per instance set, one line per domain and encoding, the robot counts as
+    ticks."""
     sets = _ordered({r["set"] for r in records}, set_order or [])
-    figure, axes = plt.subplots(1, len(sets), figsize=(4.5 * len(sets), 3.8), squeeze=False)
-    for axis, name in zip(axes[0], sets, strict=True):
-        runs = [r for r in records if r["set"] == name]
+    figure, axes = _figure(max(1, len(sets)), sharey=True)
+    for axis, name in zip(axes, sets, strict=False):
+        runs = [r for r in records if r["set"] == name and _timed(r)]
         for label, encoding in _rows(runs):
             points = defaultdict(list)
             for r in runs:
                 if (r["label"], r["encoding"]) == (label, encoding):
-                    points[r["robots"]].append(r["time"] if r["status"] == SOLVED else r["time_limit"])
+                    points[r["robots"]].append(max(_time(r), FLOOR))
             robots = sorted(points)
             axis.plot(robots, [mean(points[n]) for n in robots], marker="o", label=f"{label} {encoding}")
-        axis.set(title=name, xlabel="robots", ylabel="average time (s)")
-        axis.grid(alpha=0.3)
+        axis.set_xticks(sorted({r["robots"] for r in runs}))
+        axis.set(title=name, xlabel="robots", ylabel="average time (s)", yscale="log")
+        axis.grid(alpha=0.3, which="both")
         axis.legend(fontsize="x-small")
-    figure.tight_layout()
-    written.append(_save(figure, folder / "time-by-robots.png"))
-    plt.close(figure)
-    return written
+    return figure
+
+
+def scatter_pairs(records: list[dict]) -> list[tuple[str, str]]:
+    """The scatter plots made by default: the first encoding (``plain`` if it ran) against every other."""
+    names = encodings_of(records)
+    return [(names[0], other) for other in names[1:]]
+
+
+def scatter_figure(records: list[dict], first: str, second: str):
+    """Per instance the time of ``first`` (x) against ``second`` (y), one panel per domain
+    (label) where both ran: log axes, the diagonal, runs out of limits at the time limit with
+    a mark of their own; an instance where either failed is left out (the panel says how
+    many).  ``None`` if no instance has runs of both."""
+    runs = [r for r in records if r.get("method") != "anytime"]
+    by: dict[tuple, dict[str, dict]] = defaultdict(dict)
+    for r in runs:
+        if r["encoding"] in (first, second):
+            by[(r["label"], r["set"], r["instance"])][r["encoding"]] = r
+    pairs = {key: (pair[first], pair[second]) for key, pair in by.items() if first in pair and second in pair}
+    labels = _ordered({label for label, _s, _i in pairs}, LABELS)
+    if not labels:
+        return None
+    figure, axes = _figure(len(labels))
+    for axis, label in zip(axes, labels, strict=True):
+        mine = [pair for (row, _s, _i), pair in pairs.items() if row == label]
+        shown = [(a, b) for a, b in mine if _timed(a) and _timed(b)]
+        both = [(max(_time(a), FLOOR), max(_time(b), FLOOR)) for a, b in shown
+                if a["status"] == SOLVED and b["status"] == SOLVED]
+        out = [(max(_time(a), FLOOR), max(_time(b), FLOOR)) for a, b in shown
+               if a["status"] != SOLVED or b["status"] != SOLVED]
+        limit = max([r["time_limit"] for pair in mine for r in pair], default=1.0)
+        low = min([FLOOR * 10, *(t for point in both + out for t in point)]) / 2
+        axis.plot([low, limit * 1.5], [low, limit * 1.5], color="grey", linewidth=1, label="_diagonal")
+        axis.axvline(limit, color="grey", linestyle=":", linewidth=1)
+        axis.axhline(limit, color="grey", linestyle=":", linewidth=1)
+        if both:
+            axis.scatter(*zip(*both, strict=True), s=14, label="both solved")
+        if out:
+            axis.scatter(*zip(*out, strict=True), s=22, marker="^", color="tab:red",
+                         label="out of limits (at the limit)")
+        left_out = len(mine) - len(shown)
+        axis.set(xscale="log", yscale="log", xlim=(low, limit * 1.5), ylim=(low, limit * 1.5),
+                 xlabel=f"{first}: time (s)", ylabel=f"{second}: time (s)",
+                 title=label + (f" ({left_out} with a failed run left out)" if left_out else ""))
+        axis.set_aspect("equal")
+        axis.grid(alpha=0.3, which="both")
+        if both or out:
+            axis.legend(fontsize="x-small", loc="upper left")
+    return figure
+
+
+def plot(records: list[dict], folder: Path, set_order: list[str] | None = None,
+         formats: Iterable[str] = ("png",), pairs: list[tuple[str, str]] | None = None) -> list[Path]:
+    """Write the cactus plot, the plot by robots and the scatter plots (of ``pairs``, by
+    default :func:`scatter_pairs`) in every one of ``formats``; the files written."""
+    formats = list(formats)
+    figures = [("cactus", cactus_figure(records)), ("time-by-robots", robots_figure(records, set_order))]
+    for first, second in scatter_pairs(records) if pairs is None else pairs:
+        figure = scatter_figure(records, first, second)
+        if figure is not None:
+            figures.append((f"scatter-{first}-{second}", figure))
+    return [_save(figure, folder / f"{name}.{kind}") for name, figure in figures for kind in formats]
+
+
+#: no dates in the files: the same results give the same files
+_METADATA = {"pdf": {"CreationDate": None}, "svg": {"Date": None}}
 
 
 def _save(figure, path: Path) -> Path:
-    """Save a figure atomically (render to memory, then replace the file)."""
+    """Save a figure atomically (render to memory, then replace the file) in the format of
+    its suffix."""
     from asprilo.writer import write_bytes
+    kind = path.suffix[1:]
     buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=110)
+    figure.savefig(buffer, format=kind, dpi=110, metadata=_METADATA.get(kind))
     write_bytes(path, buffer.getvalue())
     return path

@@ -82,6 +82,8 @@ def run_job(path: Path, spec: RunSpec, horizon: int, assignment: list[str] | Non
     followed) when known, else along one computed in the run."""
     job = {"kind": "run", "instance": str(path), "domain": spec.domain.value, "encoding": spec.encoding,
            "assign": spec.assign, "horizon": horizon}
+    if spec.own is not None:  # the files, constants and options: the child makes the encoding again
+        job["own"] = spec.own.job()
     if spec.assign and assignment:
         job["assignment"] = assignment
     return job
@@ -97,7 +99,8 @@ def complete(record: dict, path: Path, status: str, wall: float, report: dict, d
         return {**record, "status": status, "time": limit if status != ERROR else record["time"], "error": detail}
     if report["status"] == SolveStatus.LIMIT.value:
         return {**record, "status": TIMEOUT, "time": limit}
-    if report["status"] != SolveStatus.FOUND.value or not report.get("plan"):
+    checked = (SolveStatus.FOUND.value, SolveStatus.INVALID.value)  # a plan: the runner checks it itself
+    if report["status"] not in checked or not report.get("plan"):
         return {**record, "status": ERROR,
                 "error": report.get("message") or f"no plan at the minimal makespan {record['horizon']}"}
     return {**record, "time": report["time"], **plan_verdict(path, record["domain"], report["plan"])}
@@ -116,12 +119,20 @@ def complete_anytime(record: dict, path: Path, run: LimitedRun) -> dict:
     return record
 
 
+#: the violations of an invalid plan that its record says in words (all of them as atoms, up to VIOLATIONS)
+SAID, VIOLATIONS = 3, 20
+
+
 def plan_verdict(path: Path, domain: str, plan_text: str) -> dict:
-    """Check a run's plan with the ASP checker: ``solved`` with its metrics, or ``invalid``."""
+    """Check a run's plan with the ASP checker: ``solved`` with its metrics, or ``invalid``
+    with its first violations in words (``error``) and as ``err/3`` atoms (``violations``)."""
     report = check(read_instance(path), read_plan(Source("plan", plan_text)), Domain.parse(domain))
     if report.valid:
         return {"status": SOLVED, "metrics": report.metrics}
-    return {"status": INVALID, "error": "; ".join(error.atom for error in report.errors[:5])}
+    errors = report.errors
+    more = f"; and {len(errors) - SAID} more" if len(errors) > SAID else ""
+    return {"status": INVALID, "violations": [error.atom for error in errors[:VIOLATIONS]],
+            "error": f"the plan breaks the rules: {'; '.join(error.message for error in errors[:SAID])}{more}"}
 
 
 def makespan_status(run: LimitedRun) -> str:
@@ -224,13 +235,13 @@ def _clock(seconds: float) -> str:
 
 class Runner:
     def __init__(self, suite: Suite, folder: str | Path, jobs: int = 1, time_limit: float | None = None,
-                 memory_limit: int | None = None, stream: TextIO = sys.stderr):
+                 memory_limit: int | None = None, stream: TextIO | None = None):
         self.suite = suite
         self.folder = Path(folder)
         self.jobs = max(1, jobs)
         self.time_limit = time_limit or suite.time_limit
         self.memory_limit = memory_limit if memory_limit is not None else suite.memory_limit
-        self.stream = stream
+        self.stream = stream if stream is not None else sys.stderr  # the one of the moment (not of the import)
         self.assignments: dict[str, dict[str, list[str]]] = {}
 
     # --- instances -----------------------------------------------------------------------

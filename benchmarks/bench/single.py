@@ -2,7 +2,14 @@
 
     python -m asprilo.bench.single --domain m --encoding plain [--assign] --time-limit S
                                    [--makespan-time-limit S] INSTANCE
+    python -m asprilo.bench.single --domain m --encoding mine --own-encoding encodings/mine.json
+                                   [--root DIR] ... INSTANCE
     python -m asprilo.bench.single --domain a --method anytime --time-limit S INSTANCE
+
+An encoding of the suite's own is described by a JSON file that the export wrote (its
+files, relative to that file, its constants and options; ``--own-encoding`` is relative to
+``--root``: the export folder, which ``programs/asprilo-<version>`` passes) and made from it
+as in a local run.
 
 The horizon is the instance's minimal makespan, from ``INSTANCE.makespans.json`` beside it,
 or else searched here (at most ``--makespan-time-limit`` seconds, not counted in the run's
@@ -25,10 +32,10 @@ from asprilo.reader import read_instance
 from asprilo.writer import write_text
 
 from .btool import assignment_cache, makespan_cache, read_assignment_cache, read_makespan_cache
-from .limits import DONE, LimitedRun
+from .limits import DONE, LimitedRun, failure
 from .results import SOLVED
 from .runner import SuiteInstance, complete, complete_anytime, makespan_status, needs_search, new_record, run_job
-from .suite import RunSpec
+from .suite import OwnEncoding, RunSpec
 from .worker import run
 
 
@@ -61,10 +68,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--time-limit", type=float, required=True)
     parser.add_argument("--makespan-time-limit", type=float, default=600.0)
     parser.add_argument("--method", choices=("asp", "anytime"), default="asp")
+    parser.add_argument("--own-encoding", type=Path, metavar="FILE",
+                        help="the JSON description of the suite's own encoding --encoding (relative to --root)")
+    parser.add_argument("--root", type=Path, default=Path("."), metavar="DIR",
+                        help="the folder --own-encoding is relative to (the export folder)")
     args = parser.parse_args(argv)
     if args.method == "anytime":
         return _anytime(args)
-    spec = RunSpec(Domain.parse(args.domain), args.encoding, args.assign)
+    spec = RunSpec(Domain.parse(args.domain), args.encoding, args.assign, own=_own(args))
     horizon, assignment = minimal_makespan(args.instance, spec, args.makespan_time_limit)
     robots = len(read_instance(args.instance).robots)
     record = new_record(SuiteInstance(args.instance.parent.name, args.instance, args.instance.name, robots),
@@ -72,10 +83,25 @@ def main(argv: list[str] | None = None) -> int:
     print(json.dumps(record, sort_keys=True), flush=True)
     if horizon is not None:
         started = time.perf_counter()
-        report = run({**run_job(args.instance, spec, horizon, assignment), "time_limit": args.time_limit})
-        record = complete(record, args.instance, DONE, time.perf_counter() - started, report)
+        try:
+            report = run({**run_job(args.instance, spec, horizon, assignment), "time_limit": args.time_limit})
+        except Exception as error:  # noqa: BLE001 - the run failed (e.g. its encoding): its record says why
+            failed = failure(error, time.perf_counter() - started)
+            record = complete(record, args.instance, failed.status, failed.wall, {}, failed.detail)
+        else:
+            record = complete(record, args.instance, DONE, time.perf_counter() - started, report)
         print(json.dumps(record, sort_keys=True), flush=True)
     return 0
+
+
+def _own(args: argparse.Namespace) -> OwnEncoding | None:
+    """The suite's own encoding that ``--own-encoding`` describes (``None``: a reference encoding)."""
+    if args.own_encoding is None:
+        return None
+    path = args.root / args.own_encoding
+    description = json.loads(path.read_text(encoding="utf-8"))
+    files = [str((path.parent / file).absolute()) for file in description["files"]]
+    return OwnEncoding.from_job(args.encoding, {**description, "files": files})
 
 
 def _anytime(args: argparse.Namespace) -> int:

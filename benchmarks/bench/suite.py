@@ -6,19 +6,29 @@ A suite is a YAML file::
     time_limit: 1800          # seconds per run (the command line may override)
     memory_limit: 8192        # MB per run
     makespan_time_limit: 600  # seconds to find an instance's minimal makespan (A/B/C)
+    encodings:                # encodings of one's own, by name (optional)
+      mine: {files: [enc/mine.lp, enc/goal.lp], constants: {lanes: 2}, options: ["--configuration=crafty"]}
     instances:                # named sets, in report order
       small: {batch: paper-m.yml, select: 1x2x4}   # a gen batch file and the part of its output to use
       tiny:  {files: ["../examples/encodings-repo/x2_y2*.lp"]}  # or existing files (globs)
       quick: {batch: paper-m.yml, select: 1x2x4, first: 5}  # only the first 5 files of each folder
     runs:                     # every combination of the listed values is run on every instance
-      - {domain: m, encoding: [plain, split, clingcon, dl], assign: [false, true]}
-      - {domain: [c, b, a], encoding: [plain, clingcon], assign: [false, true], sets: [tiny]}
+      - {domain: m, encoding: [plain, split, clingcon, dl, mine], assign: [false, true]}
+      - {domain: [c, b], encoding: [plain, mine], assign: [false, true], sets: [tiny]}
       - {domain: [a, m], method: anytime}   # the anytime planner for the whole time limit
 
 A run entry with ``sets`` runs on the instances of those sets only.  ``method: anytime``
 runs the anytime planner (``asprilo solve --method anytime``) instead of an encoding at the
 minimal makespan: its encoding is ``anytime``, and it is reported by time to the first plan
 and by the makespan it reached over its lower bound.
+
+An encoding of ``encodings`` runs as ``asprilo solve INSTANCE --encoding FILE... -c NAME=VALUE
+OPTION...`` would (its style recognised the same way: :func:`asprilo.encodings.own.own_encoding`),
+at each instance's minimal makespan like the reference encodings (a program without a horizon
+is solved as it is).  A run names an encoding by its name: a reference encoding of its
+domain, or one of ``encodings``.  Everything is checked when the suite is read, before the
+first run: an unknown name, a missing file, a file clingo cannot parse, a program for
+clingcon 3, an option clingo refuses, a constant that is no term.
 
 Paths are relative to the suite file.
 """
@@ -27,11 +37,16 @@ from __future__ import annotations
 
 import glob
 import itertools
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import clingo
+
 from asprilo.domain import Domain
+from asprilo.encodings import Encoding, encoding_names
+from asprilo.encodings.own import own_encoding
 from asprilo.errors import InputError
 from asprilo.yamlfile import YamlList, YamlMapping, line_of, load_yaml
 
@@ -60,12 +75,47 @@ class InstanceSet:
 
 
 @dataclass(frozen=True)
+class OwnEncoding:
+    """An encoding of the suite's own (``encodings:``): its files (absolute, in loading order),
+    ``-c`` constants and clingo options, and its style in words.  These (not the
+    :class:`~asprilo.encodings.Encoding`) travel to the run's child process, which makes the
+    encoding again (:meth:`encoding`)."""
+
+    name: str
+    files: tuple[str, ...]
+    constants: tuple[tuple[str, str], ...] = ()
+    options: tuple[str, ...] = ()
+    style: str = ""
+
+    def job(self) -> dict:
+        """What a run's job carries (JSON)."""
+        return {"files": list(self.files), "constants": [list(pair) for pair in self.constants],
+                "options": list(self.options)}
+
+    @classmethod
+    def from_job(cls, name: str, job: dict) -> OwnEncoding:
+        return cls(name, tuple(job["files"]), tuple((str(n), str(v)) for n, v in job.get("constants", ())),
+                   tuple(job.get("options", ())))
+
+    def encoding(self) -> Encoding:
+        """The encoding, its style recognised (bad input: :class:`InputError`)."""
+        return own_encoding(self.files, self.constants, self.options)
+
+    def describe(self) -> str:
+        """E.g. ``mine: /x/enc/mine.lp, /x/enc/goal.lp; single-shot with a horizon constant; -c lanes=2``."""
+        parts = [", ".join(self.files), self.style, " ".join(f"-c {n}={v}" for n, v in self.constants),
+                 " ".join(self.options)]
+        return f"{self.name}: " + "; ".join(part for part in parts if part)
+
+
+@dataclass(frozen=True)
 class RunSpec:
     domain: Domain
     encoding: str
     assign: bool
     sets: tuple[str, ...] | None = None  # the instance sets it runs on (None: all)
     method: str = "asp"                  # asp: an encoding at the minimal makespan; anytime
+    own: OwnEncoding | None = None       # the suite's own encoding of that name (None: a reference one)
 
     @property
     def anytime(self) -> bool:
@@ -89,11 +139,17 @@ class Suite:
     makespan_time_limit: float = 600.0
     sets: list[InstanceSet] = field(default_factory=list)
     runs: list[RunSpec] = field(default_factory=list)
+    encodings: dict[str, OwnEncoding] = field(default_factory=dict)
 
 
-SUITE_KEYS = ("name", "time_limit", "memory_limit", "makespan_time_limit", "instances", "runs")
+SUITE_KEYS = ("name", "time_limit", "memory_limit", "makespan_time_limit", "encodings", "instances", "runs")
 RUN_KEYS = ("domain", "encoding", "assign", "sets", "method")
+ENCODING_KEYS = ("files", "constants", "options")
 METHODS = ("asp", "anytime")
+#: an encoding's name: it names runs in results, tables, file names and btool settings
+ENCODING_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]*")
+#: a clingo constant's name
+CONSTANT_NAME = re.compile(r"_*[a-z][A-Za-z0-9_']*")
 
 
 def _listed(value: Any) -> list:
@@ -115,8 +171,9 @@ class _SuiteFile:
         self.known_keys(data, "", SUITE_KEYS)
         suite = Suite(str(data.get("name", self.path.stem)), self.path)
         self.limits(data, suite)
+        suite.encodings = self.own_encodings(data)
         suite.sets = self.instance_sets(data)
-        suite.runs = self.run_specs(data, {s.name for s in suite.sets})
+        suite.runs = self.run_specs(data, {s.name for s in suite.sets}, suite.encodings)
         return suite
 
     def known_keys(self, data: YamlMapping, where: str, known: tuple[str, ...]) -> None:
@@ -161,16 +218,109 @@ class _SuiteFile:
             raise self.fail(f"{where}.batch", f"no such file {batch}", entry.line_of("batch"))
         return InstanceSet(name, batch, str(entry.get("select", "")), first=first)
 
-    def run_specs(self, data: YamlMapping, set_names: set[str]) -> list[RunSpec]:
+    # --- encodings of one's own --------------------------------------------------------
+
+    def own_encodings(self, data: YamlMapping) -> dict[str, OwnEncoding]:
+        if "encodings" not in data:
+            return {}
+        entries = data["encodings"]
+        if not isinstance(entries, YamlMapping):
+            raise self.fail("encodings", "must map names to {files: [FILE, ...], constants: {NAME: VALUE}, "
+                                         "options: [OPTION, ...]}", data.line_of("encodings"))
+        return {str(name): self.own_encoding(str(name), entry, entries.line_of(name))
+                for name, entry in entries.items()}
+
+    def own_encoding(self, name: str, entry: Any, line: int) -> OwnEncoding:
+        where = f"encodings.{name}"
+        if not ENCODING_NAME.fullmatch(name):
+            raise self.fail(where, "an encoding's name is letters, digits and _ . + - (it names its runs in "
+                                   "results, tables and files)", line)
+        if name in encoding_names() or name == "anytime":
+            raise self.fail(where, f"'{name}' is the name of a reference encoding; give yours another name", line)
+        if not isinstance(entry, YamlMapping) or "files" not in entry:
+            raise self.fail(where, "needs 'files': the encoding's files, relative to the suite", line)
+        self.known_keys(entry, f"{where}.", ENCODING_KEYS)
+        files = self.encoding_files(where, entry)
+        constants = self.constants(where, entry)
+        options = self.options(where, entry)
+        try:
+            encoding = own_encoding([path for path, _line in files], constants, options)
+        except InputError as error:
+            raise self.refused(where, error, entry, files) from None
+        return OwnEncoding(name, tuple(str(path.absolute()) for path, _line in files), constants, options,
+                           encoding.summary)
+
+    def encoding_files(self, where: str, entry: YamlMapping) -> list[tuple[Path, int]]:
+        """The files (relative to the suite), each with its line."""
+        value = entry["files"]
+        items = value if isinstance(value, YamlList) else [value]
+        lines = value.item_lines if isinstance(value, YamlList) else [entry.line_of("files")]
+        if not items or not all(isinstance(item, str) and item for item in items):
+            raise self.fail(f"{where}.files", "must be a file or a list of files", entry.line_of("files"))
+        return [(self.path.parent / item, line) for item, line in zip(items, lines, strict=True)]
+
+    def constants(self, where: str, entry: YamlMapping) -> tuple[tuple[str, str], ...]:
+        if "constants" not in entry:
+            return ()
+        value = entry["constants"]
+        if not isinstance(value, YamlMapping):
+            raise self.fail(f"{where}.constants", "must map names to values, e.g. {lanes: 2}",
+                            entry.line_of("constants"))
+        constants = []
+        for name, given in value.items():
+            place, line = f"{where}.constants.{name}", value.line_of(name)
+            if not isinstance(name, str) or not CONSTANT_NAME.fullmatch(name):
+                raise self.fail(place, "a constant's name starts with a lower-case letter", line)
+            if name == "horizon":
+                raise self.fail(place, "the runs are at each instance's minimal makespan: a suite sets no horizon",
+                                line)
+            if isinstance(given, bool):
+                given = str(given).lower()
+            if not isinstance(given, (int, str)):
+                raise self.fail(place, "must be a number or a term", line)
+            try:
+                clingo.parse_term(str(given))
+            except RuntimeError:
+                raise self.fail(place, f"clingo cannot read {str(given)!r} as a term", line) from None
+            constants.append((name, str(given)))
+        return tuple(constants)
+
+    def options(self, where: str, entry: YamlMapping) -> tuple[str, ...]:
+        if "options" not in entry:
+            return ()
+        value = entry["options"]
+        items = value if isinstance(value, list) else [value]
+        if not all(isinstance(item, str) and item for item in items):
+            raise self.fail(f"{where}.options", "must be clingo options, e.g. [\"--configuration=crafty\"]",
+                            entry.line_of("options"))
+        return tuple(items)
+
+    def refused(self, where: str, error: InputError, entry: YamlMapping,
+                files: list[tuple[Path, int]]) -> InputError:
+        """What :func:`own_encoding` refused, at the line of the entry at fault: the file it
+        names (its item of ``files``), the options (no file named), else ``files``."""
+        if error.file is not None:
+            for number, (path, line) in enumerate(files):
+                if Path(error.file).resolve() == path.resolve():
+                    return self.fail(f"{where}.files[{number}]", str(error), line)
+            return self.fail(f"{where}.files", str(error), entry.line_of("files"))
+        if "options" in entry:
+            return self.fail(f"{where}.options", str(error), entry.line_of("options"))
+        return self.fail(where, str(error), entry.line)
+
+    # --- runs ----------------------------------------------------------------------------
+
+    def run_specs(self, data: YamlMapping, set_names: set[str], own: dict[str, OwnEncoding]) -> list[RunSpec]:
         runs = data.get("runs")
         if not isinstance(runs, YamlList) or not runs:
             raise self.fail("runs", "must be a list of {domain, encoding, assign} mappings", data.line_of("runs"))
         specs: list[RunSpec] = []
         for number, (entry, line) in enumerate(zip(runs, runs.item_lines, strict=True)):
-            specs += self.run_entry(f"runs[{number}]", entry, line, set_names)
+            specs += self.run_entry(f"runs[{number}]", entry, line, set_names, own)
         return specs
 
-    def run_entry(self, where: str, entry: Any, line: int, set_names: set[str]) -> list[RunSpec]:
+    def run_entry(self, where: str, entry: Any, line: int, set_names: set[str],
+                  own: dict[str, OwnEncoding]) -> list[RunSpec]:
         if not isinstance(entry, YamlMapping) or "domain" not in entry:
             raise self.fail(where, "needs at least 'domain'", line)
         self.known_keys(entry, f"{where}.", RUN_KEYS)
@@ -195,8 +345,26 @@ class _SuiteFile:
         if method == "anytime":
             if "encoding" in entry or True in assigns:
                 raise self.fail(where, "method anytime takes no encoding and no assignment", line)
-            encodings = ["anytime"]
-        return [RunSpec(d, e, a, sets, method) for d, e, a in itertools.product(domains, encodings, assigns)]
+            return [RunSpec(d, "anytime", False, sets, method) for d in domains]
+        if "encoding" in entry:
+            self.known_encodings(f"{where}.encoding", entry, domains, encodings, own)
+        return [RunSpec(d, e, a, sets, method, own.get(e))
+                for d, e, a in itertools.product(domains, encodings, assigns)]
+
+    def known_encodings(self, where: str, entry: YamlMapping, domains: list[Domain], encodings: list[str],
+                        own: dict[str, OwnEncoding]) -> None:
+        """Every name a reference encoding of every domain of the entry, or one of the suite's."""
+        value = entry["encoding"]
+        lines = value.item_lines if isinstance(value, YamlList) else [entry.line_of("encoding")] * len(encodings)
+        for name, line in zip(encodings, lines, strict=True):
+            if name in own:
+                continue
+            for domain in domains:
+                references = encoding_names(domain)
+                if name not in references:
+                    yours = f"the suite's encodings: {', '.join(own)}" if own else "no encodings of the suite's own"
+                    raise self.fail(where, f"no encoding '{name}' for domain {domain.label} (reference encodings: "
+                                           f"{', '.join(references)}; {yours})", line)
 
 
 def load_suite(path: str | Path) -> Suite:

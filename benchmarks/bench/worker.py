@@ -5,7 +5,9 @@ statistics, the plan, and the process's own peak memory.  Jobs:
 - ``{"kind": "makespan", ...}``: the minimal makespan of an instance in a domain: the flow
   solver for M/Md, else the horizon search; with task assignment, the shortest plan along
   the assignment (the horizon the assigned runs are given), and that assignment;
-- ``{"kind": "run", ...}``: one benchmark run at a given horizon (along ``assignment`` if given);
+- ``{"kind": "run", ...}``: one benchmark run at a given horizon (along ``assignment`` if given),
+  of a reference encoding by name, or of the suite's own (``own``: its files, constants and
+  options, from which the encoding is made here);
 - ``{"kind": "anytime", ...}``: one run of the anytime planner for the whole time limit.
 """
 
@@ -17,6 +19,15 @@ import time
 
 def _peak_mb() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+
+def _encoding(job: dict):
+    """The run's encoding: a reference one by name, or the suite's own made again from its
+    files, constants and options (``job["own"]``)."""
+    if "own" not in job:
+        return job["encoding"]
+    from .suite import OwnEncoding
+    return OwnEncoding.from_job(job["encoding"], job["own"]).encoding()
 
 
 def run(job: dict, report=None) -> dict:
@@ -35,8 +46,10 @@ def run(job: dict, report=None) -> dict:
     elif job["kind"] == "anytime":
         outcome = solve(job["instance"], domain=job["domain"], method="anytime", time_limit=job["time_limit"])
     else:
-        outcome = solve(job["instance"], domain=job["domain"], encoding=job["encoding"],
-                        horizon=job["horizon"], assign=job.get("assign", False),
+        encoding = _encoding(job)
+        fixed = not isinstance(encoding, str) and encoding.fixed  # solved as it is: no horizon to give
+        outcome = solve(job["instance"], domain=job["domain"], encoding=encoding,
+                        horizon=None if fixed else job["horizon"], assign=job.get("assign", False),
                         time_limit=job["time_limit"], assignment=job.get("assignment"))
     seconds = time.perf_counter() - started
     return {
