@@ -237,7 +237,7 @@ def _time_key(records: list[dict], cells: dict[tuple, Cell], best: set, makespan
         key.append(("xN", "N plans the checker rejected: not in the average (why: under Failed runs)"))
     if best:
         key.append(("*", "the best encoding of the domain in this column: fewest unsolved runs of any kind, "
-                         "then least average time"))
+                         "then least average time (never one with an invalid plan)"))
     if any(cell.average is None for cell in shown):
         key.append(("-(0)", "no run solved or ran out of limits: every run failed"))
     if len(sets) > 1 and any("/" in text for text in makespans):
@@ -264,10 +264,11 @@ def grouped_table(records: list[dict], column_of: Callable[[dict], Any], columns
     best = set()
     for label in {label for label, _e in rows}:
         for column in columns:
-            candidates = [(cells[(label, e, column)].rank(), e) for row_label, e in rows
-                          if row_label == label and (label, e, column) in cells
-                          and e != "anytime"]  # its time is the time to a first plan: not comparable
-            if len(candidates) > 1:
+            compared = [e for row_label, e in rows if row_label == label and (label, e, column) in cells
+                        and e != "anytime"]  # its time is the time to a first plan: not comparable
+            candidates = [(cells[(label, e, column)].rank(), e) for e in compared
+                          if not cells[(label, e, column)].invalid]  # a wrong answer is never the best
+            if len(compared) > 1 and candidates:
                 best.add((label, min(candidates)[1], column))
     sets = _ordered({r["set"] for r in records}, set_order or [])
     body: list[list[str]] = []

@@ -99,9 +99,12 @@ def _own(args: argparse.Namespace) -> OwnEncoding | None:
     if args.own_encoding is None:
         return None
     path = args.root / args.own_encoding
-    description = json.loads(path.read_text(encoding="utf-8"))
-    files = [str((path.parent / file).absolute()) for file in description["files"]]
-    return OwnEncoding.from_job(args.encoding, {**description, "files": files})
+    try:
+        description = json.loads(path.read_text(encoding="utf-8"))
+        files = [str((path.parent / file).absolute()) for file in description["files"]]
+        return OwnEncoding.from_job(args.encoding, {**description, "files": files})
+    except (OSError, ValueError, KeyError, TypeError) as error:
+        raise SystemExit(f"error: {path}: not the description of an encoding ({error})") from None
 
 
 def _anytime(args: argparse.Namespace) -> int:
