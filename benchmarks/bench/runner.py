@@ -119,7 +119,7 @@ def complete_anytime(record: dict, path: Path, run: LimitedRun) -> dict:
     return record
 
 
-#: the violations of an invalid plan that its record says in words (all of them as atoms, up to VIOLATIONS)
+#: how many violations of an invalid plan its record says in words, and keeps as err/3 atoms
 SAID, VIOLATIONS = 3, 20
 
 
