@@ -13,6 +13,12 @@ Solve has two methods (Run > Solve method, kept in the settings like the encodin
 of minimal makespan with a reference encoding, or the anytime planner, whose better plans
 are shown as they come (a draft, outside the undo history) and which answers with its best
 plan when cancelled.
+
+Solve with encoding file… runs a user's own encoding (``asprilo.encodings.own``) the way the
+references run, its style recognised and said while it runs, in a child process (a program
+may ground for ever: cancel kills it).  Its plan is checked: a plan that breaks the rules is
+shown all the same, with the checker's violations, because that is what its author needs to
+see; a file that cannot be used is reported in the error dialog (``FILE:LINE: …``).
 """
 
 from __future__ import annotations
@@ -21,12 +27,22 @@ import contextlib
 import copy
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import clingo
 from PyQt5.QtCore import QObject, QSettings, QThread, pyqtSignal
-from PyQt5.QtWidgets import QActionGroup, QHBoxLayout, QLabel, QMainWindow, QMenu, QProgressBar, QToolButton, QWidget
+from PyQt5.QtWidgets import (
+    QAction,
+    QActionGroup,
+    QHBoxLayout,
+    QLabel,
+    QMainWindow,
+    QMenu,
+    QProgressBar,
+    QToolButton,
+    QWidget,
+)
 
 from asprilo.errors import InputError
 from asprilo.reader import value_of
@@ -37,6 +53,7 @@ from ..panels.dialogs import GenerateDialog
 from ..scene.player import Player
 from ..state import edits
 from ..state.viewer import ViewerState
+from . import encoding_files
 
 #: seconds the solver and the generator may take from the window
 SOLVE_SECONDS, GENERATE_SECONDS = 300.0, 120.0
@@ -47,6 +64,7 @@ SOLVE_METHODS = {"asp": "&Minimal makespan (with the encoding chosen)",
 JOB_ACTIONS: Table = {
     "generate": ("&Generate (fill this layout)…", ("Ctrl+Shift+G",)),
     "solve": ("&Solve", ("F9",)),
+    "solve_file": ("Solve with encoding &file…", ("Shift+F9",)),
     "check": ("&Check with the ASP checker", ("F7",)),
     "cancel": ("C&ancel", ("Ctrl+.",)),
 }
@@ -137,9 +155,11 @@ class JobRunner(QObject):
         self.bar.cancel.clicked.connect(self.cancel)
         window.statusBar().addPermanentWidget(self.bar)
         self.commands = make_actions(window, JOB_ACTIONS, {"generate": self.ask_generate, "solve": self.solve,
+                                                           "solve_file": self.ask_solve_file,
                                                            "check": self.check, "cancel": self.cancel})
         self.encodings = QActionGroup(self)
         self.encoding_menu: QMenu | None = None
+        self.recent_menu: QMenu | None = None
         self.methods = QActionGroup(self)
         for method, text in SOLVE_METHODS.items():
             action = self.methods.addAction(text)
@@ -159,6 +179,11 @@ class JobRunner(QObject):
         methods.aboutToShow.connect(self._show_method)
         self.encoding_menu = menu.addMenu("Solve &with encoding")
         self.encoding_menu.aboutToShow.connect(self._fill_encodings)
+        menu.addAction(self.commands["solve_file"])
+        recent = QMenu("&Recent encoding files", menu)
+        recent.aboutToShow.connect(self.fill_recent_encodings)
+        menu.addMenu(recent)
+        self.recent_menu = recent
         menu.addAction(self.commands["check"])
         menu.addSeparator()
         menu.addAction(self.commands["cancel"])
@@ -166,7 +191,7 @@ class JobRunner(QObject):
     def update_actions(self) -> None:
         idle = self.job is None
         shown = self.state.document.scenario is not None and not self.state.session.running
-        for name in ("generate", "solve", "check"):
+        for name in ("generate", "solve", "solve_file", "check"):
             self.commands[name].setEnabled(idle and shown)
         self.commands["cancel"].setEnabled(not idle)
 
@@ -181,6 +206,29 @@ class JobRunner(QObject):
             action.setChecked(name == chosen)
             self.encodings.addAction(action)
             action.triggered.connect(lambda _checked=False, n=name: self.settings.setValue("tools/encoding", n))
+
+    def fill_recent_encodings(self) -> None:
+        """Run > Recent encoding files: the sets used lately, newest first; a set whose files
+        are gone is listed disabled, marked missing."""
+        menu = self.recent_menu
+        if menu is None:
+            return
+        menu.clear()
+        usable = self.commands["solve_file"].isEnabled()
+        for entry in encoding_files.recent_encodings(self.settings):
+            gone = encoding_files.missing(entry)
+            action = QAction(encoding_files.entry_text(entry) + ("  (missing)" if gone else ""), menu)
+            action.setToolTip("\n".join(entry) + ("\nmissing: " + ", ".join(gone) if gone else ""))
+            action.setEnabled(usable and not gone)
+            action.triggered.connect(lambda _checked=False, files=entry: self._solve_again(files))
+            menu.addAction(action)
+        if not menu.actions():
+            none = QAction("(none yet)", menu)
+            none.setEnabled(False)
+            menu.addAction(none)
+
+    def _solve_again(self, files: list[str]) -> None:
+        self.solve_files(files)
 
     @property
     def method(self) -> str:
@@ -327,26 +375,81 @@ class JobRunner(QObject):
 
         return self.start("Solve", work, done, better if anytime else None)
 
-    def _solved(self, job: Job, outcome, scenario, domain: str) -> None:
-        """Load and play the plan found in ``scenario`` (if still shown), or say why there is none."""
+    def ask_solve_file(self) -> None:
+        """Run > Solve with encoding file…: choose the files of an encoding and solve with them."""
+        if self.job is not None or self.state.document.scenario is None:
+            return
+        paths = encoding_files.ask_encoding_files(self.window, self.settings)
+        if paths:
+            self.solve_files(paths)
+
+    def solve_files(self, paths: Sequence[str], time_limit: float | None = None) -> Job | None:
+        """Find a plan of minimal makespan for the instance shown with a user's own encoding made
+        of ``paths`` (loaded in this order; remembered among the recent encodings) and show it:
+        a valid plan plays, a plan that breaks the rules is shown with the checker's violations.
+        Time limit: :data:`SOLVE_SECONDS`."""
+        document = self.state.document
+        if self.job is not None or document.scenario is None:
+            return None
+        paths = [str(path) for path in paths]
+        encoding_files.remember_encoding(self.settings, paths)
+        scenario, instance, domain = document.scenario, copy.deepcopy(document.instance), document.domain
+        time_limit = SOLVE_SECONDS if time_limit is None else time_limit
+        names = encoding_files.entry_text(paths)
+
+        def work(job: Job):
+            from asprilo.encodings import solve
+            from asprilo.encodings.own import own_encoding
+
+            encoding = own_encoding(paths)  # bad files: InputError, said in the error dialog
+            said = f"{names}, {encoding.summary}"
+            assumed = "".join(f"; assumed: {note}" for note in encoding.assumed)
+            job.progress.emit(f"{said}{assumed}…")
+            outcome = solve(instance, domain, encoding=encoding, time_limit=time_limit, isolate=True,
+                            cancel=job.cancel,
+                            on_progress=lambda attempt: job.progress.emit(f"{said} — {tried(attempt)}"),
+                            on_phase=lambda phase: job.progress.emit(f"{said} — {doing(phase)}"))
+            return encoding, outcome
+
+        def done(job: Job, result) -> None:
+            encoding, outcome = result
+            self._solved(job, outcome, scenario, domain.label, encoding)
+
+        return self.start("Solve", work, done)
+
+    def _solved(self, job: Job, outcome, scenario, domain: str, own=None) -> None:
+        """Load and play the plan found in ``scenario`` (if still shown), show a plan that breaks
+        the rules with the checker's violations, or say why there is none.  ``own``: the user's
+        own encoding that solved (an :class:`~asprilo.encodings.Encoding`)."""
         document = self.state.document
         self.last_outcome = outcome
         if document.scenario is not scenario:
             self.state.say("Solve: another instance is open now; the plan found is dropped", 10000)
             return
-        if not outcome.found:
+        invalid = outcome.status.value == "invalid" and outcome.plan is not None and outcome.check is not None
+        if not outcome.found and not invalid:
             document.drop_draft()
             if outcome.status.value == "cancelled":
                 self.state.say("Solve cancelled")
+                return
+            if own is not None:
+                self.state.report_error(no_plan(outcome, own))
                 return
             why = f" ({outcome.message})" if outcome.message else ""
             hint = (" For a plan fast (not proven minimal), choose Run > Solve method > Anytime."
                     if outcome.status.value == "limit" and outcome.method == "asp" else "")
             self.state.report_error(f"No plan: {outcome.status.value}{why}.{hint}")
             return
-        document.replace_plan(outcome.plan, f"solve ({outcome.encoding}, makespan {outcome.horizon})", time=0.0,
-                              sources=[])
-        self.state.say(found(outcome, job, domain), 10000)
+        verdict = "" if outcome.found else ", invalid"
+        document.replace_plan(outcome.plan, f"solve ({outcome.encoding}, makespan {outcome.horizon}{verdict})",
+                              time=0.0, sources=[])
+        if invalid:  # the checker's violations, the first one's step shown
+            violations = list(outcome.check.errors)
+            self.state.show_checker_report(violations)
+            self.state.say(broken(outcome, job, domain, own), 20000)
+            self.state.seek(min((violation.step for violation in violations), default=0))
+            return
+        self.state.say(found(outcome, job, domain, own), 10000)
         self.player.play()
 
     # --- check ----------------------------------------------------------------------------------
@@ -393,12 +496,12 @@ def tried(attempt) -> str:
     return f"horizon {attempt.horizon}: {attempt.result} ({attempt.seconds:.1f} s)"
 
 
-def found(outcome, job: Job, domain: str) -> str:
-    """What the status bar says of the plan a solve found."""
+def found(outcome, job: Job, domain: str, own=None) -> str:
+    """What the status bar says of the plan a solve found (``own``: with the user's encoding)."""
     minimal = "minimal " if outcome.minimal else ""
     if outcome.method != "anytime":
         return (f"plan found in {job.seconds:.1f} s: {minimal}makespan {outcome.horizon}, "
-                f"{len(outcome.plan)} actions ({domain}, {outcome.encoding})")
+                f"{len(outcome.plan)} actions ({domain}, {encoding_words(outcome, own)})")
     head = f"Solve stopped after {job.seconds:.1f} s, best plan" if job.cancel.is_set() else \
         f"plan found in {job.seconds:.1f} s"
     gap = outcome.history[-1]["gap"] if outcome.history else None
@@ -406,6 +509,35 @@ def found(outcome, job: Job, domain: str) -> str:
     plans = len(outcome.history)
     return (f"{head}: {minimal}makespan {outcome.horizon}{above}, {len(outcome.plan)} actions, "
             f"{plans} plan{'s' if plans != 1 else ''} reported ({domain}, anytime)")
+
+
+def encoding_words(outcome, own=None) -> str:
+    """The encoding that solved: its name, and for a user's own its style in words."""
+    return outcome.encoding if own is None else f"{outcome.encoding}: {own.summary}"
+
+
+def broken(outcome, job: Job, domain: str, own=None) -> str:
+    """What the status bar says of a plan that breaks the rules (its violations are listed)."""
+    count = len(outcome.check.errors)
+    return (f"the plan found in {job.seconds:.1f} s breaks {count} rule{'s' if count != 1 else ''}: makespan "
+            f"{outcome.horizon}, {len(outcome.plan)} actions ({domain}, {encoding_words(outcome, own)}); "
+            f"the checker's violations are in the Violations panel")
+
+
+def no_plan(outcome, own) -> str:
+    """What the error dialog says when the user's encoding gave no plan: why, in words."""
+    names = encoding_files.entry_text([str(path) for path in own.files])
+    why = {"none": "no plan exists", "limit": "no plan within the time limit",
+           "invalid": "no plan"}.get(outcome.status.value, outcome.status.value)
+    text = f"{names}: {why}" + (f": {outcome.message}" if outcome.message else "")
+    refuted = outcome.refuted
+    if refuted and outcome.status.value == "limit":
+        several = len(refuted) > 1
+        horizons = f"{refuted[0]}–{refuted[-1]}" if refuted == list(range(refuted[0], refuted[-1] + 1)) and several \
+            else ", ".join(map(str, refuted))
+        text += (f" (refuted horizon{'s' if several else ''} {horizons}: "
+                 f"no plan is shorter than {outcome.proven_bound:g})")
+    return text
 
 
 def explain(timeline, atom: str) -> Violation:
