@@ -133,6 +133,15 @@ def included_text(path: Path, seen: set[Path] | None = None) -> str | None:
     return _INCLUDE.sub(insert, text)
 
 
+def _one_line(message: str) -> str:
+    """clingo's message on one line: an unsafe rule's lines, and which variable is unsafe,
+    joined (at most 300 characters)."""
+    parts = [line.strip() for line in message.splitlines() if line.strip()]
+    parts = [re.sub(r"^\S*:\d+:\d+(?:-\d+(?::\d+)?)?: note: ", "", part) for part in parts]
+    text = " ".join(parts)
+    return text if len(text) <= 300 else text[:297] + "..."
+
+
 class Solver:
     """A clingo ``Control`` with a theory (``"clingcon"``, ``"dl"`` or none) and statistics.
 
@@ -167,7 +176,7 @@ class Solver:
         if not match:
             return InputError(text.splitlines()[0], default_name)
         name = default_name if match.group(1) in ("<string>", "<block>") else match.group(1)
-        return InputError(match.group(3).splitlines()[0], name, int(match.group(2)))
+        return InputError(_one_line(match.group(3)), name, int(match.group(2)))
 
     # --- programs ------------------------------------------------------------------------
 

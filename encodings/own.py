@@ -181,17 +181,17 @@ def _program_files(files: list[Path]) -> list[Path]:
     """The files and, after each, those it includes (``#include "file".``, relative to it),
     each once."""
     seen: list[Path] = []
-    stack = list(reversed(files))
+    stack: list[tuple[Path, Path | None]] = [(file, None) for file in reversed(files)]
     while stack:
-        file = stack.pop().resolve()
+        file, includer = stack.pop()
+        file = file.resolve()
         if file in seen:
             continue
         if not file.is_file():
-            raise InputError("#include of a missing file", str(seen[-1]) if seen else str(file))
+            raise InputError(f"#include of a missing file {str(file)!r}", str(includer or file))
         seen.append(file)
         text = _uncommented(_text(file))
-        included = [file.parent / name for name in _INCLUDED.findall(text)]
-        stack.extend(reversed(included))
+        stack.extend((file.parent / name, file) for name in reversed(_INCLUDED.findall(text)))
     return seen
 
 
