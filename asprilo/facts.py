@@ -4,8 +4,9 @@
     assign(robot(R),shelf(S)).  assign(robot(R),destination(D)).  labelled goals (M, Md)
     occurs(object(robot,R),action(Name,Args),T).                 a plan
 
-How they are written, recognised in plain text without clingo (the fast path of the
-reader), and taken apart once clingo has grounded them; terms as Python values.
+How they are written, read from text (:func:`scan_facts`: plain facts by a regular
+expression, the fast path, everything else by :mod:`asprilo.parse`), and taken apart as
+terms or as clingo symbols; terms as Python values.
 """
 
 from __future__ import annotations
@@ -18,8 +19,10 @@ import clingo
 from clingo import SymbolType
 
 from .errors import InputError
+from .limits import Limits
 from .model import Action, Instance
 from .objects import KINDS
+from .parse import Constant, Fn, Reader, python_value, shown, text_of
 
 INIT_SHAPE = "init(object(Type,Id),value(Attribute,Value))"
 ASSIGN_SHAPE = "assign(robot(R),shelf(S)) or assign(robot(R),destination(D))"
@@ -33,19 +36,57 @@ def value_of(symbol: clingo.Symbol) -> Any:
     kind = symbol.type
     if kind == SymbolType.Number:
         return symbol.number
-    if kind == SymbolType.Function and symbol.name == "":
-        return tuple(value_of(argument) for argument in symbol.arguments)
+    if kind == SymbolType.Function and symbol.name == "" and symbol.positive:
+        return _tuple_value(symbol)
     if kind == SymbolType.Function and not symbol.arguments and not symbol.negative:
         return symbol.name
     return str(symbol)
 
 
+def _tuple_value(symbol: clingo.Symbol) -> tuple:
+    """A tuple symbol as a Python tuple, nested tuples without recursion (terms may nest
+    as deeply as the ``depth`` limit allows)."""
+    stack: list[tuple[list[clingo.Symbol], list[Any]]] = [(symbol.arguments, [])]
+    while True:
+        arguments, done = stack[-1]
+        if len(done) < len(arguments):
+            child = arguments[len(done)]
+            if child.type == SymbolType.Function and child.name == "" and child.positive and child.arguments:
+                stack.append((child.arguments, []))
+            else:
+                done.append(value_of(child))
+            continue
+        stack.pop()
+        value = tuple(done)
+        if not stack:
+            return value
+        stack[-1][1].append(value)
+
+
 def format_value(value: Any) -> str:
     """A Python value (as :func:`value_of` makes them) as an ASP term."""
-    if isinstance(value, tuple):
-        inner = ",".join(format_value(item) for item in value)
-        return f"({inner},)" if len(value) == 1 else f"({inner})"
-    return str(value)
+    if not isinstance(value, tuple):
+        return str(value)
+    out: list[str] = []
+    stack: list[Any] = [value]
+    while stack:
+        item = stack.pop()
+        if type(item) is _Text:
+            out.append(item)
+        elif isinstance(item, tuple):
+            stack.append(_Text(",)" if len(item) == 1 else ")"))
+            for index in range(len(item) - 1, -1, -1):
+                stack.append(item[index])
+                if index:
+                    stack.append(_Text(","))
+            out.append("(")
+        else:
+            out.append(str(item))
+    return "".join(out)
+
+
+class _Text(str):
+    """A piece of punctuation on :func:`format_value`'s stack (not a value)."""
 
 
 # --- writing -----------------------------------------------------------------------------
@@ -117,56 +158,162 @@ def instance_facts(instance: Instance) -> list[str]:
     return [fact for _title, facts in fact_groups(instance) for fact in facts]
 
 
-# --- recognising plain facts in text -----------------------------------------------------
+# --- reading facts from text ----------------------------------------------------------------
 
-# numbers of up to nine digits (longer ones go through clingo, which has 32 bits), ASCII names
-_INT = r"(-?\d{1,9})"
+# Plain facts, recognised by a regular expression (the fast path): blanks as clingo's
+# (space, tab, line ends), identifiers as clingo's (not the keyword 'not'), numbers of up
+# to nine digits without leading zeros (others go through the parser, which checks their
+# range), an action's arguments as a tuple of no or at least two numbers ('(5)' is 5, not
+# a tuple: the parser reads it).
+_B = r"[ \t\r\n]*+"
+_ID = r"((?!not(?![A-Za-z0-9_']))[_']*+[a-z][A-Za-z0-9_']*+)"
+_NUM = r"-?(?:0|[1-9][0-9]{0,8})"
+_INT = "(" + _NUM + ")"
 _INIT = re.compile(
-    r"init\(\s*object\(\s*(\w+)\s*,\s*" + _INT + r"\s*\)\s*,\s*value\(\s*(\w+)\s*,\s*"
-    r"(?:\(\s*" + _INT + r"\s*,\s*" + _INT + r"\s*\)|" + _INT + r")\s*\)\s*\)\s*\.", re.ASCII)
+    rf"init\({_B}object\({_B}{_ID}{_B},{_B}{_INT}{_B}\){_B},{_B}value\({_B}{_ID}{_B},{_B}"
+    rf"(?:\({_B}{_INT}{_B},{_B}{_INT}{_B}\)|{_INT}){_B}\){_B}\){_B}\.")
 _OCCURS = re.compile(
-    r"occurs\(\s*object\(\s*(\w+)\s*,\s*" + _INT + r"\s*\)\s*,\s*action\(\s*(\w+)\s*,\s*"
-    r"\(\s*((?:-?\d{1,9}\s*(?:,\s*-?\d{1,9}\s*)*)?)\)\s*\)\s*,\s*" + _INT + r"\s*\)\s*\.", re.ASCII)
-_SKIP = re.compile(r"(?:\s+|%(?!\*)[^\n]*|#program\s+base\s*\.)+")
+    rf"occurs\({_B}object\({_B}{_ID}{_B},{_B}{_INT}{_B}\){_B},{_B}action\({_B}{_ID}{_B},{_B}"
+    rf"\({_B}((?:{_NUM}{_B},{_B}{_NUM}{_B}(?:,{_B}{_NUM}{_B})*)?)\){_B}\){_B},{_B}{_INT}{_B}\){_B}\.")
+_SKIP = re.compile(r"(?:[ \t\r\n]++|%(?!\*)[^\r\n]*+|#program[ \t\r\n]++base[ \t\r\n]*+\.)++")
+#: the deepest nesting of a plain fact: init(value(at,(X,Y)))
+_PLAIN_DEPTH = 3
+
+
+#: either plain fact: init's groups 1-6, occurs' 7-11
+_PLAIN = re.compile(f"{_INIT.pattern}|{_OCCURS.pattern}")
 
 
 def _init_args(match: re.Match) -> tuple[str, int, str, tuple[int, int] | int]:
-    kind, ident, attribute, x, y, single = match.groups()
+    kind, ident, attribute, x, y, single = match.groups()[:6]
     return (kind, int(ident), attribute, (int(x), int(y)) if single is None else int(single))
 
 
 def _occurs_args(match: re.Match) -> tuple:
-    kind, ident, name, args, step = match.groups()
+    kind, ident, name, args, step = match.groups()[-5:]
     values = tuple(map(int, args.split(","))) if args.strip() else ()
     return (kind, int(ident), name, values, int(step))
 
 
-def scan_facts(text: str, most: int | None = None) -> list[tuple[str, tuple, int]] | None:
-    """Read text made only of plain ``init/2`` / ``occurs/3`` facts, comments and
-    ``#program base.`` without clingo: ``(name, arguments, offset)`` for each fact, where
-    ``init`` has ``(Type, Id, Attribute, Value)`` and ``occurs`` has ``(Type, Id, Name, Args,
-    T)``; ``None`` when the text holds anything else.  Scanning stops after ``most + 1``
-    facts (the caller refuses that many)."""
-    facts: list[tuple[str, tuple, int]] = []
-    position, end = 0, len(text)
-    skip, init, occurs = _SKIP.match, _INIT.match, _OCCURS.match
+def scan_facts(text: str, name: str, limits: Limits, constants: dict[str, Constant] | None = None,
+               names: set[str] | None = None, room: int | None = None, fast: bool = True
+               ) -> list[tuple[str, Any, int]]:
+    """The facts of a text (after :func:`asprilo.parse.resolve_constants` found the
+    constants of everything read with it): ``(kind, arguments, offset)`` each, where an
+    ``init/2`` fact of the instance shape is ``("init", (Type, Id, Attribute, Value))``, an
+    ``occurs/3`` fact of the plan shape ``("occurs", (Type, Id, Name, Args, T))`` (both
+    with Python values) and any other fact ``("atom", Fn)`` -- kept only
+    when ``names`` is ``None`` or holds its name.  Refuses more than ``room`` facts (and
+    #const) and everything :class:`asprilo.parse.Reader` refuses.  ``fast=False`` reads every
+    fact with the parser (a test compares both ways)."""
+    reader = Reader(text, name, limits, constants)
+    facts: list[tuple[str, Any, int]] = []
+    count, end, position = 0, len(text), 0
+    skip, plain = _SKIP.match, _PLAIN.match if fast and limits.depth >= _PLAIN_DEPTH else None
+    clash, most = set(constants or ()), limits.fact_chars
+    room = limits.facts if room is None else room
     while True:
         gap = skip(text, position)
         if gap:
             position = gap.end()
         if position >= end:
             return facts
-        match = init(text, position)
+        count += 1
+        if count > room:
+            raise limits.exceeded("facts", f"more than {limits.facts:,} facts").at(name)
+        match = plain(text, position) if plain else None
         if match:
-            facts.append(("init", _init_args(match), position))
-        else:
-            match = occurs(text, position)
-            if not match:
-                return None
-            facts.append(("occurs", _occurs_args(match), position))
-        position = match.end()
-        if most is not None and len(facts) > most:
+            after = match.end()
+            if after - position <= most and (not clash or clash.isdisjoint(match.group(1, 3, 7, 9))):
+                facts.append(("init", _init_args(match), position) if match.lastindex < 7 else  # type: ignore[operator]
+                             ("occurs", _occurs_args(match), position))
+                position = after
+                continue
+        position, count = _statement(reader, position, facts, names, count)
+        if position < 0:
             return facts
+
+
+def _statement(reader: Reader, position: int, facts: list, names: set[str] | None, count: int) -> tuple[int, int]:
+    """Read the statement at ``position`` with the parser (not the fast path); ``(end,
+    count)``, the end ``-1`` when no statement is left."""
+    statement = reader.statement(position)
+    if statement is None:
+        return -1, count
+    kind, atom, start, position = statement
+    if atom is None:
+        return position, count - (kind == "program")
+    form = _form(atom)
+    if form is not None:
+        facts.append((form[0], form[1], start))
+    elif names is None or atom.name in names:
+        facts.append(("atom", atom, start))
+    return position, count
+
+
+def _form(atom: Fn) -> tuple[str, tuple] | None:
+    """An ``init/2`` or ``occurs/3`` atom of the right shape in the fast path's form."""
+    if atom.negative or atom.name not in ("init", "occurs"):
+        return None
+    args = atom.args
+    if atom.name == "init" and len(args) == 2 and _is(args[0], "object", 2) and _is(args[1], "value", 2):
+        (kind, ident), (attribute, value) = args[0].args, args[1].args
+        return "init", (python_value(kind), python_value(ident), python_value(attribute), python_value(value))
+    if atom.name == "occurs" and len(args) == 3 and _is(args[0], "object", 2) and _is(args[1], "action", 2) \
+            and type(args[2]) is int:
+        (kind, ident), (name, action_args) = args[0].args, args[1].args
+        return "occurs", (str(python_value(kind)), python_value(ident), str(python_value(name)),
+                          python_value(action_args), args[2])
+    return None
+
+
+def _is(term: Any, name: str, arity: int) -> bool:
+    return type(term) is Fn and term.name == name and len(term.args) == arity and not term.negative
+
+
+def fact_text(kind: str, args: Any) -> str:
+    """A fact as :func:`scan_facts` gives it, written as clingo writes its atom."""
+    if kind == "init":
+        return init_fact(*args)[:-1]
+    if kind == "occurs":
+        return format_action(Action(args[4], args[1], args[2], args[3], args[0]))
+    return text_of(args)
+
+
+def fact_atom(kind: str, args: Any) -> Fn:
+    """A fact as :func:`scan_facts` gives it, as an atom (the fast path's values are
+    numbers, names and tuples of numbers)."""
+    if kind == "init":
+        kind_name, ident, attribute, value = args
+        return Fn("init", (Fn("object", (Fn(kind_name), ident)), Fn("value", (Fn(attribute), _term(value)))))
+    if kind == "occurs":
+        kind_name, ident, name, action_args, step = args
+        return Fn("occurs", (Fn("object", (Fn(kind_name), ident)), Fn("action", (Fn(name), _term(action_args))),
+                             step))
+    return args
+
+
+def _term(value: int | tuple) -> int | Fn:
+    return Fn("", value) if isinstance(value, tuple) else value
+
+
+def assign_args(atom: Fn) -> tuple[int, str, int]:
+    """``(R, shelf|destination, Id)`` of an ``assign/2`` atom as read (:class:`InputError`
+    if it has another shape)."""
+    robot, goal = atom.args
+    if not (_is(robot, "robot", 1) and (_is(goal, "shelf", 1) or _is(goal, "destination", 1))
+            and type(robot.args[0]) is int and type(goal.args[0]) is int):
+        raise InputError(f"expected {ASSIGN_SHAPE}, got {shown(text_of(atom))}")
+    return robot.args[0], goal.name, goal.args[0]
+
+
+def shape_error(atom: Fn) -> InputError:
+    """Why an ``init/2`` or ``occurs/3`` atom as read has not the shape of its kind."""
+    if atom.name == "init":
+        return InputError(f"expected {INIT_SHAPE}, got {shown(text_of(atom))}")
+    if _is(atom.args[0], "object", 2) and _is(atom.args[1], "action", 2):
+        return InputError(f"the time step of {shown(text_of(atom))} must be an integer")
+    return InputError(f"expected {OCCURS_SHAPE}, got {shown(text_of(atom))}")
 
 
 # --- taking grounded atoms apart ---------------------------------------------------------
@@ -179,7 +326,7 @@ def init_terms(atom: clingo.Symbol) -> tuple[Any, Any, Any, Any]:
         return _init_args(match)
     obj, val = atom.arguments
     if not (obj.match("object", 2) and val.match("value", 2)):
-        raise InputError(f"expected {INIT_SHAPE}, got {atom}")
+        raise InputError(f"expected {INIT_SHAPE}, got {shown(str(atom))}")
     (kind, ident), (attribute, value) = obj.arguments, val.arguments
     return value_of(kind), value_of(ident), value_of(attribute), value_of(value)
 
@@ -190,7 +337,7 @@ def assign_terms(atom: clingo.Symbol) -> tuple[int, str, int]:
     robot, goal = atom.arguments
     if not (robot.match("robot", 1) and (goal.match("shelf", 1) or goal.match("destination", 1))
             and all(term.arguments[0].type == SymbolType.Number for term in (robot, goal))):
-        raise InputError(f"expected {ASSIGN_SHAPE}, got {atom}")
+        raise InputError(f"expected {ASSIGN_SHAPE}, got {shown(str(atom))}")
     return robot.arguments[0].number, goal.name, goal.arguments[0].number
 
 
@@ -202,8 +349,8 @@ def action_of(atom: clingo.Symbol) -> Action:
         return Action(step, robot, name, args, kind)
     obj, action, step = atom.arguments
     if not (obj.match("object", 2) and action.match("action", 2)):
-        raise InputError(f"expected {OCCURS_SHAPE}, got {atom}")
+        raise InputError(f"expected {OCCURS_SHAPE}, got {shown(str(atom))}")
     if step.type != SymbolType.Number:
-        raise InputError(f"the time step of {atom} must be an integer")
+        raise InputError(f"the time step of {shown(str(atom))} must be an integer")
     return Action(step=step.number, robot=value_of(obj.arguments[1]), name=str(value_of(action.arguments[0])),
                   args=value_of(action.arguments[1]), kind=str(value_of(obj.arguments[0])))

@@ -26,6 +26,8 @@ class Limits:
     facts: int = 2_000_000  # facts of an instance (grid nodes counted) or a plan, cells of a map
     robot_steps: int = 2_000_000  # a plan's horizon times the robots of its instance; also the largest |T|
     depth: int = 100  # nesting of terms: f(g(h(1))) has depth 3
+    string_chars: int = 100_000  # characters of one string (as written, between its quotes)
+    fact_chars: int = 1_000_000  # characters of one fact or #const, constants written out
     file_mb: int = 256  # megabytes of one file or message
     rule_seconds: float = 10.0  # grounding time with --allow-rules
     rule_mb: int = 2048  # grounding memory (megabytes) with --allow-rules
@@ -48,7 +50,7 @@ class Limits:
 
 #: the limits ``--limit`` can change, with their types
 NAMES = {field.name: field.type for field in fields(Limits) if field.name != "allow_rules"}
-_CEILINGS = {"depth": 500}  # deeper terms would exhaust Python's own recursion
+_CEILINGS = {"depth": 500}  # clingo recurses into terms (printing, grounding)
 
 
 def parse_option(text: str) -> tuple[str, int | float]:

@@ -1,5 +1,5 @@
-"""Read instances and plans (SPEC.md §2-3) from files, strings or stdin, through clingo
-(the shapes of the facts are :mod:`asprilo.facts`')."""
+"""Read instances and plans (SPEC.md §2-3) from files, strings or stdin: parsed into terms
+(:mod:`asprilo.parse`, no clingo), taken apart by the shapes of :mod:`asprilo.facts`."""
 
 from __future__ import annotations
 
@@ -11,10 +11,21 @@ from typing import Any
 import clingo
 
 from .errors import InputError, InputWarning
-from .facts import action_of, assign_terms, format_action, format_value, init_fact, init_terms, value_of
+from .facts import (
+    action_of,
+    assign_args,
+    assign_terms,
+    format_action,
+    format_value,
+    init_fact,
+    init_terms,
+    shape_error,
+    value_of,
+)
 from .limits import Limits, current, require_plan_fits
 from .model import Action, Destination, Instance, Order, Plan, Product, Robot, Shelf
 from .objects import KINDS, ObjectKind, placed_kinds
+from .parse import Fn, shown, text_of
 from .sources import ScannedFact, Source, SourceLike, as_sources, line_of, load_facts, locate
 
 #: value_of is the tools' way to read single terms
@@ -30,14 +41,14 @@ def read_instance(inputs: SourceLike | Iterable[SourceLike], limits: Limits | No
     """
     limits = limits or current()
     sources = as_sources(inputs, limits)
-    return _build_instance(sources, *load_facts(sources, limits), limits=limits)
+    return _build_instance(sources, load_facts(sources, limits, _INSTANCE_NAMES), [], limits)
 
 
 def read_plan(inputs: SourceLike | Iterable[SourceLike], limits: Limits | None = None) -> Plan:
     """Read a plan from plan files or clingo's printed output; other atoms are ignored."""
     limits = limits or current()
     sources = as_sources(inputs, limits)
-    return _build_plan(sources, *load_facts(sources, limits), limits=limits)
+    return _build_plan(sources, load_facts(sources, limits, _PLAN_NAMES), [], limits)
 
 
 def read_instance_and_plan(instance: SourceLike | Iterable[SourceLike], plan: SourceLike | Iterable[SourceLike],
@@ -56,6 +67,15 @@ def read_instance_and_plan(instance: SourceLike | Iterable[SourceLike], plan: So
 
 
 # --- instances ---------------------------------------------------------------------------
+
+#: the atoms an instance and a plan are read from (others are ignored), with their arities
+_INSTANCE_NAMES, _PLAN_NAMES = {"init", "assign"}, {"occurs"}
+_ARITY = {"init": 2, "assign": 2, "occurs": 3}
+
+
+def _wrong_arity(name: str, arity: int) -> str:
+    return f"{name}/{arity} ({name} has {_ARITY[name]} arguments)"
+
 
 class _InstanceBuilder:
     """Collects ``init/2`` facts, rejecting unknown shapes and conflicting duplicates.
@@ -82,24 +102,23 @@ class _InstanceBuilder:
         """Record a value that may be stated once only (a duplicate must be identical)."""
         first = self.seen.get(key)
         if first is not None and first[0] != value:
-            raise self.fail(f"{what}: {format_value(first[0])} and {format_value(value)}", origin)
+            raise self.fail(f"{what}: {_shown(first[0])} and {_shown(value)}", origin)
         self.seen[key] = (value, origin)
 
     def add(self, kind: Any, ident: Any, attribute: Any, value: Any, origin: Any) -> None:
         known = KINDS.get(kind)
         if known is None or attribute not in known.attributes:
-            what = f"object type '{format_value(kind)}'" if known is None else \
-                f"attribute '{format_value(attribute)}' of {kind}"
+            what = f"object type '{_shown(kind)}'" if known is None else f"attribute '{_shown(attribute)}' of {kind}"
             self.unknown.setdefault(what, origin)
             self.instance.other_facts.append(
                 init_fact(format_value(kind), format_value(ident), format_value(attribute), value))
             return
         expected = known.attributes[attribute]
         if not isinstance(ident, int):
-            raise self.fail(f"{kind} id must be an integer, got {format_value(ident)}", origin)
+            raise self.fail(f"{kind} id must be an integer, got {_shown(ident)}", origin)
         if not expected.shape(value):
             raise self.fail(f"{kind} {ident}: value of '{attribute}' must be {expected.description}, "
-                            f"got {format_value(value)}", origin)
+                            f"got {_shown(value)}", origin)
         if known.placed:
             self._placed(known, ident, value, origin)
         else:
@@ -124,6 +143,28 @@ class _InstanceBuilder:
             message = str(InputError(f"ignored (and kept when written): {names}", file, line))
             warnings.warn(InputWarning(message), stacklevel=4)
 
+    def add_atom(self, atom: Fn, origin: Any) -> None:
+        """An ``init`` or ``assign`` atom as read that is no plain instance fact: a wrong shape
+        is refused, a wrong arity ignored with a warning (the atom kept when written)."""
+        if atom.negative:
+            return  # -init(..) is another atom, as in clingo
+        if len(atom.args) != _ARITY[atom.name]:
+            self.unknown.setdefault(_wrong_arity(atom.name, len(atom.args)), origin)
+            self.instance.other_facts.append(text_of(atom) + ".")
+            return
+        if atom.name == "init":
+            raise shape_error(atom).at(*_where(origin, self.sources))
+        try:
+            ident, kind, goal = assign_args(atom)
+        except InputError as error:
+            raise error.at(*_where(origin, self.sources)) from None
+        self._assign(ident, kind, goal, origin)
+
+    def add_other_symbol(self, atom: clingo.Symbol) -> None:
+        """An ``init`` or ``assign`` atom (a clingo symbol) of another arity."""
+        self.unknown.setdefault(_wrong_arity(atom.name, len(atom.arguments)), atom)
+        self.instance.other_facts.append(f"{atom}.")
+
     def add_symbol(self, atom: clingo.Symbol) -> None:
         """Add an ``init/2`` atom of any shape (the slow path for unusual terms)."""
         try:
@@ -138,7 +179,10 @@ class _InstanceBuilder:
             ident, kind, goal = assign_terms(atom)
         except InputError as error:
             raise error.at(*_where(atom, self.sources)) from None
-        self.single(("assign", ident), f"{kind}({goal})", atom, f"robot {ident} is assigned two goals")
+        self._assign(ident, kind, goal, atom)
+
+    def _assign(self, ident: int, kind: str, goal: int, origin: Any) -> None:
+        self.single(("assign", ident), f"{kind}({goal})", origin, f"robot {ident} is assigned two goals")
         self.goals[ident] = (kind, goal)
 
     # the placed kinds, and one method for each other kind -----------------------------------
@@ -239,25 +283,33 @@ def _where(origin: Any, sources: Sequence[Source]) -> tuple[str | None, int | No
     return line_of(*origin)
 
 
+def _shown(value: Any) -> str:
+    """A value as read, fit for a message (shortened, no control character raw)."""
+    return shown(format_value(value), 60)
+
+
 def _no_facts(what: str, sources: Sequence[Source]) -> InputError:
     names = ", ".join(source.name for source in sources) or None
     return InputError(f"no {what} found", names)
 
 
-def _build_instance(sources: Sequence[Source], facts: list[ScannedFact] | None, atoms: list[clingo.Symbol],
+def _build_instance(sources: Sequence[Source], facts: list[ScannedFact], atoms: list[clingo.Symbol],
                     limits: Limits | None = None) -> Instance:
     builder = _InstanceBuilder(sources, limits or current())
-    if facts is not None:
-        for name, args, origin in facts:
-            if name == "init":
-                kind, ident, attribute, value = args
-                builder.add(kind, ident, attribute, value, origin)
-    else:
-        for atom in atoms:
-            if atom.match("init", 2):
-                builder.add_symbol(atom)
-            elif atom.match("assign", 2):
-                builder.assign(atom)
+    add = builder.add
+    for kind, args, origin in facts:
+        if kind == "init":
+            kind, ident, attribute, value = args
+            add(kind, ident, attribute, value, origin)
+        elif kind == "atom" and args.name in _INSTANCE_NAMES:
+            builder.add_atom(args, origin)
+    for atom in atoms:
+        if atom.match("init", 2):
+            builder.add_symbol(atom)
+        elif atom.match("assign", 2):
+            builder.assign(atom)
+        elif atom.type == clingo.SymbolType.Function and atom.positive and atom.name in _INSTANCE_NAMES:
+            builder.add_other_symbol(atom)
     if not builder.seen:
         raise _no_facts("instance facts (expected init(object(..),value(..)) facts)", sources)
     instance = builder.finish()
@@ -268,7 +320,7 @@ def _build_instance(sources: Sequence[Source], facts: list[ScannedFact] | None, 
 def instance_from_atoms(atoms: Iterable[clingo.Symbol], sources: Sequence[Source] = (),
                         limits: Limits | None = None) -> Instance:
     """Build an :class:`Instance` from ground ``init/2`` and ``assign/2`` atoms; others are ignored."""
-    return _build_instance(sources, None, list(atoms), limits)
+    return _build_instance(sources, [], list(atoms), limits)
 
 
 # --- plans -------------------------------------------------------------------------------
@@ -280,32 +332,47 @@ def _action_of(atom: clingo.Symbol, sources: Sequence[Source]) -> Action:
         raise error.at(*locate(sources, atom)) from None
 
 
-def _build_plan(sources: Sequence[Source], facts: list[ScannedFact] | None, atoms: list[clingo.Symbol],
+def _build_plan(sources: Sequence[Source], facts: list[ScannedFact], atoms: list[clingo.Symbol],
                 limits: Limits | None = None) -> Plan:
-    if facts is not None:
-        actions = [Action(args[4], args[1], args[2], args[3], args[0]) for fact, args, _origin in facts
-                   if fact == "occurs"]
-    else:
-        actions = [_action_of(atom, sources) for atom in atoms if atom.match("occurs", 3)]
+    actions: list[Action] = []
+    origins: list[Any] = []
+    other: dict[str, Any] = {}  # occurs/N of another arity -> the origin of the first
+    for kind, args, origin in facts:
+        if kind == "occurs":
+            actions.append(Action(args[4], args[1], args[2], args[3], args[0]))
+            origins.append(origin)
+        elif kind == "atom" and args.name == "occurs" and not args.negative:
+            if len(args.args) == 3:
+                raise shape_error(args).at(*_where(origin, sources))
+            other.setdefault(_wrong_arity("occurs", len(args.args)), origin)
+    for atom in atoms:
+        if atom.match("occurs", 3):
+            actions.append(_action_of(atom, sources))
+            origins.append(atom)
+        elif atom.type == clingo.SymbolType.Function and atom.positive and atom.name == "occurs":
+            other.setdefault(_wrong_arity("occurs", len(atom.arguments)), atom)
     limits = limits or current()
-    far = next((action for action in actions if abs(action.step) > limits.robot_steps), None)
+    far = next((i for i, action in enumerate(actions) if abs(action.step) > limits.robot_steps), None)
     if far is not None:
-        where = locate(sources, format_action(far)) if sources else (None, None)
-        raise InputError(limits.exceeded("robot_steps", f"an action at step {far.step:,}").message, *where)
+        what = limits.exceeded("robot_steps", f"an action at step {actions[far].step:,}").message
+        raise InputError(what, *_where(origins[far], sources))
+    if other:
+        file, line = _where(next(iter(other.values())), sources)
+        message = str(InputError(f"ignored: {', '.join(other)}", file, line))
+        warnings.warn(InputWarning(message), stacklevel=4)
     return Plan(actions)
 
 
 def plan_from_atoms(atoms: Iterable[clingo.Symbol], sources: Sequence[Source] = (),
                     limits: Limits | None = None) -> Plan:
     """Build a :class:`Plan` from the ``occurs/3`` atoms among ``atoms``."""
-    return _build_plan(sources, None, list(atoms), limits)
+    return _build_plan(sources, [], list(atoms), limits)
 
 
 def require_known_robots(plan: Plan, instance: Instance, sources: Sequence[Source] = ()) -> None:
     """Reject a plan whose actions name a robot the instance does not have."""
     for action in plan.actions:
         if action.kind == "robot" and action.robot not in instance.robots:
-            atom = clingo.parse_term(format_action(action))
             known = f"robots {min(instance.robots)}..{max(instance.robots)}" if instance.robots else "no robots"
-            raise InputError(f"the plan moves robot {action.robot}, but the instance has {known} "
-                             "(plan and instance do not fit)", *locate(sources, atom))
+            raise InputError(f"the plan moves robot {_shown(action.robot)}, but the instance has {known} "
+                             "(plan and instance do not fit)", *locate(sources, format_action(action)))

@@ -2,8 +2,7 @@
 
 A message is one line of text, ended by a newline: ASP facts (``atom.`` one after the
 other, possibly none) and, last on the line, at most one control word ``%$NAME.`` or
-``%$NAME(T).``.  To clingo a control word is a comment, so the facts of a message can be
-given to clingo as they are.  Control words:
+``%$NAME(T).``.  To the fact language a control word is a comment.  Control words:
 
 ``%$RESET.``     forget everything: a new session starts (visualizer -> solver, simulator)
 ``%$done(T).``   the state after step T has been shown (visualizer -> solver, simulator)
@@ -13,7 +12,8 @@ given to clingo as they are.  Control words:
 
 The exchange (who sends what when) is described in ``visualizer/README.md``.  Messages are
 data: facts only, within the limits in force (:mod:`asprilo.limits`), never rules or
-``#include``, whatever the command line allows for files.
+``#include``, whatever the command line allows for files; they are read by the parser all
+data goes through (:mod:`asprilo.parse`), never handed to clingo as text.
 """
 
 from __future__ import annotations
@@ -29,9 +29,9 @@ from asprilo.facts import format_action
 from asprilo.facts import instance_facts as all_facts
 from asprilo.limits import Limits, current
 from asprilo.model import Action, Instance, Plan
-from asprilo.policy import check_statements, decode, screen
+from asprilo.policy import decode
 from asprilo.reader import read_instance, read_plan
-from asprilo.sources import Source
+from asprilo.sources import Source, load_facts
 
 RESET, DONE, END, ERROR = "RESET", "done", "end", "error"
 #: a control word at the end of a line
@@ -90,10 +90,9 @@ def message_limits() -> Limits:
 
 
 def check_facts(text: str, name: str = "<online>") -> None:
-    """Refuse a message whose facts are not data (see :mod:`asprilo.policy`)."""
-    limits = message_limits()
-    screen(text, name, limits)
-    check_statements(text, name)
+    """Refuse a message whose facts are not data: parsed as every file is (:mod:`asprilo.parse`),
+    rules never allowed."""
+    load_facts([Source(name, text)], message_limits(), names=set())
 
 
 # --- facts in one line ------------------------------------------------------------------------------

@@ -21,7 +21,7 @@ def run(capsys, *args):
 
 @pytest.mark.parametrize("name, text, message", [
     ("syntax.lp", "init(object(robot,1),value(at,(1,1))).\ninit(object(robot,2),value(at,(1,2)).\n",
-     "syntax.lp:2: syntax error, unexpected ., expecting ) or ;"),
+     "syntax.lp:2: syntax error, unexpected ., expecting , or )"),
     ("empty.lp", "% nothing but a comment\n",
      "empty.lp: no instance facts (expected init(object(..),value(..)) facts) found"),
     ("shape.lp", "init(object(node,1),value(at,(1,1))).\n\ninit(object(robot,1),value(at,5)).\n",
@@ -35,9 +35,10 @@ def run(capsys, *args):
     ("ids.lp", "init(object(robot,r1),value(at,(1,1))).\n",
      "ids.lp:1: robot id must be an integer, got r1"),
     ("unsafe.lp", "init(object(robot,1),value(at,(X,1))).\n",
-     "unsafe.lp:1: unsafe variables in:"),
+     "unsafe.lp:1: 'init(object(robot,1),value(at,(X,1))).' holds a variable; data holds only facts, #const and "
+     "'#program base.' (rules need --allow-rules)"),
     ("contradiction.lp", "init(object(robot,1),value(at,(1,1))).\n:- init(object(robot,1),_).\n",
-     "contradiction.lp:2: '#false :- init(object(robot,1),_).' is a rule; data holds only facts, #const and "
+     "contradiction.lp:2: ':- init(object(robot,1),_).' is a rule; data holds only facts, #const and "
      "'#program base.' (rules need --allow-rules)"),
 ])
 def test_bad_instances(capsys, write, name, text, message):

@@ -105,7 +105,7 @@ def test_rules_constants_and_program_parts_go_through_clingo_when_rules_are_allo
     """
     with pytest.raises(InputError) as refused:
         read_instance(Source("rules.lp", text))
-    assert str(refused.value) == ("rules.lp:4: 'init(object(node,X),value(at,(X,1))) :- X = (1..width).' is a rule; "
+    assert str(refused.value) == ("rules.lp:4: 'init(object(node,X),value(at,(X,1))) :- X=1..width.' is a rule; "
                                   "data holds only facts, #const and '#program base.' (rules need --allow-rules)")
     instance = read_instance(Source("rules.lp", text), Limits(allow_rules=True))
     assert instance.nodes == {1: (1, 1), 2: (2, 1), 3: (3, 1), 4: (4, 1)}

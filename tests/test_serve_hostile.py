@@ -94,7 +94,7 @@ def test_an_idle_client_does_not_keep_others_waiting(solver):
 
 def test_rules_are_refused_before_grounding(solver):
     reason = _refused(solver, b"p(0). p(X+1) :- p(X). %$done(0).\n")
-    assert reason == ("% <online>:1: 'p((X+1)) :- p(X).' is a rule; data holds only facts, #const and "
+    assert reason == ("% <online>:1: 'p(X+1) :- p(X).' is a rule; data holds only facts, #const and "
                       "'#program base.' (rules need --allow-rules)")
     assert _refused(solver, b'#include "/etc/passwd". %$done(0).\n').startswith(
         "% <online>:1: #include is not followed in data")
