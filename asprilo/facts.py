@@ -205,8 +205,8 @@ def scan_facts(text: str, name: str, limits: Limits, constants: dict[str, Consta
     with Python values) and any other fact ``("atom", Fn)`` -- kept only
     when ``names`` is ``None`` or holds its name.  Refuses more than ``room`` facts (and
     #const) and everything :class:`asprilo.parse.Reader` refuses.  ``fast=False`` reads every
-    fact with the parser (a test compares both ways)."""
-    reader = Reader(text, name, limits, constants)
+    fact token by token (a test compares both ways)."""
+    reader = Reader(text, name, limits, constants, quick=fast)
     facts: list[tuple[str, Any, int]] = []
     count, end, position = 0, len(text), 0
     skip, plain = _SKIP.match, _PLAIN.match if fast and limits.depth >= _PLAIN_DEPTH else None

@@ -301,6 +301,24 @@ _LINE_END = re.compile(r"[\r\n]")
 _CONST_SCAN = re.compile(r'["%#]')
 _DIGITS = {"0x": (16, 8), "0o": (8, 11), "0b": (2, 32)}  # base, most significant digits in 32 bits
 
+# Plain facts, their tokens found at once (Reader._plain): blanks and comments (block
+# comments without a '%' inside) before each token; a function's name with its '(', a name
+# or variable, a string, a number of up to nine digits (with a '-' right before it: read
+# only where an operand belongs, as a negative number), any other character.
+_PLAIN_GAP = r"(?:[ \t\r\n]++|%(?!\*)[^\r\n]*+|%\*[^%]*?\*%)*+"
+_PLAIN_STRING = r'"(?:[^"\\\r\n]++|\\["\\n])*+"'
+_GAP = re.compile(_PLAIN_GAP)
+_PLAIN_TOKEN = re.compile(_PLAIN_GAP + r"""(
+     [_']*+[a-z][A-Za-z0-9_']*+[ \t\r\n]*+\(
+    |[_']*+[A-Za-z][A-Za-z0-9_']*+
+    |""" + _PLAIN_STRING + r"""
+    |-?(?:0|[1-9][0-9]{0,8})(?![0-9])
+    |.)""", re.X | re.S)
+#: a statement up to its period, over strings and comments (None: read token by token)
+_STATEMENT = re.compile(rf'(?:[^."%]++|{_PLAIN_STRING}|%(?!\*)[^\r\n]*+|%\*[^%]*?\*%)*+\.')
+_IDENTIFIER = re.compile(r"[_']*+[a-z][A-Za-z0-9_']*+")
+_NUMBER_START, _DIGIT = frozenset("-0123456789"), frozenset("0123456789")
+
 #: binary operators: precedence, function (unary operators bind tighter than all: 7)
 _XOR, _OR, _AND, _ADD, _MUL, _POW, _UNARY = 1, 2, 3, 4, 5, 6, 7
 _PRECEDENCE = {"^": _XOR, "?": _OR, "&": _AND, "+": _ADD, "-": _ADD, "*": _MUL, "/": _MUL, "\\": _MUL,
@@ -359,13 +377,17 @@ class Reader:
     """Reads one text: statements one by one from an offset (:meth:`statement`), within the
     limits and with the constants given."""
 
-    def __init__(self, text: str, name: str, limits: Limits, constants: dict[str, Constant] | None = None):
+    def __init__(self, text: str, name: str, limits: Limits, constants: dict[str, Constant] | None = None,
+                 quick: bool = True):
         self.text = text
         self.name = name
         self.limits = limits
         self.constants = constants or {}
         self.end = len(text)
         self._start = 0  # the statement being read (for messages)
+        self.quick = quick  # plain statements through :meth:`_plain` (a test turns it off)
+        self._leaves: dict[str, Any] = {}  # the terms of plain tokens, each made once
+        self._peeked: tuple[int, Any] = (-1, None)  # the last token read: (from, token)
 
     # errors ----------------------------------------------------------------------------------------
 
@@ -381,6 +403,8 @@ class Reader:
         """The next token from ``pos``, blanks and comments skipped: ``(kind, text, start, end)``
         (for a string, ``text`` is its value).  Raises :class:`InputError` for what clingo's
         lexer refuses."""
+        if pos == self._peeked[0]:  # read ahead before (after a name: is a '(' next?)
+            return self._peeked[1]
         match = _TOKEN.match(self.text, pos)
         while True:
             kind = match.lastgroup  # type: ignore[union-attr]
@@ -389,13 +413,15 @@ class Reader:
                 match = _TOKEN.match(self.text, self._comment_end(start))
                 continue
             break
-        end = match.end()  # type: ignore[union-attr]
         if kind == "s":
             value, end = self._string(start)
-            return "s", value, start, end
-        if kind == "x":
+            token = ("s", value, start, end)
+        elif kind == "x":
             raise self._stray(start)
-        return kind, match.group(kind), start, end  # type: ignore[union-attr,return-value,arg-type]
+        else:
+            token = (kind, match.group(kind), start, match.end())  # type: ignore[union-attr,assignment]
+        self._peeked = (pos, token)
+        return token  # type: ignore[return-value]
 
     def _stray(self, offset: int) -> InputError:
         char = self.text[offset]
@@ -463,15 +489,15 @@ class Reader:
     def statement(self, pos: int) -> tuple[str, Fn | None, int, int] | None:
         """The statement from ``pos`` (blanks and comments first): ``(kind, atom, start, end)``
         with kind ``fact`` (and its atom), ``const`` or ``program``; ``None`` at the end."""
+        if self.quick:
+            plain = self._plain(pos)
+            if plain is not None:
+                return plain
         kind, text, start, end = self.token(pos)
         if kind == "e":
             return None
         if kind == "h":
-            if text == "#const":
-                return "const", None, start, self.constant_at(start)[-1]
-            if text == "#program":
-                return "program", None, start, self._program(start, end)
-            raise self._directive(text, start)
+            return self._hash(text, start, end)
         self._start = start
         negative, name_start = False, start
         if kind == "p" and text == "-":
@@ -490,6 +516,58 @@ class Reader:
                 return self._fact(Fn(name, args, negative), start, end3, extra)
             raise self._beyond(start, kind3, text3, start3)
         raise self._beyond(start, kind2, text2, start2)
+
+    def _plain(self, pos: int) -> tuple[str, Fn, int, int] | None:
+        """A fact of plain terms only (names, strings, numbers of up to nine digits,
+        functions, tuples of two or more; comments between them), read from its tokens
+        found at once; ``None`` for anything else (operators, constants, ``#sup``, nested
+        comments, ...), which the token-by-token reading reads (:mod:`tests.test_parse`
+        checks that both read the same)."""
+        text = self.text
+        start = _GAP.match(text, pos).end()  # type: ignore[union-attr]
+        found = _STATEMENT.match(text, start, min(self.end, start + self.limits.fact_chars))
+        if found is None or text.startswith(".", found.end()):
+            return None
+        end = found.end()
+        tokens = _PLAIN_TOKEN.findall(text, start, end - 1)
+        negative = tokens[0] == "-" if tokens else False
+        first = tokens[negative] if len(tokens) > negative else "("
+        if first[-1] == "(":
+            name = first[:-1].rstrip()
+            if not _IDENTIFIER.fullmatch(name) or name == "not":
+                return None
+            args = _plain_arguments(self, tokens, negative + 1)
+            return None if args is None else ("fact", Fn(name, args, negative), start, end)
+        if len(tokens) == negative + 1 and _IDENTIFIER.fullmatch(first) and first != "not":
+            return "fact", Fn(first, (), negative), start, end
+        return None
+
+    def _leaf(self, token: str) -> Any:
+        """The term of a plain token, or ``None`` when it is not plain (a variable, ``not``,
+        a constant, a punctuation mark)."""
+        leaf = self._leaves.get(token)
+        if leaf is None:
+            if token[0] in _NUMBER_START and token[-1] in _DIGIT:
+                leaf = int(token)
+            elif token[0] == '"':
+                if len(token) - 2 > self.limits.string_chars:
+                    return None
+                body = token[1:-1]
+                leaf = Str(_ESCAPE.sub(lambda m: _UNESCAPED[m.group(1)], body) if "\\" in body else body)
+            elif _IDENTIFIER.fullmatch(token) and token != "not" and token not in self.constants:
+                leaf = Fn(token)
+            else:
+                return None
+            self._leaves[token] = leaf
+        return leaf
+
+    def _hash(self, word: str, start: int, end: int) -> tuple[str, None, int, int]:
+        """A statement that starts with a directive."""
+        if word == "#const":
+            return "const", None, start, self.constant_at(start)[-1]
+        if word == "#program":
+            return "program", None, start, self._program(start, end)
+        raise self._directive(word, start)
 
     def _fact(self, atom: Fn, start: int, end: int, extra: int) -> tuple[str, Fn, int, int]:
         if end - start + extra > self.limits.fact_chars:
@@ -926,6 +1004,41 @@ class _Terms:
             return
         self.frame = self.frames[-1]
         self.frame.vals.append(value)
+
+
+def _plain_arguments(reader: Reader, tokens: list[str], first: int) -> tuple | None:
+    """The arguments of a plain fact from its tokens after ``name(`` (see :meth:`Reader._plain`):
+    the frames of open brackets on a stack, ``None`` at the first token that is not plain
+    (or where the depth limit is reached: the token-by-token reading says so)."""
+    stack: list[tuple[str | None, list]] = []
+    name: str | None = ""  # the atom's arguments; a function's name; None for a bracket
+    args: list = []
+    expect = True
+    most, last = reader.limits.depth - 1, len(tokens) - 1
+    for index in range(first, last + 1):
+        token = tokens[index]
+        if expect and token[-1] == "(":
+            if len(stack) >= most:
+                return None
+            stack.append((name, args))
+            name, args = (token[:-1].rstrip() if len(token) > 1 else None), []
+        elif expect:
+            leaf = reader._leaf(token)
+            if leaf is None:
+                return None
+            args.append(leaf)
+            expect = False
+        elif token == ",":
+            expect = True
+        elif token != ")" or (name is None and len(args) < 2):
+            return None  # (t) and (t,) are read token by token
+        elif not stack:
+            return tuple(args) if index == last else None
+        else:
+            term = Fn(name or "", tuple(args))
+            name, args = stack.pop()
+            args.append(term)
+    return None
 
 
 # --- constants --------------------------------------------------------------------------------------
