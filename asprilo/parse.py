@@ -52,7 +52,7 @@ from __future__ import annotations
 import re
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import clingo
 
@@ -405,23 +405,24 @@ class Reader:
         lexer refuses."""
         if pos == self._peeked[0]:  # read ahead before (after a name: is a '(' next?)
             return self._peeked[1]
-        match = _TOKEN.match(self.text, pos)
+        match = cast(re.Match, _TOKEN.match(self.text, pos))  # (the last alternative matches any character)
         while True:
-            kind = match.lastgroup  # type: ignore[union-attr]
-            start = match.start(kind)  # type: ignore[union-attr,arg-type]
-            if kind == "c" or (kind == "h" and match.group("h") == "#!"):  # type: ignore[union-attr]
-                match = _TOKEN.match(self.text, self._comment_end(start))
+            kind = cast(str, match.lastgroup)
+            start = match.start(kind)
+            if kind == "c" or (kind == "h" and match.group("h") == "#!"):
+                match = cast(re.Match, _TOKEN.match(self.text, self._comment_end(start)))
                 continue
             break
+        token: tuple[str, str, int, int]
         if kind == "s":
             value, end = self._string(start)
             token = ("s", value, start, end)
         elif kind == "x":
             raise self._stray(start)
         else:
-            token = (kind, match.group(kind), start, match.end())  # type: ignore[union-attr,assignment]
+            token = (kind, match.group(kind), start, match.end())
         self._peeked = (pos, token)
-        return token  # type: ignore[return-value]
+        return token
 
     def _stray(self, offset: int) -> InputError:
         char = self.text[offset]
