@@ -34,6 +34,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "convert": ("asprilo.interop.convert", "convert between asprilo, MovingAI maps/scenarios, LaCAM results, M and Md"),
     "serve": ("asprilo.online.serve", "serve the online link: a solver that re-plans, or a simulator releasing orders"),
     "solve": ("asprilo.encodings.cli", "find a plan of minimal makespan with a reference encoding or max-flow"),
+    "grade": ("asprilo.encodings.grade", "grade your encoding on a ladder of instances: valid plans? minimal?"),
 }
 #: the commands that read no data files
 WITHOUT_DATA = {"demo"}

@@ -31,8 +31,6 @@ import json
 import sys
 import threading
 import time
-from dataclasses import replace
-from pathlib import Path
 from typing import TextIO
 
 from asprilo.arguments import domain_argument, megabytes_argument, seconds_argument
@@ -42,8 +40,8 @@ from asprilo.reader import read_instance
 from asprilo.writer import format_action, format_plan, refuse_overwriting, write_text
 
 from .anytime import DEFAULT_SECONDS as ANYTIME_SECONDS
-from .own import own_encoding
-from .registry import Encoding, encoding_names, find_encoding, reference_encodings
+from .choice import choose_encoding
+from .registry import Encoding, reference_encodings
 from .solving import Attempt, Outcome, Phase, method_names, solve
 
 #: options asprilo does not know are clingo's (the command line passes them on)
@@ -115,51 +113,8 @@ def run(args: argparse.Namespace) -> int:
 def chosen_encoding(args: argparse.Namespace, domain: Domain) -> tuple[Encoding, int | None]:
     """The encoding the options name, and the horizon asked for (``--horizon``, or
     ``-c horizon=H`` for a single-shot encoding of one's own)."""
-    values = args.encoding or ["plain"]
-    constants = [_constant(text) for text in args.const]
-    options = tuple(getattr(args, "clingo_options", None) or ())
-    files = [value for value in values if is_encoding_file(value)]
-    if not files:
-        if len(values) > 1:
-            raise InputError(f"name one reference encoding, not {len(values)}: {', '.join(values)}")
-        if constants:
-            raise InputError("-c sets constants of your own encoding; the reference encodings take none")
-        reference = find_encoding(domain, values[0])
-        return replace(reference, options=reference.options + options), args.horizon
-    if len(files) < len(values):
-        names = [value for value in values if value not in files]
-        raise InputError(f"--encoding {names[0]}: no such file (a reference encoding is named alone; "
-                         f"{', '.join(encoding_names(domain))} for domain {domain.label})")
-    encoding = own_encoding(files, constants, options)
-    given = dict(encoding.constants)
-    if "horizon" not in given:
-        return encoding, args.horizon
-    horizon = _horizon_constant(given.pop("horizon"), args.horizon)
-    return replace(encoding, constants=tuple(given.items())), horizon
-
-
-def is_encoding_file(value: str) -> bool:
-    """Whether ``--encoding VALUE`` names a file (a path, or a name with a suffix) rather
-    than a reference encoding."""
-    path = Path(value)
-    return path.suffix != "" or len(path.parts) > 1 or path.is_file()
-
-
-def _constant(text: str) -> tuple[str, str]:
-    name, equals, value = text.partition("=")
-    if not equals or not name.strip() or not value.strip():
-        raise InputError(f"-c {text}: expected NAME=VALUE")
-    return name.strip(), value.strip()
-
-
-def _horizon_constant(value: str, horizon: int | None) -> int:
-    try:
-        number = int(value)
-    except ValueError:
-        raise InputError(f"-c horizon={value}: the horizon is a number of steps") from None
-    if horizon is not None and horizon != number:
-        raise InputError(f"-c horizon={value} and --horizon {horizon} disagree")
-    return number
+    return choose_encoding(args.encoding or ["plain"], args.const, getattr(args, "clingo_options", None) or (),
+                           domain, args.horizon)
 
 
 class SearchProgress:

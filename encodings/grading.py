@@ -1,0 +1,256 @@
+"""Grade an encoding on a ladder (``asprilo grade``): every instance solved in a child process
+under a time limit, its plan checked, and the makespan compared with the stored minimum.
+
+    from asprilo.encodings.grading import grade_ladder
+    from asprilo.encodings.ladder import bundled_ladder
+    for graded in grade_ladder(encoding, bundled_ladder(Domain.M), time_limit=20):
+        graded.result, graded.valid, graded.minimal, graded.makespan, graded.reason
+
+A wrong answer is a grade, never an error: a plan that breaks the rules (its first
+violation in words), no plan (no answer set, no occurs/3, a crash of the child process, the
+memory limit) or the time limit each give one :class:`Graded`.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass, field
+from typing import Any
+
+from asprilo.errors import InputError
+from asprilo.model import Instance, Plan
+from asprilo.reader import read_instance
+from asprilo.simulate import Violation
+
+from .ladder import Ladder, Rung
+from .registry import Encoding
+from .solving import Outcome, Phase, SolveStatus, solve
+
+#: the results of one instance
+VALID, INVALID, NO_PLAN, TIME_OUT = "valid", "invalid", "no-plan", "time-out"
+#: the results as the grader's lines say them
+VERDICTS = {VALID: "valid", INVALID: "INVALID", NO_PLAN: "no plan", TIME_OUT: "time-out"}
+#: the version of the ``--json`` shape (docs/GRADING.md); raised when a key changes meaning or goes
+JSON_VERSION = 1
+
+
+@dataclass
+class Graded:
+    """How an encoding did on one instance of a ladder.
+
+    ``result``: ``valid`` (a plan the checker accepts), ``invalid`` (a plan that breaks the
+    rules: ``violation`` is the first, ``violations`` how many), ``no-plan`` or ``time-out``
+    (``reason`` says why in words).  ``makespan``: of the plan, valid or not; ``refuted``:
+    the horizons the encoding proved to have no plan; ``seconds``: the whole solve, the
+    child process and the check included.
+    """
+
+    step: int
+    rung: Rung
+    instance: Instance
+    result: str
+    seconds: float
+    makespan: int | None = None
+    violation: Violation | None = None
+    violations: int = 0
+    reason: str = ""
+    refuted: list[int] = field(default_factory=list)
+    plan: Plan | None = field(default=None, repr=False)
+
+    @property
+    def valid(self) -> bool:
+        return self.result == VALID
+
+    @property
+    def minimal(self) -> bool:
+        return self.valid and self.makespan == self.rung.minimum
+
+    @property
+    def too_strong(self) -> list[int]:
+        """The refuted horizons at which a plan exists (the minimum and above)."""
+        return [horizon for horizon in self.refuted if horizon >= self.rung.minimum]
+
+    @property
+    def size(self) -> str:
+        """The floor and the robots in words, e.g. ``11x6, 3 robots``."""
+        x, y = self.instance.size
+        robots = len(self.instance.robots)
+        return f"{x}x{y}, {robots} robot{'s' * (robots != 1)}"
+
+    def as_json(self) -> dict[str, Any]:
+        """One entry of ``instances`` in ``asprilo grade --json`` (docs/GRADING.md)."""
+        violation = self.violation
+        x, y = self.instance.size
+        return {
+            "step": self.step,
+            "name": self.rung.name,
+            "file": self.rung.file.name,
+            "size": f"{x}x{y}",
+            "robots": len(self.instance.robots),
+            "minimum": self.rung.minimum,
+            "result": self.result,
+            "valid": self.valid,
+            "minimal": self.minimal,
+            "makespan": self.makespan,
+            "seconds": round(self.seconds, 3),
+            "violation": None if violation is None else {
+                "atom": violation.atom, "module": violation.module, "check": violation.check,
+                "step": violation.step, "message": violation.message},
+            "violations": self.violations,
+            "reason": self.reason or None,
+            "refuted": self.refuted,
+        }
+
+
+@dataclass
+class Summary:
+    """The counts of a graded ladder."""
+
+    instances: int = 0
+    valid: int = 0
+    minimal: int = 0
+    invalid: int = 0
+    no_plan: int = 0
+    time_outs: int = 0
+    seconds: float = 0.0
+
+    @classmethod
+    def of(cls, graded: list[Graded], seconds: float) -> Summary:
+        results = [g.result for g in graded]
+        return cls(len(graded), results.count(VALID), sum(g.minimal for g in graded), results.count(INVALID),
+                   results.count(NO_PLAN), results.count(TIME_OUT), seconds)
+
+    def line(self) -> str:
+        """E.g. ``7/8 valid, 5/8 minimal, 1 time-out; 12.3 s``."""
+        n = self.instances
+        parts = [f"{self.valid}/{n} valid", f"{self.minimal}/{n} minimal"]
+        if self.invalid:
+            parts.append(f"{self.invalid} invalid")
+        if self.no_plan:
+            parts.append(f"{self.no_plan} without a plan")
+        if self.time_outs:
+            parts.append(f"{self.time_outs} time-out{'s' * (self.time_outs != 1)}")
+        return f"{', '.join(parts)}; {self.seconds:.1f} s"
+
+    def as_json(self) -> dict[str, Any]:
+        return {"instances": self.instances, "valid": self.valid, "minimal": self.minimal, "invalid": self.invalid,
+                "no_plan": self.no_plan, "time_outs": self.time_outs, "seconds": round(self.seconds, 3)}
+
+
+def grade_ladder(encoding: Encoding, ladder: Ladder, *, time_limit: float, horizon: int | None = None,
+                 memory_limit: int | None = None, first: int | None = None,
+                 on_start: Callable[[int, int, Rung], None] | None = None,
+                 on_phase: Callable[[Phase], None] | None = None) -> Iterator[Graded]:
+    """Grade ``encoding`` on the (``first``) instances of ``ladder``, one after the other,
+    each under ``time_limit`` seconds (and ``memory_limit`` MB); ``horizon``: solve at this
+    makespan only (``-c horizon=H``).  ``on_start(step, steps, rung)`` is called before an
+    instance, ``on_phase`` while it is solved.
+
+    Bad input is :class:`InputError` before the first grade: an instance of the ladder that
+    cannot be read, or an encoding that clingo refuses on the first instance (e.g. unsafe
+    variables, found when grounding); refused on a later instance only, it is that
+    instance's grade."""
+    rungs = ladder.rungs[:first] if first is not None else ladder.rungs
+    instances = [read_instance(rung.file) for rung in rungs]
+    for step, (rung, instance) in enumerate(zip(rungs, instances, strict=True), 1):
+        if on_start is not None:
+            on_start(step, len(rungs), rung)
+        started = time.perf_counter()
+        try:
+            graded = grade_rung(step, rung, instance, ladder, encoding, time_limit=time_limit, horizon=horizon,
+                                memory_limit=memory_limit, on_phase=on_phase)
+        except InputError as error:
+            if step == 1:
+                raise
+            graded = Graded(step, rung, instance, NO_PLAN, time.perf_counter() - started,
+                            reason=f"clingo refused the encoding: {_words(str(error))}")
+        yield graded
+
+
+def grade_rung(step: int, rung: Rung, instance: Instance, ladder: Ladder, encoding: Encoding, *,
+               time_limit: float, horizon: int | None = None, memory_limit: int | None = None,
+               on_phase: Callable[[Phase], None] | None = None) -> Graded:
+    """Grade ``encoding`` on one instance of ``ladder`` (``instance``: the rung's file, read);
+    an encoding that clingo refuses is :class:`InputError`."""
+    started = time.perf_counter()
+    try:
+        outcome = solve(instance, ladder.domain, encoding=encoding, horizon=horizon, time_limit=time_limit,
+                        memory_limit=memory_limit, isolate=True, on_phase=on_phase)
+    except InputError:
+        raise
+    except Exception as error:  # whatever the encoding does, it is graded, never a crash of the grader
+        return Graded(step, rung, instance, NO_PLAN, time.perf_counter() - started,
+                      reason=f"the solve failed: {_words(str(error)) or type(error).__name__}")
+    return _graded(step, rung, instance, outcome, time.perf_counter() - started, time_limit)
+
+
+def _words(text: str) -> str:
+    return " ".join(text.split())
+
+
+def _graded(step: int, rung: Rung, instance: Instance, outcome: Outcome, seconds: float,
+            time_limit: float) -> Graded:
+    graded = Graded(step, rung, instance, NO_PLAN, seconds, refuted=outcome.refuted, plan=outcome.plan)
+    if outcome.status is SolveStatus.FOUND:
+        graded.result, graded.makespan = VALID, outcome.horizon
+    elif outcome.check is not None and not outcome.check.valid:
+        errors = outcome.check.errors
+        graded.result, graded.violation, graded.violations = INVALID, errors[0], len(errors)
+        graded.makespan = outcome.plan.horizon if outcome.plan is not None else None
+    elif _timed_out(outcome):
+        graded.result = TIME_OUT
+        graded.reason = f"time limit ({time_limit:g} s)" + _refuted(graded)
+    else:
+        graded.reason = _no_plan(outcome, graded)
+    return graded
+
+
+def _timed_out(outcome: Outcome) -> bool:
+    """Whether the time limit stopped the solve (rather than the memory limit, a crash, or
+    an upward search that refuted every horizon it may try)."""
+    if outcome.status is not SolveStatus.LIMIT:
+        return False
+    if outcome.message:
+        return "time limit" in outcome.message
+    tried = outcome.horizons_tried
+    return not tried or tried[-1].result != "unsat"
+
+
+def _no_plan(outcome: Outcome, graded: Graded) -> str:
+    """Why there is no plan, in words."""
+    if outcome.status is SolveStatus.LIMIT and not outcome.message and graded.refuted:
+        return f"no answer set up to horizon {max(graded.refuted)}" + _refuted(graded)
+    if outcome.status is SolveStatus.NONE and not outcome.message:
+        return "no answer set" + _refuted(graded)
+    return (outcome.message or outcome.status.value) + _refuted(graded)
+
+
+def _refuted(graded: Graded) -> str:
+    """The horizons refuted, and whether plans exist at some of them."""
+    if not graded.refuted:
+        return ""
+    return f"; {horizons(graded.refuted)} refuted" + too_strong(graded)
+
+
+def too_strong(graded: Graded) -> str:
+    """Words on the refuted horizons at which a plan exists (none: ``""``)."""
+    if not graded.too_strong:
+        return ""
+    return f", yet plans exist from makespan {graded.rung.minimum} on: a constraint is too strong"
+
+
+def horizons(numbers: list[int]) -> str:
+    """``horizon 7`` or ``horizons 3-5, 8``."""
+    return f"horizon{'s' * (len(numbers) > 1)} {spans(numbers)}"
+
+
+def spans(horizons: list[int]) -> str:
+    """``[3, 4, 5, 8]`` -> ``"3-5, 8"``."""
+    runs: list[list[int]] = []
+    for horizon in horizons:
+        if runs and horizon == runs[-1][1] + 1:
+            runs[-1][1] = horizon
+        else:
+            runs.append([horizon, horizon])
+    return ", ".join(str(a) if a == b else f"{a}-{b}" for a, b in runs)
