@@ -261,15 +261,7 @@ def grouped_table(records: list[dict], column_of: Callable[[dict], Any], columns
         groups[(record["label"], record["encoding"], column_of(record))].append(record)
     rows = _rows(records)
     cells = {key: _cell(runs) for key, runs in groups.items()}
-    best = set()
-    for label in {label for label, _e in rows}:
-        for column in columns:
-            compared = [e for row_label, e in rows if row_label == label and (label, e, column) in cells
-                        and e != "anytime"]  # its time is the time to a first plan: not comparable
-            candidates = [(cells[(label, e, column)].rank(), e) for e in compared
-                          if not cells[(label, e, column)].invalid]  # a wrong answer is never the best
-            if len(compared) > 1 and candidates:
-                best.add((label, min(candidates)[1], column))
+    best = _best_cells(rows, columns, cells)
     sets = _ordered({r["set"] for r in records}, set_order or [])
     body: list[list[str]] = []
     starts: list[int] = []
@@ -289,6 +281,21 @@ def grouped_table(records: list[dict], column_of: Callable[[dict], Any], columns
     key = _time_key(records, cells, best, makespans, sets, (described or {}) if name == "summary" else {},
                     _dashes(body, 3))
     return Table(name, caption, header, body, key, text_columns=3, groups=starts)
+
+
+def _best_cells(rows: list[tuple[str, str]], columns: list, cells: dict[tuple, Any]) -> set[tuple]:
+    """The cells marked ``*``: per domain and column the best of two or more encodings (the
+    anytime method's time is to a first plan: not compared; a wrong answer is never the best)."""
+    best = set()
+    for label in {label for label, _e in rows}:
+        for column in columns:
+            compared = [e for row_label, e in rows
+                        if row_label == label and (label, e, column) in cells and e != "anytime"]
+            candidates = [(cells[(label, e, column)].rank(), e) for e in compared
+                          if not cells[(label, e, column)].invalid]
+            if len(compared) > 1 and candidates:
+                best.add((label, min(candidates)[1], column))
+    return best
 
 
 def summary(records: list[dict], set_order: list[str] | None = None,
@@ -368,13 +375,7 @@ def anytime_table(records: list[dict], set_order: list[str] | None = None) -> Ta
         starts.append(len(body))
         for name in _ordered({r["set"] for r in runs if r["label"] == label}, set_order or []):
             group = [r for r in runs if r["label"] == label and r["set"] == name]
-            solved = [r for r in group if r["status"] == SOLVED]
-            bound = [r["horizon"] / r["lower_bound"] for r in solved if r.get("lower_bound")]
-            optimum = [r["horizon"] / minimal[(r["instance"], label)] for r in solved
-                       if minimal.get((r["instance"], label))]
-            body.append([label, name, f"{len(solved)}/{len(group)}",
-                         f"{mean(r['time'] for r in solved):.1f}" if solved else "-",
-                         f"{mean(bound):.2f}" if bound else "-", f"{mean(optimum):.2f}" if optimum else "-"])
+            body.append([label, name, *_anytime_row(group, minimal, label)])
     header = ["domain", "set", "plans", "first plan (s)", "makespan/bound", "makespan/minimal"]
     key = [("plans", "runs that returned a plan passing the checker, of all runs"),
            ("first plan (s)", "average seconds to the first plan of those runs"),
@@ -384,6 +385,15 @@ def anytime_table(records: list[dict], set_order: list[str] | None = None) -> Ta
         key.append(("-", "none"))
     return Table("anytime", "Anytime runs: plans found, time to the first plan, makespan at the end",
                  header, body, key, text_columns=2, groups=starts)
+
+
+def _anytime_row(group: list[dict], minimal: dict[tuple, int], label: str) -> list[str]:
+    """Plans found, time to the first plan, makespan over the bound and over the minimum."""
+    solved = [r for r in group if r["status"] == SOLVED]
+    bound = [r["horizon"] / r["lower_bound"] for r in solved if r.get("lower_bound")]
+    optimum = [r["horizon"] / minimal[(r["instance"], label)] for r in solved if minimal.get((r["instance"], label))]
+    return [f"{len(solved)}/{len(group)}", f"{mean(r['time'] for r in solved):.1f}" if solved else "-",
+            f"{mean(bound):.2f}" if bound else "-", f"{mean(optimum):.2f}" if optimum else "-"]
 
 
 def failed_runs(records: list[dict]) -> Table | None:
@@ -511,42 +521,50 @@ def scatter_figure(records: list[dict], first: str, second: str):
     (label) where both ran: log axes, the diagonal, runs out of limits at the time limit with
     a mark of their own; an instance where either failed is left out (the panel says how
     many).  ``None`` if no instance has runs of both."""
-    runs = [r for r in records if r.get("method") != "anytime"]
-    by: dict[tuple, dict[str, dict]] = defaultdict(dict)
-    for r in runs:
-        if r["encoding"] in (first, second):
-            by[(r["label"], r["set"], r["instance"])][r["encoding"]] = r
-    pairs = {key: (pair[first], pair[second]) for key, pair in by.items() if first in pair and second in pair}
+    pairs = _scatter_pairs(records, first, second)
     labels = _ordered({label for label, _s, _i in pairs}, LABELS)
     if not labels:
         return None
     figure, axes = _figure(len(labels))
     for axis, label in zip(axes, labels, strict=True):
-        mine = [pair for (row, _s, _i), pair in pairs.items() if row == label]
-        shown = [(a, b) for a, b in mine if _timed(a) and _timed(b)]
-        both = [(max(_time(a), FLOOR), max(_time(b), FLOOR)) for a, b in shown
-                if a["status"] == SOLVED and b["status"] == SOLVED]
-        out = [(max(_time(a), FLOOR), max(_time(b), FLOOR)) for a, b in shown
-               if a["status"] != SOLVED or b["status"] != SOLVED]
-        limit = max([r["time_limit"] for pair in mine for r in pair], default=1.0)
-        low = min([FLOOR * 10, *(t for point in both + out for t in point)]) / 2
-        axis.plot([low, limit * 1.5], [low, limit * 1.5], color="grey", linewidth=1, label="_diagonal")
-        axis.axvline(limit, color="grey", linestyle=":", linewidth=1)
-        axis.axhline(limit, color="grey", linestyle=":", linewidth=1)
-        if both:
-            axis.scatter(*zip(*both, strict=True), s=14, label="both solved")
-        if out:
-            axis.scatter(*zip(*out, strict=True), s=22, marker="^", color="tab:red",
-                         label="out of limits (at the limit)")
-        left_out = len(mine) - len(shown)
-        axis.set(xscale="log", yscale="log", xlim=(low, limit * 1.5), ylim=(low, limit * 1.5),
-                 xlabel=f"{first}: time (s)", ylabel=f"{second}: time (s)",
-                 title=label + (f" ({left_out} with a failed run left out)" if left_out else ""))
-        axis.set_aspect("equal")
-        axis.grid(alpha=0.3, which="both")
-        if both or out:
-            axis.legend(fontsize="x-small", loc="upper left")
+        _scatter_panel(axis, label, [pair for (row, _s, _i), pair in pairs.items() if row == label], first, second)
     return figure
+
+
+def _scatter_pairs(records: list[dict], first: str, second: str) -> dict[tuple, tuple[dict, dict]]:
+    """(label, set, instance) -> the runs of ``first`` and ``second`` there (where both ran)."""
+    by: dict[tuple, dict[str, dict]] = defaultdict(dict)
+    for r in records:
+        if r.get("method") != "anytime" and r["encoding"] in (first, second):
+            by[(r["label"], r["set"], r["instance"])][r["encoding"]] = r
+    return {key: (pair[first], pair[second]) for key, pair in by.items() if first in pair and second in pair}
+
+
+def _scatter_panel(axis, label: str, mine: list[tuple[dict, dict]], first: str, second: str) -> None:
+    """One domain's panel of :func:`scatter_figure`."""
+    shown = [(a, b) for a, b in mine if _timed(a) and _timed(b)]
+    points = {kind: [] for kind in ("both", "out")}
+    for a, b in shown:
+        kind = "both" if a["status"] == SOLVED and b["status"] == SOLVED else "out"
+        points[kind].append((max(_time(a), FLOOR), max(_time(b), FLOOR)))
+    limit = max([r["time_limit"] for pair in mine for r in pair], default=1.0)
+    low = min([FLOOR * 10, *(t for point in points["both"] + points["out"] for t in point)]) / 2
+    axis.plot([low, limit * 1.5], [low, limit * 1.5], color="grey", linewidth=1, label="_diagonal")
+    axis.axvline(limit, color="grey", linestyle=":", linewidth=1)
+    axis.axhline(limit, color="grey", linestyle=":", linewidth=1)
+    if points["both"]:
+        axis.scatter(*zip(*points["both"], strict=True), s=14, label="both solved")
+    if points["out"]:
+        axis.scatter(*zip(*points["out"], strict=True), s=22, marker="^", color="tab:red",
+                     label="out of limits (at the limit)")
+    left_out = len(mine) - len(shown)
+    axis.set(xscale="log", yscale="log", xlim=(low, limit * 1.5), ylim=(low, limit * 1.5),
+             xlabel=f"{first}: time (s)", ylabel=f"{second}: time (s)",
+             title=label + (f" ({left_out} with a failed run left out)" if left_out else ""))
+    axis.set_aspect("equal")
+    axis.grid(alpha=0.3, which="both")
+    if shown:
+        axis.legend(fontsize="x-small", loc="upper left")
 
 
 def plot(records: list[dict], folder: Path, set_order: list[str] | None = None,
