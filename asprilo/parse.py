@@ -106,8 +106,13 @@ class Special:
 SUP, INF = Special("#sup"), Special("#inf")
 Term = int | Fn | Str | Special
 
-#: the literal 2147483648, read only as the operand of a unary minus (-2147483648)
-_BIG = Special("2147483648")
+
+
+class _Big(Special):
+    """The literal 2147483648 (``text`` as written), read only as the operand of a unary
+    minus (-2147483648)."""
+
+    __slots__ = ()
 
 
 def quoted(value: str) -> str:
@@ -349,7 +354,8 @@ def _token_name(kind: str | None, text: str) -> str:
     if kind == "v":
         return "<VARIABLE>"
     if kind == "h":
-        return text if text in _DIRECTIVES or text in ("#const", "#program", "#include", "#script") else "#"
+        known = text in _DIRECTIVES or text in _SUPREMUM or text in ("#const", "#program", "#include", "#script")
+        return text if known else "#"
     return text
 
 
@@ -462,7 +468,7 @@ class Reader:
             body = text[start + 1:end]
             return (_ESCAPE.sub(lambda m: _UNESCAPED[m.group(1)], body) if "\\" in body else body), end + 1
         escape = next_char == "\\" and text[end + 1:end + 2] in ('"', "\\", "n")
-        if end == limit and limit < self.end and (next_char not in "\\\r\n" or escape):
+        if escape or (end == limit < self.end and next_char not in "\r\n"):  # the limit cut the string
             raise self.error(self.limits.exceeded("string_chars", f"a string of more than {most:,} characters")
                              .message, start)
         if next_char == "\\":
@@ -478,7 +484,7 @@ class Reader:
             if value <= INT_MAX:
                 return value
             if value == INT_MAX + 1:
-                return _BIG
+                return _Big(text)
         shortened = text if len(text) <= 20 else f"{text[:10]}...{text[-5:]} ({len(text):,} digits)"
         return self._out_of_range(shortened, offset)
 
@@ -595,6 +601,8 @@ class Reader:
         raise self._unexpected(kind, text, at)
 
     def _directive(self, word: str, start: int) -> InputError:
+        if word in _SUPREMUM:
+            return self._unexpected("h", word, start)
         if word in ("#include", "#script"):
             return self.error(f"{word} is not followed in data (give every file on the command line)", start)
         if word in _DIRECTIVES:
@@ -681,8 +689,8 @@ class Reader:
         return self.error(self.limits.exceeded("depth", "terms nested more deeply").message, offset)
 
     def _checked(self, value: Any, offset: int) -> Any:
-        if value is _BIG:
-            self._out_of_range(str(INT_MAX + 1), offset)
+        if type(value) is _Big:
+            self._out_of_range(value.text, offset)
         return value
 
     # arithmetic ----------------------------------------------------------------------------------
@@ -734,7 +742,7 @@ class Reader:
             if value == INT_MIN:
                 raise self._overflow(f"-({value})", offset)
             return -value
-        if value is _BIG and symbol == "-":
+        if type(value) is _Big and symbol == "-":
             return INT_MIN
         self._checked(value, offset)
         if kind is Fn and symbol == "-":
@@ -784,7 +792,8 @@ class Reader:
 
     def _classify(self, start: int) -> tuple[str, int] | None:
         """What the statement at ``start`` is beyond a fact, if anything: ``(what, end)``."""
-        pos, depth, first = start, 0, True
+        pos, first = start, True
+        depth = 1 if self.text.startswith("#const", start) else 0  # (a ';' there is a pool)
         found: set[str] = set()
         most = start + self.limits.fact_chars
         while True:

@@ -11,6 +11,7 @@ complete the calls.
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 import time
@@ -60,6 +61,7 @@ def _refused(capsys, arguments: list, path: Path) -> None:
     code, _out, err, seconds = _run(capsys, arguments)
     assert code == 2, err
     assert err.count("\n") == 1 and err.startswith(f"error: {path}"), err
+    assert not any(char < " " for char in err[:-1]), err  # control characters are shown escaped
     assert seconds < BUDGET
 
 
@@ -157,16 +159,99 @@ def test_rules_when_allowed_are_grounded_under_time_and_memory_limits(capsys, tm
 
 @pytest.mark.parametrize("name", ["bad-instance-deep-function.lp", "bad-instance-syntax-dash.lp",
                                   "bad-instance-nul.lp", "bad-instance-include-binary.lp",
-                                  "bad-instance-readme.md", "bad-instance-binary.lp"])
+                                  "bad-instance-readme.md", "bad-instance-binary.lp", "bad-instance-power-chain.lp",
+                                  "bad-instance-const-power-chain.lp", "bad-instance-int-min-by-minus-one.lp",
+                                  "bad-instance-deep-minus-brackets.lp", "bad-instance-const-bomb.lp"])
 def test_no_crash_reaches_the_process(name):
     """Files that once ended the process (clingo's PANIC on a cut message, a segfault on a
-    deep term), in a process of their own."""
+    deep term or a long chain of operators, SIGFPE on -2147483648/-1), in a process of
+    their own."""
     path = CORPUS / name
     for arguments in (["info", path], ["check", path, BASE_PLAN]):
         result = subprocess.run([sys.executable, "-m", "asprilo.cli", *map(str, arguments)],
                                 capture_output=True, text=True, timeout=BUDGET)
         assert result.returncode == 2 and result.stderr.count("\n") == 1, result.stderr
         assert result.stderr.startswith(f"error: {path}")
+
+
+@pytest.mark.parametrize("name", ["ok-instance-minus-20000.lp", "ok-instance-minus-20000-tight.lp",
+                                  "ok-instance-tilde-20000.lp", "ok-instance-plus-chain.lp",
+                                  "ok-instance-const-minus-20000.lp"])
+def test_long_operator_chains_are_read_in_a_process_of_their_own(name):
+    """20,000 unary operators, or 20,000 binary ones, in a row (clingo segfaulted on each:
+    the parser evaluates them on a stack of its own and clingo sees only the result)."""
+    path = CORPUS / name
+    for arguments, expected in ((["info", path], "1 robots"), (["check", path, BASE_PLAN], "destinations reached")):
+        result = subprocess.run([sys.executable, "-m", "asprilo.cli", *map(str, arguments)],
+                                capture_output=True, text=True, timeout=BUDGET)
+        assert (result.returncode, result.stderr) == (0, "") and expected in result.stdout, result.stderr
+
+
+@pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="FIFOs need a POSIX system")
+def test_a_fifo_as_an_input_is_refused_by_every_command(tmp_path):
+    """A FIFO nobody writes to: each command answers at once with one line (it used to wait
+    for a writer for ever); the hang guard is generous, no measurement."""
+    fifo = tmp_path / "fifo.lp"
+    os.mkfifo(fifo)
+    calls = [make(fifo, tmp_path / command) for command, make in ON_INSTANCE.items()]
+    calls += [make(fifo, tmp_path / command) for command, make in ON_PLAN.items()]
+    for arguments in calls:
+        result = subprocess.run([sys.executable, "-m", "asprilo.cli", *map(str, arguments)],
+                                capture_output=True, text=True, timeout=BUDGET, stdin=subprocess.DEVNULL)
+        assert result.returncode == 2, (arguments, result.stderr)
+        assert result.stderr == f"error: {fifo}: is a FIFO (named pipe), not a regular file (give data on standard " \
+                                "input as -)\n", (arguments, result.stderr)
+
+
+#: a read in a child process under a hard address-space cap
+_CAPPED = """
+import resource, sys
+resource.setrlimit(resource.RLIMIT_AS, (int(sys.argv[1]) * 2**20,) * 2)
+from asprilo.cli import main
+sys.exit(main(sys.argv[2:]))
+"""
+
+
+def test_a_huge_string_is_read_within_a_hard_memory_cap(tmp_path):
+    """A 30 MB string literal (the old screen's regular expression took about 130 bytes per
+    byte: 4 GB): refused by string-chars at once, and read within the cap when the limits
+    allow it, kept (as an unknown attribute) or not."""
+    base = BASE_INSTANCE.read_text()
+    dropped, kept = tmp_path / "note.lp", tmp_path / "energy.lp"
+    dropped.write_text(base + 'note("' + "x" * 30_000_000 + '").\n')
+    kept.write_text(base + 'init(object(robot,1),value(energy,"' + "x" * 30_000_000 + '")).\n')
+    cap = "400"  # megabytes of address space: the interpreter, clingo's library, the file and its string
+    raised = ["--limit", "string-chars=40000000", "--limit", "fact-chars=40000000"]
+    for path, arguments, code, stderr in (
+            (dropped, [], 2, f"error: {dropped}:5: a string of more than 100,000 characters, beyond the limit "
+                             "string-chars=100,000 (raise it with --limit string-chars=N)\n"),
+            (dropped, raised, 0, ""),
+            (kept, raised, 0, f"warning: {kept}:5: ignored (and kept when written): attribute 'energy' of robot\n")):
+        result = subprocess.run([sys.executable, "-c", _CAPPED, cap, "info", str(path), *arguments],
+                                capture_output=True, text=True, timeout=BUDGET)
+        assert (result.returncode, result.stderr) == (code, stderr), result.stderr[-500:]
+
+
+def test_cr_line_ends_are_lines(capsys):
+    """A file with CR line ends (old Mac style): lines counted and comments ended at CR (clingo
+    ends them at LF only: everything after the first comment was lost, "0 robots")."""
+    path = CORPUS / "bad-instance-cr-rule.lp"
+    code, _out, err, _seconds = _run(capsys, ["info", path])
+    assert (code, err) == (2, f"error: {path}:6: 'p(X) :- q(X).' is a rule; data holds only facts, #const and "
+                              "'#program base.' (rules need --allow-rules)\n")
+    code, out, err, _seconds = _run(capsys, ["info", CORPUS / "ok-instance-cr-comments.lp"])
+    assert (code, err) == (0, "") and "1 robots" in out and "3 nodes" in out
+
+
+def test_messages_show_control_characters_escaped(capsys):
+    path = CORPUS / "bad-instance-escape-sequence-id.lp"
+    code, _out, err, _seconds = _run(capsys, ["info", path])
+    assert (code, err) == (2, f'error: {path}:5: robot id must be an integer, got "\\x1b]2;owned\\x07\\x1b[2J'
+                              '\\x1b[31m"\n')
+    plan = CORPUS / "bad-plan-escape-sequence-step.lp"
+    code, _out, err, _seconds = _run(capsys, ["check", BASE_INSTANCE, plan])
+    assert (code, err) == (2, f"error: {plan}:1: the time step of occurs(object(robot,1),action(move,(1,0)),"
+                              '"\\x1b[2J\\x1b[H") must be an integer\n')
 
 
 def test_outputs_never_destroy_inputs(capsys, tmp_path):

@@ -128,3 +128,18 @@ def test_clients_beyond_the_limit_are_turned_away(solver):
     finally:
         first.close()
         second.close()
+
+
+def test_a_line_of_20000_operators_is_read_by_the_parser_and_the_server_goes_on(solver):
+    """One line with 20,000 operators in a row killed the server (clingo segfaulted on it):
+    messages are parsed, and clingo sees only terms."""
+    reason = _refused(solver, b"p(" + b"2**" * 20_000 + b"2). %$done(0).\n")
+    assert reason == ("% <online>:1: 2**65536 is out of range (clingo's numbers are 32-bit: -2147483648..2147483647; "
+                      "clingo would wrap it around)")
+    assert _refused(solver, b'p("\\q"). #include "/etc/passwd". %$done(0).\n').startswith(
+        "% <online>:1: lexer error, the escape '\\q' in a string")
+    channel = Channel.connect("127.0.0.1", solver, timeout=WAIT)
+    channel.send(Message(WORLD + " p(" + "- " * 20_000 + "1).", DONE, 0))
+    assert channel.receive() == Message("occurs(object(robot,1),action(move,(1,0)),1).")
+    channel.close()
+    assert _served(solver) == Message("occurs(object(robot,1),action(move,(1,0)),1).")
