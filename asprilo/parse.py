@@ -323,6 +323,7 @@ _PLAIN_TOKEN = re.compile(_PLAIN_GAP + r"""(
 _STATEMENT = re.compile(rf'(?:[^."%]++|{_PLAIN_STRING}|%(?!\*)[^\r\n]*+|%\*[^%]*?\*%)*+\.')
 _IDENTIFIER = re.compile(r"[_']*+[a-z][A-Za-z0-9_']*+")
 _NUMBER_START, _DIGIT = frozenset("-0123456789"), frozenset("0123456789")
+_LEAVES = 10_000  # names a reader keeps made
 
 #: binary operators: precedence, function (unary operators bind tighter than all: 7)
 _XOR, _OR, _AND, _ADD, _MUL, _POW, _UNARY = 1, 2, 3, 4, 5, 6, 7
@@ -553,18 +554,19 @@ class Reader:
         """The term of a plain token, or ``None`` when it is not plain (a variable, ``not``,
         a constant, a punctuation mark)."""
         leaf = self._leaves.get(token)
-        if leaf is None:
-            if token[0] in _NUMBER_START and token[-1] in _DIGIT:
-                leaf = int(token)
-            elif token[0] == '"':
-                if len(token) - 2 > self.limits.string_chars:
-                    return None
-                body = token[1:-1]
-                leaf = Str(_ESCAPE.sub(lambda m: _UNESCAPED[m.group(1)], body) if "\\" in body else body)
-            elif _IDENTIFIER.fullmatch(token) and token != "not" and token not in self.constants:
-                leaf = Fn(token)
-            else:
+        if leaf is not None:
+            return leaf
+        if token[0] in _NUMBER_START and token[-1] in _DIGIT:
+            return int(token)
+        if token[0] == '"':
+            if len(token) - 2 > self.limits.string_chars:
                 return None
+            body = token[1:-1]
+            return Str(_ESCAPE.sub(lambda m: _UNESCAPED[m.group(1)], body) if "\\" in body else body)
+        if not _IDENTIFIER.fullmatch(token) or token == "not" or token in self.constants:
+            return None
+        leaf = Fn(token)
+        if len(self._leaves) < _LEAVES:  # names repeat (node, at, robot): each made once, up to a bound
             self._leaves[token] = leaf
         return leaf
 
