@@ -191,7 +191,7 @@ def test_loaded_invalid_instance_is_flagged_in_place(window, qtbot, write):
         "init(object(shelf,1),value(at,(3,3))).", "init(object(shelf,1),value(at,(1,1)))."))
     assert window.open_files([str(path)])
     assert window.stage.scene.shelves[1].flagged
-    assert "instance: shelf 1 rests on the highway node (1,1)" in [r[2] for r in window.panels["violations"].texts()]
+    assert "shelf 1 rests on the highway node (1,1)" in [r[2] for r in window.panels["violations"].texts()]
     window.editor.move("shelf", 1, (3, 3))
     assert not window.stage.scene.shelves[1].flagged
 

@@ -9,9 +9,10 @@ import sys
 
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 
+import numpy  # noqa: E402
 import pytest  # noqa: E402
 from helpers import OUTCOME, ROOT, SMALL_A, WRONG_OUTCOME  # noqa: E402
-from PIL import Image  # noqa: E402
+from PIL import Image, ImageChops  # noqa: E402
 
 from asprilo.cli import main  # noqa: E402
 from asprilo.visualizer.export.images import animation_times  # noqa: E402
@@ -19,9 +20,12 @@ from asprilo.visualizer.scene import style  # noqa: E402
 
 pytestmark = pytest.mark.gui
 
-# outcome.txt: an 11x6 floor; 48 px per cell and a quarter cell margin on each side
+# outcome.txt: an 11x6 floor; animations 48 px per cell and a quarter cell margin on each side
 WIDTH, HEIGHT = 552, 312
 CAPTION = 24
+# pictures: 128 px per cell (for slides: the 11x6 floor at least 1200 px wide), a caption band
+PICTURE_CELL = 128
+PICTURE = (1472, 832 + 48)
 
 
 def viz(*args: str) -> int:
@@ -31,11 +35,11 @@ def viz(*args: str) -> int:
 def test_png_of_a_state(qapp, tmp_path, capsys):
     out = tmp_path / "state.png"
     assert viz(OUTCOME, "--export", out, "--step", 8) == 0
-    assert capsys.readouterr().err == f"wrote {out}: {WIDTH}x{HEIGHT}\n"
+    assert capsys.readouterr().err == f"wrote {out}: {PICTURE[0]}x{PICTURE[1]}\n"
     image = Image.open(out).convert("RGB")
-    assert image.size == (WIDTH, HEIGHT)
+    assert image.size == PICTURE
     # robot 1 stands on (5,3) at step 8: its colour a little left of the cell's centre
-    x, y = int((5 - 0.5 + 0.25) * 48) - 9, int((3 - 0.5 + 0.25) * 48)
+    x, y = int((5 - 0.5 + 0.25) * PICTURE_CELL) - 24, int((3 - 0.5 + 0.25) * PICTURE_CELL)
     colour = style.robot_colour(0)
     assert image.getpixel((x, y)) == pytest.approx((colour.red(), colour.green(), colour.blue()), abs=3)
     assert image.getpixel((2, 2)) == (style.BACKGROUND.red(), style.BACKGROUND.green(), style.BACKGROUND.blue())
@@ -47,11 +51,45 @@ def test_png_cell_size_and_instance_without_plan(qapp, tmp_path):
     assert Image.open(out).size == (230, 130)
 
 
+def test_png_has_a_step_caption_unless_told_not_to(qapp, tmp_path):
+    background = (style.BACKGROUND.red(), style.BACKGROUND.green(), style.BACKGROUND.blue())
+    assert viz(OUTCOME, "--export", tmp_path / "with.png", "--step", 12) == 0
+    assert viz(OUTCOME, "--export", tmp_path / "without.png", "--step", 12, "--no-caption") == 0
+    captioned = Image.open(tmp_path / "with.png").convert("RGB")
+    bare = Image.open(tmp_path / "without.png").convert("RGB")
+    assert captioned.size == PICTURE and bare.size == (1472, 832)
+    band = captioned.crop((0, 832, 1472, PICTURE[1]))  # "state after step 12 of 29" under the floor
+    assert (numpy.asarray(band) != background).any(axis=2).sum() > 200
+    assert ImageChops.difference(captioned.crop((0, 0, 1472, 832)), bare).getbbox() is None  # the same floor
+    assert (numpy.asarray(bare.crop((0, 832 - 24, 1472, 832))) == background).all()  # below it: nothing
+
+
+def test_the_caption_says_which_state(qapp):
+    from asprilo.visualizer.export.images import picture_caption
+    assert picture_caption(12, 29) == "state after step 12 of 29"
+    assert picture_caption(0, 29) == "initial state (step 0 of 29)"
+
+
+def test_default_cell_fits_slides_and_big_floors_stay_bounded(qapp, tmp_path, capsys):
+    from asprilo.reader import read_instance
+    assert viz(SMALL_A, "--export", tmp_path / "floor.png") == 0
+    width, height = Image.open(tmp_path / "floor.png").size
+    assert width >= 1200 and (width, height) == (1472, 832)  # 11x6, no plan: no caption
+    big = tmp_path / "big.lp"
+    nodes = " ".join(f"init(object(node,{y * 300 + x + 1}),value(at,({x + 1},{y + 1})))."
+                     for y in range(4) for x in range(300))
+    big.write_text(nodes + " init(object(robot,1),value(at,(1,1))).\n")
+    assert read_instance(big).size == (300, 4)
+    assert viz(big, "--export", tmp_path / "big.png") == 0
+    assert max(Image.open(tmp_path / "big.png").size) <= 2000
+
+
 def test_svg_is_vector_drawing(qapp, tmp_path):
     out = tmp_path / "state.svg"
-    assert viz(OUTCOME, "--export", out, "--step", 29) == 0
+    assert viz(OUTCOME, "--export", out, "--step", 29, "--cell", 48) == 0
     text = out.read_text()
-    assert text.startswith("<?xml") and "<svg" in text and f'viewBox="0 0 {WIDTH} {HEIGHT}"' in text
+    assert text.startswith("<?xml") and "<svg" in text and f'viewBox="0 0 {WIDTH} {HEIGHT + CAPTION}"' in text
+    assert "state after step 29 of 29" in text  # the caption, as text
     assert "<image" not in text  # drawn with paths, not pasted pixels
 
 
@@ -119,18 +157,19 @@ def test_headless_command_reads_piped_input_without_a_screen(tmp_path):
     text = OUTCOME.read_text().replace("\n", " ")
     piped = f"clingo version 5.8.0\nReading from stdin\nSolving...\nAnswer: 1\n{text}\nSATISFIABLE\n"
     env = {key: value for key, value in os.environ.items() if key not in ("QT_QPA_PLATFORM", "DISPLAY")}
-    result = subprocess.run([sys.executable, "-m", "asprilo.cli", "viz", "--export", str(out), "--step", "29"],
+    result = subprocess.run([sys.executable, "-m", "asprilo.cli", "viz", "--export", str(out), "--step", "29",
+                             "--cell", "48"],
                             input=piped, capture_output=True, text=True, env=env, cwd=ROOT, timeout=120)
     assert result.returncode == 0, result.stderr
-    assert result.stderr.endswith(f"wrote {out}: {WIDTH}x{HEIGHT}\n")
-    assert Image.open(out).size == (WIDTH, HEIGHT)
+    assert result.stderr.endswith(f"wrote {out}: {WIDTH}x{HEIGHT + CAPTION}\n")
+    assert Image.open(out).size == (WIDTH, HEIGHT + CAPTION)
 
 
 def test_plan_from_standard_input(qapp, tmp_path, monkeypatch, capsys):
     plan = "".join(line + " " for line in OUTCOME.read_text().splitlines() if line.startswith("occurs"))
     monkeypatch.setattr(sys, "stdin", io.StringIO(f"Answer: 1\n{plan}\nSATISFIABLE\n"))
     out = tmp_path / "end.png"
-    assert viz(SMALL_A, "-", "--export", out, "--step", 29) == 0
+    assert viz(SMALL_A, "-", "--export", out, "--step", 29, "--cell", 48, "--no-caption") == 0
     assert capsys.readouterr().err == f"wrote {out}: {WIDTH}x{HEIGHT}\n"
 
 
@@ -152,7 +191,7 @@ def test_window_mode_checks_its_options_before_showing(qapp, monkeypatch, capsys
 
 def test_wrong_outcome_exports_despite_violations(qapp, tmp_path):
     out = tmp_path / "wrong.png"
-    assert viz(WRONG_OUTCOME, "--export", out, "--step", 23) == 0
+    assert viz(WRONG_OUTCOME, "--export", out, "--step", 23, "--cell", 48) == 0
     image = Image.open(out).convert("RGB")
     # robot 1 is flagged at step 23: a red ring around it on (8,1)
     x, y = int((8 - 0.5 + 0.25) * 48), int((1 - 0.5 + 0.25) * 48)

@@ -19,6 +19,7 @@ from PyQt5.QtWidgets import QFileDialog, QMessageBox  # noqa: E402
 from asprilo.checker import check  # noqa: E402
 from asprilo.reader import read_instance  # noqa: E402
 from asprilo.visualizer.panels.commands import shortcut_rows  # noqa: E402
+from asprilo.visualizer.panels.violation_list import sentence  # noqa: E402
 
 pytestmark = pytest.mark.gui
 WAIT_MS = 60_000  # a hang guard: no job may take longer here
@@ -143,8 +144,8 @@ def test_an_invalid_plan_opens_with_the_checkers_violations(window, qtbot, choos
     assert expected  # the sign error breaks the rules
     rows = window.panels["violations"].texts()
     assert len(rows) == len(expected)
-    assert rows[0] == [str(expected[0].step), f"{expected[0].module}/{expected[0].check}", expected[0].message]
-    assert [row[2] for row in rows] == [error.message for error in expected]
+    assert rows[0] == [str(expected[0].step), f"{expected[0].module}/{expected[0].check}", sentence(expected[0])]
+    assert [row[2] for row in rows] == [sentence(error) for error in expected]
     assert window.docks["violations"].windowTitle() == f"Violations — ASP checker ({len(expected)})"
     assert any(row[1] == "move/offFloor" and "robot 1" in row[2] for row in rows)  # rule, step, robot
     message = window.statusBar().currentMessage()

@@ -15,7 +15,7 @@ from asprilo.visualizer.panels.orders import OrdersModel  # noqa: E402
 from asprilo.visualizer.panels.plan_list import PlanModel  # noqa: E402
 from asprilo.visualizer.panels.robot_list import RobotsModel  # noqa: E402
 from asprilo.visualizer.panels.tables import CURRENT, DONE, TablePanel  # noqa: E402
-from asprilo.visualizer.panels.violation_list import ViolationsModel  # noqa: E402
+from asprilo.visualizer.panels.violation_list import ViolationsModel, sentence  # noqa: E402
 from asprilo.visualizer.state.describe import action_text, actions_text, tooltip  # noqa: E402
 from asprilo.visualizer.state.track import Track  # noqa: E402
 
@@ -131,8 +131,10 @@ def test_violations_panel_lists_every_broken_rule(qapp):
     assert [v.atom for v in track.violations] == [
         "err(deliver,orderAmount,(1,23))", "err(deliver,shelfAmount,(1,23))",
         "err(goal,unfilledOrder,(1,2,1,29))"]
-    assert [row[2] for row in rows] == [v.message for v in track.violations]
-    assert "order 1 still lacks 1 unit of product 2" in rows[2][2]
+    # the sentence without the step its column shows
+    assert [row[2] for row in rows] == [sentence(v) for v in track.violations]
+    assert [v.message.removeprefix(f"step {v.step}: ") for v in track.violations[:2]] == [r[2] for r in rows[:2]]
+    assert rows[2][2].startswith("at the horizon: order 1 still lacks 1 unit of product 2")
 
 
 def test_valid_plan_has_no_violations(qapp, outcome):

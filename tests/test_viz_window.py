@@ -262,7 +262,7 @@ def test_export_from_the_window(window, tmp_path):
     window.go_to(12)
     window.select_robots([1])
     assert window.exports.picture(str(tmp_path / "now.png"))
-    assert Image.open(tmp_path / "now.png").size == (552, 312)
+    assert Image.open(tmp_path / "now.png").size == (1472, 832 + 48)  # 128 px per cell, the caption below
     assert window.exports.animation(str(tmp_path / "all.gif"), 2)
     assert Image.open(tmp_path / "all.gif").n_frames == 59
     assert window.player.time == 12                       # the view is back where it was

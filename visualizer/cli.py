@@ -39,7 +39,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--speed", type=float, default=2.0, metavar="S",
                        help="animation speed in steps per second (default 2)")
     group.add_argument("--cell", type=int, metavar="PX",
-                       help="pixels per cell (default 48, less for big warehouses)")
+                       help="pixels per cell (default: pictures 128, for slides; animations 48; "
+                            "less for big warehouses)")
+    group.add_argument("--no-caption", dest="caption", action="store_false",
+                       help="pictures: leave out the line below the warehouse that says which state it shows")
     online = parser.add_argument_group("online link (see asprilo serve)")
     online.add_argument("--solver", type=int, metavar="PORT",
                         help="connect to a solver: it plans step by step for the INSTANCE, "
@@ -98,7 +101,7 @@ def _export(args: argparse.Namespace, scenario) -> int:
             print(f"\rrendering frame {done}/{total}", end="\n" if done == total else "", file=sys.stderr)
 
     written = render(scenario.instance, scenario.plan, args.export, scenario.domain, args.step,
-                     args.frames, args.speed, args.cell, progress)
+                     args.frames, args.speed, args.cell, progress, args.caption)
     print(f"wrote {args.export}: {written}", file=sys.stderr)
     return 0
 

@@ -12,7 +12,6 @@ from __future__ import annotations
 from PyQt5.QtCore import QSettings, Qt
 from PyQt5.QtWidgets import (
     QAction,
-    QApplication,
     QInputDialog,
     QMainWindow,
     QMenu,
@@ -34,6 +33,7 @@ from .panels.dialogs import confirm_discard
 from .panels.docks import Panels
 from .panels.files import FileActions
 from .panels.legend import Legend
+from .panels.screen import fit
 from .panels.status import StatusLine
 from .scene.paths import PathMode
 from .scene.player import Player
@@ -73,6 +73,8 @@ ACTIONS: Table = {
 }
 #: the side panels' width (pixels) in a new window
 DOCK_WIDTH = 470
+#: a new window's size (pixels), where the screen has room for it and its frame
+FIRST_SIZE = (1366, 860)
 #: the longest error message a dialog shows whole
 ERROR_CHARACTERS = 600
 MENUS = (("file", "&File"), ("edit", "&Edit"), ("view", "&View"), ("play", "&Play"), ("run", "&Run"),
@@ -118,8 +120,7 @@ class MainWindow(QMainWindow):
         bar.addWidget(self.transport)
         self.addToolBar(Qt.BottomToolBarArea, bar)
         self.setAcceptDrops(True)
-        screen = QApplication.primaryScreen().availableGeometry()
-        self.resize(min(1366, screen.width()), min(860, screen.height()))
+        fit(self, *FIRST_SIZE)  # the screen's room less the frame: a 1366x768 laptop shows it all
         geometry, state = self.settings.value("window/geometry"), self.settings.value("window/state")
         if geometry is not None:
             self.restoreGeometry(geometry)
@@ -249,6 +250,7 @@ class MainWindow(QMainWindow):
             half = ERROR_CHARACTERS // 2
             message = f"{message[:half]} … {message[-half:]}"
         box = QMessageBox(QMessageBox.Warning, "asprilo viz", message, QMessageBox.Ok, self)
+        box.setTextFormat(Qt.TextFormat.PlainText)  # a file's or clingo's words, `<stdin>` or `<IDENTIFIER>` too
         box.setAttribute(Qt.WA_DeleteOnClose)
         box.open()
 
@@ -297,7 +299,7 @@ class MainWindow(QMainWindow):
         self.files.open_dropped(paths)
 
     def closeEvent(self, event) -> None:
-        if not confirm_discard(self, self.state.document):
+        if not confirm_discard(self, self.state.document, self.editor.save_unsaved):
             event.ignore()
             return
         self.player.pause()

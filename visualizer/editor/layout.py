@@ -25,7 +25,7 @@ from ..panels.docks import Panels
 from ..panels.files import remember_folder, start_folder
 from ..scene.stage import Stage
 from ..state import edits
-from ..state.document import Change
+from ..state.document import INSTANCE, PLAN, Change
 from ..state.drafts import DraftOrders
 from ..state.edits import NAMES, Edit, EditRefused
 from ..state.loading import Scenario
@@ -293,6 +293,13 @@ class Editor(QObject):
     def ask_save_plan(self) -> bool:
         path = self._ask_path("Save plan", "plan.lp", PLAN_FILTER)
         return bool(path) and self.save_plan(path)
+
+    def save_unsaved(self) -> bool:
+        """Save the parts with unsaved edits as File > Save instance and File > Save plan as…
+        do; whether all of them were saved (not when a file dialog was cancelled)."""
+        if self.document.unsaved(INSTANCE) and not self.save():
+            return False
+        return not self.document.unsaved(PLAN) or self.ask_save_plan()
 
     def _ask_path(self, title: str, name: str, filters: str) -> str:
         folder = Path(start_folder(self.settings))

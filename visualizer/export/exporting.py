@@ -42,9 +42,10 @@ class ExportActions(QObject):
             self.animation(path, frames)
 
     def picture(self, path: str) -> bool:
-        """Save the warehouse as shown now (time, selection, paths)."""
+        """Save the warehouse as shown now (time, selection, paths), the state's caption below it."""
         try:
-            images.save_picture(path, self.stage.scene)
+            caption = images.picture_caption(self.player.time, self.player.horizon) if self.player.horizon else None
+            images.save_picture(path, self.stage.scene, caption=caption)  # the state shown, said below it
         except InputError as error:
             self.state.report_error(str(error))
             return False

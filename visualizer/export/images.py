@@ -15,11 +15,12 @@ from fractions import Fraction
 from pathlib import Path
 
 from PyQt5.QtCore import QBuffer, QIODevice, QRectF, QSize, Qt
-from PyQt5.QtGui import QImage, QPainter
+from PyQt5.QtGui import QFontMetricsF, QImage, QPainter
 
 from asprilo.errors import InputError
 from asprilo.writer import write_bytes
 
+from ..panels.controls import time_text
 from ..scene import style
 from ..scene.animator import Animator
 from ..scene.style import CELL
@@ -29,7 +30,13 @@ PICTURES = (".png", ".jpg", ".jpeg", ".svg")
 ANIMATIONS = (".gif", ".mp4")
 #: Largest side of an export in pixels when no cell size is given.
 MAX_SIDE = 2000
+#: Pixels per cell of an animation (every frame is kept until the file is encoded).
 DEFAULT_CELL_PX = 48
+#: Pixels per cell of a picture, for slides and projectors: an 11x6 floor 1472 px wide, its
+#: labels (a fifth of a cell) 26 px high; big floors get less (``MAX_SIDE``).
+PICTURE_CELL_PX = 128
+#: The caption line's height in pixels at most.
+MAX_CAPTION_PX = 48
 
 Progress = Callable[[int, int], None]
 
@@ -43,11 +50,12 @@ def export_format(path: str | Path) -> str:
     return suffix
 
 
-def default_cell_px(scene: WarehouseScene) -> int:
-    """Pixels per cell: 48, less for big warehouses so the longest side stays under 2000 px."""
+def default_cell_px(scene: WarehouseScene, largest: int = DEFAULT_CELL_PX) -> int:
+    """Pixels per cell: ``largest`` (48 for animations, ``PICTURE_CELL_PX`` for pictures),
+    less for big warehouses so the longest side stays under 2000 px."""
     rect = scene.picture_rect()
     cells = max(rect.width(), rect.height()) / CELL
-    return max(2, min(DEFAULT_CELL_PX, int(MAX_SIDE / cells)))
+    return max(2, min(largest, int(MAX_SIDE / cells)))
 
 
 def image_size(scene: WarehouseScene, cell_px: int, caption: bool = False) -> QSize:
@@ -58,7 +66,7 @@ def image_size(scene: WarehouseScene, cell_px: int, caption: bool = False) -> QS
 
 
 def caption_height(cell_px: int) -> int:
-    return max(18, cell_px // 2)
+    return max(18, min(MAX_CAPTION_PX, cell_px // 2))
 
 
 @contextmanager
@@ -92,10 +100,14 @@ def _paint(painter: QPainter, scene: WarehouseScene, cell_px: int, width: int, h
     floor_height = height - (caption_height(cell_px) if caption is not None else 0)
     scene.render(painter, QRectF(0, 0, width, floor_height), scene.picture_rect(), Qt.IgnoreAspectRatio)
     if caption is not None:
+        room = QRectF(cell_px * 0.25, floor_height, width - cell_px * 0.5, height - floor_height)
+        font = style.font(caption_height(cell_px) * 0.6)
+        wide = QFontMetricsF(font).horizontalAdvance(caption)
+        if wide > room.width() > 0:  # a narrow floor: smaller letters, the whole caption
+            font = style.font(max(1.0, font.pixelSize() * room.width() / wide))
         painter.setPen(style.CAPTION)
-        painter.setFont(style.font(caption_height(cell_px) * 0.6))
-        painter.drawText(QRectF(cell_px * 0.25, floor_height, width - cell_px * 0.5, height - floor_height),
-                         Qt.AlignLeft | Qt.AlignVCenter, caption)
+        painter.setFont(font)
+        painter.drawText(room, Qt.AlignLeft | Qt.AlignVCenter, caption)
 
 
 def step_caption(step: float, horizon: int) -> str:
@@ -105,18 +117,27 @@ def step_caption(step: float, horizon: int) -> str:
     return f"step {whole} / {horizon}"
 
 
-def save_picture(path: str | Path, scene: WarehouseScene, cell_px: int | None = None) -> QSize:
-    """Write the scene as it stands to a PNG, JPEG or SVG file; returns the picture's size."""
+def picture_caption(time: float, horizon: int) -> str:
+    """The caption of a picture of the state at ``time``, as the window's time display says it:
+    ``initial state (step 0 of 29)``, ``state after step 12 of 29``, ``step 12 → 13 of 29``
+    (the one caption of pictures: ``save_picture``, File > Export picture)."""
+    return time_text(time, horizon)
+
+
+def save_picture(path: str | Path, scene: WarehouseScene, cell_px: int | None = None,
+                 caption: str | None = None) -> QSize:
+    """Write the scene as it stands to a PNG, JPEG or SVG file, with ``caption`` on a line
+    below it if given; returns the picture's size."""
     suffix = export_format(path)
     if suffix not in PICTURES:
         raise InputError(f"{suffix} is an animation format; pictures are .png, .jpg or .svg", str(path))
-    cell_px = cell_px or default_cell_px(scene)
-    size = image_size(scene, cell_px)
+    cell_px = cell_px or default_cell_px(scene, PICTURE_CELL_PX)
+    size = image_size(scene, cell_px, caption is not None)
     with _detail_for(scene, cell_px):
         if suffix == ".svg":
-            data = _svg(scene, cell_px, size)
+            data = _svg(scene, cell_px, size, caption)
         else:
-            data = _encoded(render(scene, cell_px), "PNG" if suffix == ".png" else "JPEG")
+            data = _encoded(render(scene, cell_px, caption), "PNG" if suffix == ".png" else "JPEG")
     write_bytes(path, data)
     return size
 
@@ -128,7 +149,7 @@ def _encoded(image: QImage, form: str) -> bytes:
     return bytes(buffer.data())
 
 
-def _svg(scene: WarehouseScene, cell_px: int, size: QSize) -> bytes:
+def _svg(scene: WarehouseScene, cell_px: int, size: QSize, caption: str | None = None) -> bytes:
     from PyQt5.QtSvg import QSvgGenerator
     buffer = QBuffer()
     generator = QSvgGenerator()
@@ -139,7 +160,7 @@ def _svg(scene: WarehouseScene, cell_px: int, size: QSize) -> bytes:
     generator.setTitle("asprilo warehouse")
     painter = QPainter(generator)
     painter.fillRect(QRectF(0, 0, size.width(), size.height()), style.BACKGROUND)
-    _paint(painter, scene, cell_px, size.width(), size.height(), None)
+    _paint(painter, scene, cell_px, size.width(), size.height(), caption)
     painter.end()
     return bytes(buffer.data())
 

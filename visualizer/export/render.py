@@ -40,10 +40,11 @@ def application():
 
 def render(instance: Instance, plan: Plan, path: str | Path, domain: Domain | None = None,
            step: int | None = None, frames: int = 1, speed: float = 2.0, cell: int | None = None,
-           progress: Callable[[int, int], None] | None = None) -> str:
-    """Write a picture (.png, .jpg, .svg: the state after ``step``, default 0) or an animation
-    (.gif, .mp4: the whole plan, ``frames`` per step at ``speed`` steps per second) of
-    ``plan`` on ``instance``; returns a short description of what was written."""
+           progress: Callable[[int, int], None] | None = None, caption: bool = True) -> str:
+    """Write a picture (.png, .jpg, .svg: the state after ``step``, default 0, with a caption
+    line saying so unless ``caption`` is false or there is no plan) or an animation (.gif,
+    .mp4: the whole plan, ``frames`` per step at ``speed`` steps per second) of ``plan`` on
+    ``instance``; returns a short description of what was written."""
     if not os.environ.get("DISPLAY") and not os.environ.get("WAYLAND_DISPLAY"):
         os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
     from ..scene.animator import Animator
@@ -64,7 +65,8 @@ def render(instance: Instance, plan: Plan, path: str | Path, domain: Domain | No
         if shown > track.horizon:
             raise InputError(f"--step {shown} lies beyond the plan, whose last step is {track.horizon}")
         animator.show(shown)
-        size = images.save_picture(str(path), scene, cell)
+        said = images.picture_caption(shown, track.horizon) if caption and track.horizon else None
+        size = images.save_picture(str(path), scene, cell, said)
         return f"{size.width()}x{size.height()}"
     finally:
         del animator, scene  # before the application goes

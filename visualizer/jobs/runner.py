@@ -36,7 +36,6 @@ from PyQt5.QtWidgets import (
     QAction,
     QActionGroup,
     QHBoxLayout,
-    QLabel,
     QMainWindow,
     QMenu,
     QProgressBar,
@@ -50,6 +49,7 @@ from asprilo.simulate import Violation
 
 from ..panels.commands import Table, make_actions
 from ..panels.dialogs import GenerateDialog
+from ..panels.status import ElidedLabel
 from ..scene.player import Player
 from ..state import edits
 from ..state.viewer import ViewerState
@@ -57,6 +57,8 @@ from . import encoding_files
 
 #: seconds the solver and the generator may take from the window
 SOLVE_SECONDS, GENERATE_SECONDS = 300.0, 120.0
+#: the least and the most pixels a running job's progress takes in the status bar (more ends in …)
+JOB_TEXT_PX = (160, 360)
 #: the Solve methods: setting -> menu entry (``asp``: minimal makespan with the encoding chosen)
 SOLVE_METHODS = {"asp": "&Minimal makespan (with the encoding chosen)",
                  "anytime": "&Anytime: a plan fast, then better ones"}
@@ -131,7 +133,7 @@ class JobBar(QWidget):
         super().__init__(parent)
         layout = QHBoxLayout(self)
         layout.setContentsMargins(16, 0, 4, 0)  # apart from the status message on its left
-        self.label = QLabel(self)
+        self.label = ElidedLabel(self, *JOB_TEXT_PX)  # ends in … first: the verdict beside it never does
         self.bar = QProgressBar(self)
         self.bar.setRange(0, 0)  # busy: how long a search takes is not known in advance
         self.bar.setMaximumWidth(120)

@@ -11,6 +11,8 @@ line at fault is marked and the plan shown stays.
 
 from __future__ import annotations
 
+from html import escape
+
 from PyQt5.QtCore import QEvent, Qt, QTimer
 from PyQt5.QtGui import QColor, QFont, QKeySequence, QTextCursor, QTextFormat
 from PyQt5.QtWidgets import QLabel, QPlainTextEdit, QSplitter, QTextEdit, QVBoxLayout, QWidget
@@ -163,7 +165,7 @@ class AtomsPane(QWidget):
     def _show_note(self, problem: str | None = None) -> None:
         track = self.state.track
         if problem is not None:
-            self.plan_note.setText(f"<span style='color:#e03131'>{problem} (the plan shown stays)</span>")
+            self.plan_note.setText(f"<span style='color:#e03131'>{escape(problem)} (the plan shown stays)</span>")
         elif track is None:
             self.plan_note.setText("")
         else:

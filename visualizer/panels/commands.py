@@ -5,10 +5,13 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from html import escape
+from itertools import zip_longest
 
 from PyQt5.QtCore import Qt
 from PyQt5.QtGui import QKeySequence
-from PyQt5.QtWidgets import QAction, QMainWindow, QMessageBox, QWidget
+from PyQt5.QtWidgets import QAction, QDialog, QDialogButtonBox, QLabel, QMainWindow, QVBoxLayout, QWidget
+
+from .screen import fit_dialog, scrolling
 
 #: name -> (menu text, shortcuts); the first shortcut is the one menus show
 Table = dict[str, tuple[str, tuple[str, ...]]]
@@ -34,7 +37,7 @@ def plain(text: str) -> str:
 
 def shortcut_rows(window: QMainWindow) -> list[tuple[str, str]]:
     """``(command, keys)`` of every command of the window that has a shortcut, menu order aside."""
-    rows = {}
+    rows: dict[str, str] = {}
     for action in window.findChildren(QAction):
         keys = [key.toString() for key in action.shortcuts()]
         if keys and action.text():
@@ -42,13 +45,36 @@ def shortcut_rows(window: QMainWindow) -> list[tuple[str, str]]:
     return list(rows.items())
 
 
+def shortcuts_dialog(window: QMainWindow) -> QDialog:
+    """A dialog listing every command with its keys in two columns, and what the mouse does;
+    as tall as the screen allows (the list scrolls on a smaller one), OK always in view."""
+    rows = shortcut_rows(window)
+    half = (len(rows) + 1) // 2
+
+    def cells(row: tuple[str, str] | None) -> str:
+        return f"<td>{escape(row[0])}</td><td><b>{escape(row[1])}</b></td>" if row else "<td></td><td></td>"
+
+    lines = "".join(f"<tr>{cells(left)}<td width=20></td>{cells(right)}</tr>"
+                    for left, right in zip_longest(rows[:half], rows[half:]))
+    text = QLabel(f"<table cellspacing=3>{lines}</table>"
+                  "<p>Mouse: wheel zooms, drag pans, click selects a robot "
+                  "(Ctrl+click: several), hover shows details.</p>")
+    text.setTextFormat(Qt.TextFormat.RichText)
+    text.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)
+    text.setContentsMargins(8, 8, 8, 8)
+    dialog = QDialog(window)
+    dialog.setWindowTitle("Keyboard shortcuts")
+    layout = QVBoxLayout(dialog)
+    layout.addWidget(scrolling(text, dialog), 1)
+    buttons = QDialogButtonBox(QDialogButtonBox.Ok, dialog)
+    buttons.accepted.connect(dialog.accept)
+    layout.addWidget(buttons)
+    fit_dialog(dialog)
+    return dialog
+
+
 def show_shortcuts(window: QMainWindow) -> None:
-    """A window listing every command with its keys, and what the mouse does."""
-    rows = "".join(f"<tr><td>{escape(text)}</td><td><b>{escape(keys)}</b></td></tr>"
-                   for text, keys in shortcut_rows(window))
-    box = QMessageBox(QMessageBox.Information, "Keyboard shortcuts",
-                      f"<table cellspacing=4>{rows}</table>"
-                      "<p>Mouse: wheel zooms, drag pans, click selects a robot "
-                      "(Ctrl+click: several), hover shows details.</p>", QMessageBox.Ok, window)
-    box.setAttribute(Qt.WA_DeleteOnClose)
-    box.open()
+    """Open the list of every command with its keys (not blocking)."""
+    dialog = shortcuts_dialog(window)
+    dialog.setAttribute(Qt.WidgetAttribute.WA_DeleteOnClose)
+    dialog.open()

@@ -6,6 +6,8 @@ Each dialog is a plain QDialog with ``values()``; callers ``open()`` or ``exec_(
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 from PyQt5.QtWidgets import (
     QAbstractItemView,
     QCheckBox,
@@ -42,14 +44,21 @@ def spin(value: int, low: int, high: int, special: str | None = None) -> QSpinBo
     return box
 
 
-def confirm_discard(parent: QWidget, document: Document) -> bool:
-    """Whether unsaved edits may go (asks when there are any)."""
+def confirm_discard(parent: QWidget, document: Document, save: Callable[[], bool] | None = None) -> bool:
+    """Whether unsaved edits may go (asks when there are any).  With ``save`` the question
+    offers Save as well (Save / Discard / Cancel): they may go once ``save()`` saved them."""
     if not document.modified:
         return True
     parts = [name for name, part in (("instance", INSTANCE), ("plan", PLAN)) if document.unsaved(part)]
     subject = "The instance and the plan have" if len(parts) == 2 else f"The {parts[0]} has"
-    answer = QMessageBox.question(parent, "asprilo viz", f"{subject} unsaved edits. Discard them?",
-                                  QMessageBox.Discard | QMessageBox.Cancel, QMessageBox.Cancel)
+    if save is None:
+        answer = QMessageBox.question(parent, "asprilo viz", f"{subject} unsaved edits. Discard them?",
+                                      QMessageBox.Discard | QMessageBox.Cancel, QMessageBox.Cancel)
+        return answer == QMessageBox.Discard
+    answer = QMessageBox.question(parent, "asprilo viz", f"{subject} unsaved edits. Save them?",
+                                  QMessageBox.Save | QMessageBox.Discard | QMessageBox.Cancel, QMessageBox.Save)
+    if answer == QMessageBox.Save:
+        return save()
     return answer == QMessageBox.Discard
 
 

@@ -3,19 +3,89 @@ step shown (valid plan, or how many rules it breaks)."""
 
 from __future__ import annotations
 
-from PyQt5.QtWidgets import QLabel, QSizePolicy, QStatusBar
+from PyQt5.QtCore import QEvent, QSize, Qt
+from PyQt5.QtWidgets import QLabel, QSizePolicy, QStatusBar, QWidget
 
 from ..state.viewer import ViewerState
 
+#: the share of the status bar's width the summary keeps while a job's progress is shown beside it
+SUMMARY_SHARE = 0.4
+
+
+class ElidedLabel(QLabel):
+    """One line of plain text that ends in ``…`` where its room is too small (the whole text
+    in the tooltip then).  It asks for its whole text, at most ``longest`` pixels, and
+    shrinks to ``shortest`` pixels (its whole text if shorter), or to the share ``keep`` of
+    its parent's width (not below its whole text), so that what lies beside it gives way
+    first."""
+
+    def __init__(self, parent: QWidget | None = None, shortest: int = 40, longest: int | None = None,
+                 keep: float = 0.0):
+        super().__init__(parent)
+        self.setTextFormat(Qt.TextFormat.PlainText)
+        self.setSizePolicy(QSizePolicy.Preferred, QSizePolicy.Preferred)
+        self.shortest, self.longest, self.keep = shortest, longest, keep
+        self._whole = ""
+        if keep and parent is not None:
+            parent.installEventFilter(self)  # its share follows the parent's width
+
+    def eventFilter(self, watched, event) -> bool:
+        if event.type() == QEvent.Type.Resize and watched is self.parentWidget():
+            self.updateGeometry()
+        return False
+
+    def setText(self, text: str | None) -> None:
+        self._whole = text or ""
+        self._elide()
+        self.updateGeometry()
+
+    def text(self) -> str:
+        """The whole text, also where only its start is shown."""
+        return self._whole
+
+    def shown(self) -> str:
+        """What the label shows: the text, or its start and ``…``."""
+        return super().text()
+
+    def sizeHint(self) -> QSize:
+        margins = self.contentsMargins()
+        width = (self.fontMetrics().horizontalAdvance(self._whole) + margins.left() + margins.right()
+                 + 2 * self.margin() + 4)
+        if self.longest is not None:
+            width = min(width, self.longest)
+        return QSize(width, super().sizeHint().height())
+
+    def minimumSizeHint(self) -> QSize:
+        width = min(self.shortest, self.sizeHint().width())  # a short text needs no more
+        parent = self.parentWidget()
+        if self.keep and parent is not None:
+            width = max(width, min(self.sizeHint().width(), int(self.keep * parent.width())))
+        return QSize(width, super().minimumSizeHint().height())
+
+    def resizeEvent(self, event) -> None:
+        super().resizeEvent(event)
+        self._elide()
+
+    def _elide(self) -> None:
+        room = max(0, self.contentsRect().width())
+        shown = self.fontMetrics().elidedText(self._whole, Qt.TextElideMode.ElideRight, room)
+        if shown != super().text():
+            super().setText(shown)
+        self.setToolTip(self._whole if shown != self._whole else "")
+
 
 class StatusLine:
-    """A summary on the left, the verdict on the right, passing messages in between."""
+    """A summary on the left, the verdict on the right, passing messages in between.
+
+    The verdict never shrinks: what lies beside it ends in ``…`` first (its whole text in its
+    tooltip), a running job's progress before the summary's first ``SUMMARY_SHARE``.
+    """
 
     def __init__(self, state: ViewerState, bar: QStatusBar):
         self.state, self.bar = state, bar
-        self.summary = QLabel(bar)
-        self.summary.setSizePolicy(QSizePolicy.Ignored, QSizePolicy.Preferred)  # clipped, never overlapping
+        self.summary = ElidedLabel(bar, shortest=0, keep=SUMMARY_SHARE)
         self.verdict = QLabel(bar)
+        self.verdict.setSizePolicy(QSizePolicy.Fixed, QSizePolicy.Preferred)  # as wide as its words, always
         bar.addWidget(self.summary, 1)
         bar.addPermanentWidget(self.verdict)
         state.shown.connect(lambda _keep: self._show_track())

@@ -8,6 +8,8 @@ fast with thousands of rows.
 
 from __future__ import annotations
 
+import textwrap
+from html import escape
 from typing import Any
 
 from PyQt5.QtCore import QAbstractTableModel, QModelIndex, QSortFilterProxyModel, Qt, pyqtSignal
@@ -24,6 +26,22 @@ PROBLEM = QColor("#ffe3e3")    # violations
 FADED = QColor("#868e96")      # what lies in the past
 _TOP = QModelIndex()           # the parent of a table's rows
 MAX_COLUMN = 150               # pixels
+TIP_CHARACTERS = 72            # the longest line of a wrapped tooltip
+
+
+def plain_tip(text: str) -> str:
+    """``text`` shown as it is in a tooltip: Qt takes text that looks like HTML (an ``&lt;`` or a
+    tag such as ``<b>`` in its first line) for rich text and would drop the tags, so such
+    text is escaped."""
+    if not Qt.mightBeRichText(text):  # type: ignore[attr-defined]  # not in PyQt5's stubs
+        return text
+    return "<p style='white-space:pre-wrap'>" + escape(text) + "</p>"
+
+
+def wrapped_tip(text: str, width: int = TIP_CHARACTERS) -> str:
+    """``text`` as a tooltip of lines of at most ``width`` characters (a long sentence stays
+    on the screen: Qt shows a plain tooltip on one line however long it is)."""
+    return plain_tip("\n".join(textwrap.wrap(text, width, break_long_words=False, break_on_hyphens=False)))
 
 
 class RowsModel(QAbstractTableModel):
@@ -51,6 +69,8 @@ class StepModel(RowsModel):
     dynamic: tuple[int, ...] = ()
     #: column -> width in pixels, for columns whose texts change with the step
     widths: dict[int, int] = {}
+    #: ``tooltip`` gives rich text (escaped where it shows data); otherwise tooltips are plain text
+    rich_tooltips = False
 
     def __init__(self, parent=None):
         super().__init__(parent)
@@ -116,7 +136,8 @@ class StepModel(RowsModel):
             font.setBold(True)
             return font
         if role == Qt.ToolTipRole:
-            return self.tooltip(row, index.column()) or self.text(row, index.column()) or None
+            tip = self.tooltip(row, index.column()) or self.text(row, index.column()) or None
+            return tip if tip is None or self.rich_tooltips else plain_tip(tip)
         if role == Qt.TextAlignmentRole and isinstance(self.value(row, index.column()), int):
             return int(Qt.AlignRight | Qt.AlignVCenter)
         return None

@@ -9,14 +9,27 @@ from PyQt5.QtGui import QColor
 from asprilo.simulate import Violation
 
 from ..state.track import Track
-from .tables import CURRENT, StepModel
+from .tables import CURRENT, StepModel, wrapped_tip
+
+
+def sentence(violation: Violation) -> str:
+    """What is wrong, in words, without the step the panel shows in a column of its own
+    (``step 23: robot 1 …`` → ``robot 1 …``; a goal at the horizon says so)."""
+    message = violation.message
+    for prefix, instead in ((f"step {violation.step} (the horizon): ", "at the horizon: "),
+                            (f"step {violation.step}: ", ""), ("instance: ", "")):
+        if message.startswith(prefix):
+            return instead + message[len(prefix):]
+    return message
 
 
 class ViolationsModel(StepModel):
-    """One row per violation, as the simulator reports it (the checker's ``err/3`` in the tooltip)."""
+    """One row per violation, as the simulator reports it: the sentence in full in its
+    tooltip, the checker's ``err/3`` atom in the rule's."""
 
     columns = ("Step", "Rule", "What is wrong")
     dynamic = (0,)
+    rich_tooltips = True  # wrapped, escaped where needed
 
     def build_rows(self, track: Track) -> list[Violation]:
         return list(track.violations)
@@ -28,10 +41,12 @@ class ViolationsModel(StepModel):
         self.endResetModel()
 
     def value(self, row: Violation, column: int) -> Any:
-        return (row.step, f"{row.module}/{row.check}", row.message)[column]
+        return (row.step, f"{row.module}/{row.check}", sentence(row))[column]
 
     def tooltip(self, row: Violation, column: int) -> str:
-        return row.atom
+        if column == 2:
+            return wrapped_tip(sentence(row))
+        return wrapped_tip(row.atom) if column == 1 else str(row.step)
 
     def background(self, row: Violation) -> QColor | None:
         return CURRENT if row.step == self.step else None

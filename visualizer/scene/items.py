@@ -243,7 +243,7 @@ def _stripes() -> QPainterPath:
 
 
 class StationItem(QGraphicsRectItem, ObjectItem):
-    """A picking station: a striped yellow cell with a ``PS<id>`` tag.
+    """A picking station: a striped yellow cell with a ``PS<id>`` tag in its bottom left corner.
 
     The tag is an item of its own, drawn above robots and shelves, so a busy station
     still shows; it follows the station wherever the station is put.
@@ -269,7 +269,9 @@ class StationItem(QGraphicsRectItem, ObjectItem):
         self.label = Label(f"PS{ident}", 0.2 * CELL, style.STATION_TEXT, self.tag)
         box = self.label.mapRectToParent(self.label.boundingRect()).adjusted(-3, -1, 3, 1)
         self.tag.setRect(box)
-        self._tag_offset = QPointF(-0.48 * CELL + box.width() / 2 + 2, -0.48 * CELL + box.height() / 2 + 2)
+        # the bottom left corner: a goal's tag takes the top right one (``✓ PS1`` on the shelf
+        # brought here), a shelf's id the bottom right one, a robot's the middle
+        self._tag_offset = QPointF(-0.48 * CELL + box.width() / 2 + 2, 0.48 * CELL - box.height() / 2 - 2)
 
     def itemChange(self, change, value):
         if change == QGraphicsItem.ItemPositionHasChanged:

@@ -85,12 +85,16 @@ class Player(QObject):
         self.pause() if self.playing else self.play()
 
     def step_forward(self) -> None:
-        """Glide to the next state (from between two states: to the later one)."""
-        self._glide(min(math.floor(self.time + 1e-9) + 1, self.horizon))
+        """Glide to the next state (from between two states: to the later one); during a glide
+        one state further than where it goes, so that every key press counts."""
+        base = self._target if self._target is not None else math.floor(self.time + 1e-9)
+        self._glide(min(base + 1, self.horizon))
 
     def step_back(self) -> None:
-        """Glide to the previous state (from between two states: to the earlier one)."""
-        self._glide(max(math.ceil(self.time - 1e-9) - 1, 0))
+        """Glide to the previous state (from between two states: to the earlier one); during a
+        glide one state before where it goes."""
+        base = self._target if self._target is not None else math.ceil(self.time - 1e-9)
+        self._glide(max(base - 1, 0))
 
     def to_start(self) -> None:
         self.pause()
@@ -138,7 +142,9 @@ class Player(QObject):
     def _tick(self) -> None:
         elapsed = self._clock.restart() / 1000.0
         if self._target is not None:
-            distance = elapsed * max(self.speed, GLIDE_SPEED)
+            # a glide over several states (keys pressed quickly) catches up: about a quarter of a
+            # second whatever the distance
+            distance = elapsed * max(self.speed, GLIDE_SPEED * max(1.0, abs(self._target - self.time)))
             if abs(self._target - self.time) <= distance:
                 target, self._target = self._target, None
                 self._timer.stop()
