@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import gc
+import sys
 import threading
 from pathlib import Path
 
@@ -18,6 +20,22 @@ from helpers.online import WAIT, tiny  # noqa: E402
 
 from asprilo.online.planner import OnlinePlanner, Schedule, encodings_planner  # noqa: E402
 from asprilo.online.serve import listen, serve, simulator_session, solver_session  # noqa: E402
+
+
+@pytest.fixture(autouse=True)
+def qt_objects_deleted_between_tests():
+    """After each test, the widgets it closed are deleted and its Python garbage collected, here:
+    not later, in the middle of another test (a window deleted while the next test walks its
+    own widgets has crashed a run)."""
+    yield
+    widgets = sys.modules.get("PyQt5.QtWidgets")
+    if widgets is None or widgets.QApplication.instance() is None:
+        return
+    from PyQt5.QtCore import QCoreApplication, QEvent
+
+    QCoreApplication.sendPostedEvents(None, QEvent.DeferredDelete)
+    gc.collect()
+    QCoreApplication.sendPostedEvents(None, QEvent.DeferredDelete)
 
 
 @pytest.fixture

@@ -36,9 +36,12 @@ def plain(text: str) -> str:
 
 
 def shortcut_rows(window: QMainWindow) -> list[tuple[str, str]]:
-    """``(command, keys)`` of every command of the window that has a shortcut, menu order aside."""
+    """``(command, keys)`` of every command of the window that has a shortcut, menu order aside.
+
+    The window's own actions (``make_actions`` adds each to its owner), not every QAction in its
+    tree: Qt's internal ones (a text field's menu, a dialog being deleted) are none of ours."""
     rows: dict[str, str] = {}
-    for action in window.findChildren(QAction):
+    for action in window.actions():
         keys = [key.toString() for key in action.shortcuts()]
         if keys and action.text():
             rows.setdefault(plain(action.text()), ", ".join(keys))
