@@ -31,6 +31,17 @@ class Limits:
     file_mb: int = 256  # megabytes of one file or message
     rule_seconds: float = 10.0  # grounding time with --allow-rules
     rule_mb: int = 2048  # grounding memory (megabytes) with --allow-rules
+    # the tools' budgets (docs/LIMITS.md): YAML files, exported pictures and animations, gen
+    yaml_kb: int = 1_024  # kilobytes of a YAML file (gen -j batch files, bench suites, grading ladders)
+    yaml_nodes: int = 50_000  # values, lists and mappings of a YAML file, each alias counted as what it stands for
+    yaml_aliases: int = 1_000  # aliases (*name) in a YAML file
+    yaml_depth: int = 50  # nesting of lists and mappings in a YAML file
+    pixels: int = 40_000_000  # pixels of an exported picture, or of one frame of an animation
+    frames: int = 10_000  # frames of an exported animation
+    animation_pixels: int = 1_000_000_000  # pixels of all frames of an exported animation together
+    gen_cells: int = 1_000_000  # cells of a floor gen makes (-x times -y)
+    gen_objects: int = 100_000  # the most gen makes of anything: -p, -r, -s, -P, -u, -o, the per-shelf/order counts
+    gen_mb: int = 2_048  # memory (megabytes) gen may use to make one instance
     allow_rules: bool = False  # rules in data (never #include or #script)
 
     def exceeded(self, name: str, what: str) -> InputError:
@@ -50,7 +61,8 @@ class Limits:
 
 #: the limits ``--limit`` can change, with their types
 NAMES = {field.name: field.type for field in fields(Limits) if field.name != "allow_rules"}
-_CEILINGS = {"depth": 500}  # clingo recurses into terms (printing, grounding)
+_CEILINGS = {"depth": 500,  # clingo recurses into terms (printing, grounding)
+             "yaml_depth": 200}  # PyYAML composes and constructs nested values recursively
 
 
 def parse_option(text: str) -> tuple[str, int | float]:

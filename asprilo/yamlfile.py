@@ -4,6 +4,13 @@ Mappings come back as :class:`YamlMapping` (a dict that remembers the line of ea
 lists as :class:`YamlList` (a list that remembers the line of each item).  A duplicate key, a
 key that is not a name, text that is not UTF-8 (a byte-order mark is fine), a binary file or a
 YAML syntax error is an :class:`~asprilo.errors.InputError` ``FILE:LINE: what is wrong``.
+
+Every YAML file is read within budgets (:mod:`asprilo.limits`, ``--limit NAME=N``): its size
+(``yaml-kb``), its nesting (``yaml-depth``), its aliases (``yaml-aliases``) and its nodes with
+every alias counted as what it stands for (``yaml-nodes``), so that a few hundred bytes of
+aliases to aliases ("billion laughs") or thousands of brackets are refused in one line before
+anything is built.  An alias inside what its anchor names (a value that contains itself) is
+refused too.
 """
 
 from __future__ import annotations
@@ -14,6 +21,7 @@ from typing import Any
 import yaml
 
 from .errors import InputError
+from .limits import Limits, current
 
 
 class YamlMapping(dict):
@@ -35,7 +43,65 @@ class YamlList(list):
 
 
 class _Loader(yaml.SafeLoader):
-    pass
+    """PyYAML's safe loader that composes within the budgets of ``limits``."""
+
+    name: str
+    limits: Limits = Limits()
+
+    def budget(self, limits: Limits) -> None:
+        self.limits = limits
+        self.depth = 0
+        self.nodes = 0  # nodes composed so far, aliases counted as what they stand for
+        self.aliases = 0
+        self.open: set[str] = set()  # anchors of the lists and mappings being composed
+        self.sizes: dict[int, int] = {}  # id(node) -> its nodes, for the anchored ones
+
+    def compose_node(self, parent: yaml.Node | None, index: Any) -> yaml.Node:
+        event = self.peek_event()
+        line = event.start_mark.line + 1
+        if isinstance(event, yaml.AliasEvent):
+            self.aliases += 1
+            if self.aliases > self.limits.yaml_aliases:
+                raise self.limits.exceeded("yaml_aliases", f"more than {self.limits.yaml_aliases:,} aliases") \
+                    .at(self.name, line)
+            if event.anchor in self.open:
+                raise InputError(f"the alias *{event.anchor} stands for a value that contains it", self.name, line)
+            alias = super().compose_node(parent, index)
+            assert alias is not None  # an alias event always composes a node
+            self._count(self._size(alias), line)
+            return alias
+        self._count(1, line)
+        if isinstance(event, yaml.CollectionStartEvent):
+            self.depth += 1
+            if self.depth > self.limits.yaml_depth:
+                raise self.limits.exceeded("yaml_depth", f"lists and mappings nested more than "
+                                                         f"{self.limits.yaml_depth:,} deep").at(self.name, line)
+        anchor = event.anchor
+        if anchor is not None:
+            self.open.add(anchor)
+        before = self.nodes
+        try:
+            node = super().compose_node(parent, index)
+        finally:
+            if anchor is not None:
+                self.open.discard(anchor)
+            if isinstance(event, yaml.CollectionStartEvent):
+                self.depth -= 1
+        assert node is not None  # a node event always composes a node
+        if anchor is not None:
+            self.sizes[id(node)] = self.nodes - before + 1
+        return node
+
+    def _count(self, nodes: int, line: int) -> None:
+        self.nodes += nodes
+        if self.nodes > self.limits.yaml_nodes:
+            raise self.limits.exceeded("yaml_nodes", f"more than {self.limits.yaml_nodes:,} values, lists and "
+                                                     f"mappings (aliases counted as what they stand for)") \
+                .at(self.name, line)
+
+    def _size(self, node: yaml.Node) -> int:
+        """The nodes an alias stands for (its anchor's, counted when the anchor was composed)."""
+        return self.sizes.get(id(node), 1)
 
 
 def _mapping(loader: _Loader, node: yaml.MappingNode) -> YamlMapping:
@@ -66,15 +132,21 @@ _Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _mapping
 _Loader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_SEQUENCE_TAG, _sequence)
 
 
-def read_yaml_text(path: str | Path) -> str:
-    """The text of a YAML file: UTF-8 (with or without a byte-order mark), no NUL bytes."""
+def read_yaml_text(path: str | Path, limits: Limits | None = None) -> str:
+    """The text of a YAML file: UTF-8 (with or without a byte-order mark), no NUL bytes, at
+    most ``yaml-kb`` kilobytes (PyYAML reads about a megabyte in seconds)."""
     path = Path(path)
+    limits = limits or current()
     if not path.is_file():
         raise InputError("no such file" if not path.exists() else "is not a file", str(path))
+    most = limits.yaml_kb * 1024
     try:
-        data = path.read_bytes()
+        with path.open("rb") as stream:
+            data = stream.read(most + 1)
     except OSError as error:
         raise InputError(f"cannot read: {error.strerror}", str(path)) from None
+    if len(data) > most:
+        raise limits.exceeded("yaml_kb", f"a YAML file of more than {limits.yaml_kb:,} kB").at(str(path))
     if b"\0" in data:
         raise InputError("a binary file, not YAML text", str(path), data[:data.index(b"\0")].count(b"\n") + 1)
     try:
@@ -84,11 +156,14 @@ def read_yaml_text(path: str | Path) -> str:
         raise InputError(f"not UTF-8 text (byte 0x{data[error.start]:02x})", str(path), line) from None
 
 
-def load_yaml(path: str | Path) -> Any:
-    """The document of a YAML file (None for an empty one), mappings and lists with their lines."""
-    text = read_yaml_text(path)
+def load_yaml(path: str | Path, limits: Limits | None = None) -> Any:
+    """The document of a YAML file (None for an empty one), mappings and lists with their
+    lines, read within the YAML budgets of ``limits`` (default: those in force)."""
+    limits = limits or current()
+    text = read_yaml_text(path, limits)
     loader = _Loader(text)
     loader.name = str(path)
+    loader.budget(limits)
     try:
         return loader.get_single_data()
     except yaml.YAMLError as error:
@@ -97,6 +172,12 @@ def load_yaml(path: str | Path) -> Any:
         raise InputError(f"not valid YAML: {problem}", str(path), mark.line + 1 if mark else None) from None
     finally:
         loader.dispose()
+
+
+def shown(value: Any, most: int = 80) -> str:
+    """A value of a YAML file as a message quotes it: its ``repr``, cut to ``most`` characters."""
+    text = repr(value)
+    return text if len(text) <= most else text[:most - 3] + "..."
 
 
 def line_of(node: Any, default: int | None = None) -> int | None:

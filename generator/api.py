@@ -5,13 +5,15 @@ from __future__ import annotations
 from collections.abc import Iterator
 from dataclasses import dataclass, field, replace
 
+from asprilo.isolation import run_isolated
+from asprilo.limits import current
 from asprilo.model import Instance
 from asprilo.writer import header_lines
 
 from .assemble import assemble
 from .config import GeneratorConfig, RunOptions
 from .options import DEFAULT_SEED
-from .pipeline import Generator
+from .pipeline import GenerationFailed, Generator
 from .plan import GenerationPlan, make_plan
 from .sampling import derive_seed
 
@@ -37,14 +39,64 @@ def instance_seed(seed: int, number: int) -> int:
     return derive_seed(seed, "instance", number)
 
 
-def generate_one(plan: GenerationPlan, seed: int, number: int = 1, command: str | None = None) -> Generated:
+#: seconds the child process of :func:`generate_limited` gets beyond -w to stop by itself
+GRACE = 2.0
+#: plans whose :func:`estimated_size` is at most this are made in this process (their
+#: grounding takes well under a second and a few MB: a child process would cost more)
+IN_PROCESS = 20_000
+
+
+def estimated_size(plan: GenerationPlan) -> int:
+    """About how many atoms the generator grounds for ``plan``: the cells (times the gap
+    shapes of a partial floor), the objects, the units a (product, shelf) pair may get and
+    the lines of the orders."""
+    cells = plan.width * plan.height
+    if plan.partial_floor:  # a gap of every shape W x H <= gap_size may start at every cell
+        widths = range(1, min(plan.gap_size, plan.width - 1) + 1)
+        cells *= 1 + sum(min(plan.gap_size // width, plan.height - 1) for width in widths)
+    _least, _target, most = plan.pairs
+    units = most * max(1, plan.pus_max - plan.pus_min + 1)
+    lines = len(plan.orders) * max(1, plan.ol_max) * max(1, plan.product_total)
+    return (cells + plan.station_total + plan.robot_total + plan.shelf_total + plan.product_total + units
+            + lines)
+
+
+def generate_one(plan: GenerationPlan, seed: int, number: int = 1, command: str | None = None,
+                 on_stage=None) -> Generated:
     """Generate instance ``number`` of a checked plan (raises GenerationFailed)."""
-    generator = Generator(plan, instance_seed(seed, number))
+    generator = Generator(plan, instance_seed(seed, number), on_stage)
     instance = assemble(plan, generator.run())
     header = header_lines(instance, command, seed, tool=TOOL)
     header.insert(3 if command is not None else 2, f"instance: {number}")
     stages = {r.stage: (r.rounds, r.seconds) for r in generator.reports.values() if r.rounds}
     return Generated(instance, header, number, seed, stages)
+
+
+def generate_limited(plan: GenerationPlan, seed: int, number: int = 1, command: str | None = None) -> Generated:
+    """:func:`generate_one` in a child process (:func:`asprilo.isolation.run_isolated`) that is
+    stopped when -w runs out, also while clingo grounds (which the time limit of the
+    generator itself cannot interrupt), and cannot use more memory than the limit ``gen-mb``;
+    either ends as :class:`GenerationFailed` naming the stage it was in."""
+    if estimated_size(plan) <= IN_PROCESS:
+        return generate_one(plan, seed, number, command)
+    limits = current()
+    stages: list[str] = []
+    outcome = run_isolated(_generate_in_child, (plan, seed, number, command), time_limit=plan.time_limit + GRACE,
+                           memory_mb=limits.gen_mb, on_message=stages.append)
+    stage = stages[-1] if stages else "floor"
+    if outcome.status == "done":
+        return outcome.value
+    if outcome.status == "timeout":
+        raise GenerationFailed(stage, timed_out=True)
+    if outcome.status == "memout":
+        raise GenerationFailed(stage, timed_out=True,
+                               reason=f"more than {limits.gen_mb:,} MB of memory were needed, beyond the limit "
+                                      f"gen-mb={limits.gen_mb:,} (raise it with --limit gen-mb=N)")
+    raise GenerationFailed(stage, timed_out=False, reason=f"the generator's process ended ({outcome.detail})")
+
+
+def _generate_in_child(plan: GenerationPlan, seed: int, number: int, command: str | None, report) -> Generated:
+    return generate_one(plan, seed, number, command, on_stage=report)
 
 
 def iter_generate(config: GeneratorConfig, count: int = 1, seed: int = DEFAULT_SEED, *,

@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from asprilo.errors import InputError
-from asprilo.yamlfile import YamlMapping, line_of, load_yaml
+from asprilo.yamlfile import YamlMapping, line_of, load_yaml, shown
 
 from .config import parse_values
 
@@ -63,7 +63,7 @@ class _Batch:
             raise self.fail("a batch file is a mapping with global_settings and run_configs", 1)
         for key in document:
             if key not in ("global_settings", "run_configs"):
-                raise self.fail(f"unknown key {key!r} (expected global_settings, run_configs)",
+                raise self.fail(f"unknown key {shown(key)} (expected global_settings, run_configs)",
                                 document.key_lines[key])
         if "run_configs" not in document:
             raise self.fail("no run_configs", document.line)
@@ -77,7 +77,7 @@ class _Batch:
 
     def options(self, args: Any, line: int) -> dict[str, Any]:
         if not isinstance(args, dict):
-            raise self.fail(f"args must be a mapping of options, got {args!r}", line)
+            raise self.fail(f"args must be a mapping of options, got {shown(args)}", line)
         try:
             values = parse_values(args)
         except InputError as error:
@@ -91,7 +91,7 @@ class _Batch:
         line = line_of(node)
         if not isinstance(node, YamlMapping):
             raise self.fail(f"{'/'.join(path) or 'run_configs'}: expected a mapping "
-                            f"(args, conf or sub-directories), got {node!r}", line)
+                            f"(args, conf or sub-directories), got {shown(node)}", line)
         children = {key: value for key, value in node.items() if key not in ("args", "conf")}
         confs = node.get("conf")
         confs = [] if confs is None else confs if isinstance(confs, list) else [confs]
@@ -120,10 +120,10 @@ class _Batch:
         """A key of the tree as the name of a sub-directory (checked)."""
         name = str(key)
         if name.startswith("-"):
-            raise self.fail(f"{name!r}: an option where a sub-directory is expected; options go under "
+            raise self.fail(f"{shown(name)}: an option where a sub-directory is expected; options go under "
                             f"'args:' (see generator/README.md)", node.key_lines[key])
         if not _NAME.match(name) or name in (".", ".."):
-            raise self.fail(f"{name!r} cannot name a directory", node.key_lines[key])
+            raise self.fail(f"{shown(name)} cannot name a directory", node.key_lines[key])
         if node[key] is None:
             raise self.fail(f"{'/'.join(path + (name,))} is empty", node.key_lines[key])
         return name

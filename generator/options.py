@@ -10,6 +10,7 @@ listed in :data:`REFUSED`, each with what to use instead.
 
 from __future__ import annotations
 
+import math
 import shlex
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -17,6 +18,7 @@ from typing import Any
 
 from asprilo.domain import Domain
 from asprilo.errors import InputError
+from asprilo.yamlfile import shown
 
 #: The seed used when none is given (that of the original tool).
 DEFAULT_SEED = 123456789
@@ -34,7 +36,9 @@ def at_most(most: int, why: str = "") -> Check:
 
 
 def positive(value: float) -> str | None:
-    return None if value > 0 else f"must be positive, got {value}"
+    if not value > 0:
+        return f"must be positive, got {value}"
+    return None if math.isfinite(value) else f"must be a finite number, got {value}"
 
 
 def percentage(value: float) -> str | None:
@@ -44,7 +48,7 @@ def percentage(value: float) -> str | None:
 def name_part(value: str) -> str | None:
     """Text that goes into a file name and keeps the file in its folder."""
     if "/" in value or "\\" in value or value in (".", ".."):
-        return f"must be part of a file name (no '/'), got {value!r}"
+        return f"must be part of a file name (no '/'), got {shown(value)}"
     return None
 
 
@@ -193,7 +197,7 @@ def convert(option: Option, value: Any) -> Any:
     """Check and convert a value given for ``option`` (in a YAML file or through the API)."""
     converted = _CONVERTERS[option.kind](value)
     if converted is None:
-        raise InputError(f"{option.flag} needs {_EXPECTED[option.kind]}, got {value!r}")
+        raise InputError(f"{option.flag} needs {_EXPECTED[option.kind]}, got {shown(value)}")
     option.check(converted)
     return converted
 
@@ -239,7 +243,7 @@ def option_for(key: str) -> Option:
     option = BY_FLAG.get(key) or BY_NAME.get(key)
     if option is None:
         refuse_original(key)
-        raise InputError(f"unknown option {key!r}")
+        raise InputError(f"unknown option {shown(key)}")
     return option
 
 

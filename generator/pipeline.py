@@ -46,13 +46,18 @@ MORE_UNITS = 0.2
 
 
 class GenerationFailed(Exception):
-    """No instance: the request is unsatisfiable, or the time limit ran out first."""
+    """No instance: the request is unsatisfiable, or the time limit (or, in a child process
+    under limits, the memory budget) ran out first; ``reason`` says so in other words."""
 
-    def __init__(self, stage: str, timed_out: bool):
+    def __init__(self, stage: str, timed_out: bool, reason: str | None = None):
         self.stage = stage
         self.timed_out = timed_out
-        reason = "the time limit ran out" if timed_out else "the request is unsatisfiable"
+        self.reason = reason
+        reason = reason or ("the time limit ran out" if timed_out else "the request is unsatisfiable")
         super().__init__(f"{reason} (stage {stage})")
+
+    def __reduce__(self):  # pickled whole: failures come back from the child process (api.generate_limited)
+        return GenerationFailed, (self.stage, self.timed_out, self.reason)
 
 
 @dataclass
@@ -111,9 +116,11 @@ def _geometric(mean: float) -> int:
 class Generator:
     """Generates one instance of a plan from one seed."""
 
-    def __init__(self, plan: GenerationPlan, seed: int):
+    def __init__(self, plan: GenerationPlan, seed: int, on_stage: Callable[[str], None] | None = None):
         self.plan = plan
         self.seed = seed
+        self.on_stage = on_stage  # told each stage as it starts (the child process tells its parent)
+        self._stage = ""
         self.solver = Solver(options=["--heuristic=Domain", f"--parallel-mode={plan.threads}"],
                              constants={**plan.constants(), "seed": seed % COIN, "seed2": seed // COIN % COIN})
         for program in PROGRAMS:
@@ -155,6 +162,7 @@ class Generator:
 
     def _layout(self) -> None:
         plan = self.plan
+        self._enter("floor")
         if plan.layout == "structured":
             self.solver.ground([("structured", []), ("keys", [])])
         elif plan.layout == "template":
@@ -267,6 +275,7 @@ class Generator:
         solving waits until every part is grounded.
         """
         started = time.perf_counter()
+        self._enter(stage)
         report = self.reports[stage]
         report.rounds += 1
         self._add_facts(facts, parts)
@@ -310,6 +319,7 @@ class Generator:
         return attempt(None)
 
     def _solve_once(self) -> None:
+        self._enter("one-shot")
         started = time.perf_counter()
         result = self.solver.solve(time_limit=self._remaining("one-shot"))
         self.reports["floor"].seconds += time.perf_counter() - started
@@ -335,6 +345,12 @@ class Generator:
         if kind not in self._keyed:
             self._keyed.add(kind)
             self.solver.ground([("number_keys", [kind, min(ids), max(ids)])])
+
+    def _enter(self, stage: str) -> None:
+        """Say that ``stage`` starts (to ``on_stage``), once."""
+        if self.on_stage is not None and stage != self._stage:
+            self._stage = stage
+            self.on_stage(stage)
 
     def _round(self, stage: str) -> int:
         self._rounds[stage] += 1

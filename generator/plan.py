@@ -11,12 +11,14 @@ from dataclasses import dataclass
 
 from asprilo.domain import DEFAULT, Domain
 from asprilo.errors import InputError
+from asprilo.limits import Limits, current
 from asprilo.model import Instance
 from asprilo.reader import read_instance
 
 from .config import GeneratorConfig, check_given, value_of
 from .inventory import inventory, new_count, orders, ranges
 from .layout import Floor, plan_floor, shelf_room, where_shelves_go
+from .options import option_for
 
 
 @dataclass(frozen=True)
@@ -82,9 +84,35 @@ def load_template(config: GeneratorConfig) -> Instance | None:
     return config.template
 
 
+#: options that are sizes on the floor (at most the limit ``coordinate``, as in data)
+FLOOR_SIZES = ("width", "height", "zone_x", "zone_y", "border")
+#: options that count what gen makes (at most the limit ``gen-objects``)
+COUNTS = ("nodes", "gap_size", "stations", "robots", "shelves", "products", "units", "orders", "pus_min", "pus_max",
+          "prs_min", "prs_max", "spr_min", "spr_max", "ol_min", "ol_max", "split_threshold")
+
+
+def check_budgets(config: object, limits: Limits | None = None) -> None:
+    """Refuse sizes of a :class:`GeneratorConfig` beyond the budgets (docs/LIMITS.md): floor
+    sizes beyond ``coordinate``, a floor of more than ``gen-cells`` cells, counts beyond
+    ``gen-objects``."""
+    limits = limits or current()
+    sizes = {name: getattr(config, name) for name in FLOOR_SIZES}
+    for name, value in sizes.items():
+        if value is not None and value > limits.coordinate:
+            raise limits.exceeded("coordinate", f"{option_for(name).flag} {value:,}")
+    width, height = sizes["width"], sizes["height"]
+    if width is not None and height is not None and width * height > limits.gen_cells:
+        raise limits.exceeded("gen_cells", f"-x {width:,} -y {height:,}: a floor of {width * height:,} cells")
+    for name in COUNTS:
+        value = getattr(config, name)
+        if value is not None and value > limits.gen_objects:
+            raise limits.exceeded("gen_objects", f"{option_for(name).flag} {value:,}")
+
+
 def make_plan(config: GeneratorConfig) -> GenerationPlan:
     """Check ``config`` and resolve defaults, template contents and the M alignment."""
     check_given(config)
+    check_budgets(config)
     solving = _solving(config)
     template = load_template(config)
     floor = plan_floor(config, template)

@@ -15,7 +15,7 @@ from typing import Any, TextIO
 from asprilo.errors import InputError
 from asprilo.writer import format_instance
 
-from .api import Generated, generate_one
+from .api import Generated, generate_limited
 from .batch import load_batch
 from .config import GeneratorConfig, RunOptions, parse_values
 from .options import DEFAULT_SEED, split_values
@@ -85,9 +85,12 @@ def run_jobs(jobs: list[Job], verbose: bool = False, stream: TextIO | None = Non
     for job in files:
         check_output_folder(job.directory, "-d")
     # a progress bar when writing files (with -C the instances themselves show the progress)
-    progress = WriteProgress(0 if quiet else sum(job.options.count for job in files), stream)
-    tally = sum((_generate(job, plan, progress, verbose, stream) for job, plan in zip(jobs, plans, strict=True)),
-                Tally())
+    progress = WriteProgress(0 if quiet else sum(job.options.count for job in files), stream, beats=not quiet)
+    try:
+        tally = sum((_generate(job, plan, progress, verbose, stream) for job, plan in zip(jobs, plans, strict=True)),
+                    Tally())
+    finally:
+        progress.close()
     if files and not quiet and (tally.written or tally.kept):
         print(_where_files_went(files, tally), file=stream)
     return tally.failed
@@ -127,8 +130,9 @@ def _generate(job: Job, plan: GenerationPlan, progress: WriteProgress, verbose: 
             progress.advance(f"{job.directory}: N{number:03d} exists")
             tally.kept += 1
             continue
+        progress.working(f"N{number:03d}" if options.console else f"{job.directory}: N{number:03d}")
         try:
-            item = generate_one(plan, options.seed, number, command)
+            item = generate_limited(plan, options.seed, number, command)  # -w and gen-mb hold, grounding too
         except GenerationFailed as failure:
             progress.interrupt()
             print(f"error: {_place(job)}no instance {number}: {failure}", file=stream)
@@ -154,13 +158,17 @@ def _put(job: Job, item: Generated, progress: WriteProgress) -> str:
         sys.stdout.write(format_instance(item.instance, item.header) + "\n")
         return item.file_name(options.prefix)
     try:
-        return str(save(item, job.directory, options.prefix, options.instance_dir, options.force))
+        templates = getattr(job.config, "templates", None) or ()  # (a field mypy does not see: made at run time)
+        return str(save(item, job.directory, options.prefix, options.instance_dir, options.force,
+                        (*templates, job.where[0])))
     except InputError:
         progress.interrupt()
         raise
 
 
-def _check_output(options: RunOptions) -> None:
+def _check_output(options: Any) -> None:
+    """Refuse :class:`RunOptions` that both replace and keep existing files (``Any``: a class
+    made at run time, which mypy does not see)."""
     if options.force and options.skip_existing:
         raise InputError("give either --force (replace files) or --skip-existing (keep them), not both")
 

@@ -28,7 +28,7 @@ from asprilo.limits import current
 from asprilo.model import DIRECTIONS, Action, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
 from asprilo.reader import instance_from_atoms, read_instance, read_plan
 from asprilo.sources import Source, as_sources, ground_atoms
-from asprilo.writer import format_instance, format_plan, header_lines, refuse_overwriting, write_text
+from asprilo.writer import check_output, format_instance, format_plan, header_lines, write_output
 
 from .movingai import (
     LacamResult,
@@ -316,11 +316,13 @@ def plan_to_result(instance: Instance, plan: Plan) -> LacamResult:
 # --- the command -------------------------------------------------------------------------
 
 FORMATS = {".map": "map", ".scen": "scen", ".txt": "result", ".lp": "asprilo"}
+#: how convert writes to standard output, for the refusal of a device as OUT
+STANDARD_OUTPUT = "- as OUT"
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("source", metavar="IN", help="file to convert (- = stdin for asprilo files)")
-    parser.add_argument("target", metavar="OUT", help="file to write (- = stdout)")
+    parser.add_argument("target", metavar="OUT", help="file to write (a regular file, not an input; - = stdout)")
     parser.add_argument("--from", dest="source_format", choices=["map", "scen", "result", "asprilo", "plan"],
                         help="format of IN (default: from its ending)")
     parser.add_argument("--to", dest="target_format", choices=["map", "scen", "result", "m", "md", "plan"],
@@ -406,6 +408,7 @@ def _from_movingai(args: argparse.Namespace, source_format: str) -> str:
     else:
         tasks = parse_scenario(Source.from_path(args.source))
         map_path = Path(args.map) if args.map else _map_beside(args.source, tasks[0].map_name)
+        check_output(args.target, [map_path], STANDARD_OUTPUT)  # the map found beside is an input too
         grid = parse_map(Source.from_path(map_path))
         instance = scenario_to_instance(grid, tasks, len(tasks) if args.agents is None else args.agents,
                                         args.goals, args.labelled)
@@ -423,10 +426,8 @@ def _map_beside(scenario: str, name: str) -> Path:
 
 
 def run(args: argparse.Namespace) -> int:
-    refuse_overwriting(args.target, [args.source, args.instance, args.map])
+    inputs = [args.source, args.instance, args.map]
+    check_output(args.target, inputs, STANDARD_OUTPUT)
     text = convert(args)
-    if args.target == "-":
-        print(text, end="")
-    else:
-        write_text(args.target, text)
+    write_output(args.target, text, inputs)
     return 0

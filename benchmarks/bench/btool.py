@@ -141,7 +141,7 @@ def _copy_encoding(own: OwnEncoding, folder: Path) -> None:
     root = Path(os.path.commonpath([file.parent for file in program]))
     target = folder / "encodings" / own.name
     for file in program:
-        write_bytes(target / file.relative_to(root), file.read_bytes())
+        write_bytes(target / file.relative_to(root), file.read_bytes(), [file])
     files = [f"{own.name}/{Path(file).resolve().relative_to(root).as_posix()}" for file in own.files]
     write_text(folder / own_description(own.name),
                json.dumps({**own.job(), "files": files, "style": own.style}, indent=1) + "\n")
@@ -159,7 +159,7 @@ def _copy_instances(instances: list[SuiteInstance], folder: Path, known: dict,
                              f"names within a set")
         files[instance.set].append(name)
         target = folder / "benchmarks" / instance.set / name
-        write_text(target, instance.path.read_text(encoding="utf-8"))
+        write_text(target, instance.path.read_text(encoding="utf-8"), [instance.path])
         cache = makespan_cache(target)
         spans = {**read_makespan_cache(cache),
                  **{label: span for label, span in known.get(instance.name, {}).items() if span is not None}}

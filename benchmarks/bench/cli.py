@@ -38,7 +38,7 @@ from asprilo.writer import write_text
 from . import btool, report
 from .report import FORMATS
 from .results import RESULTS, load_results
-from .runner import Runner, forget_unknown_makespans
+from .runner import Runner, forget_unknown_makespans, ticking
 from .suite import load_suite
 
 SUITE_ORDER = "suite.json"
@@ -205,7 +205,9 @@ def _report(path: Path, args: argparse.Namespace | None = None) -> int:
             write_text(out / f"{table.name}.tex", table.latex())
         print(f"wrote {len(tables)} LaTeX tables (booktabs) to {out}", file=sys.stderr)
     if formats:
-        for picture in report.plot(records, out, order, formats, pairs):
+        with ticking(sys.stderr, "drawing the plots (matplotlib)…"):
+            pictures = report.plot(records, out, order, formats, pairs)
+        for picture in pictures:
             print(f"wrote {picture}", file=sys.stderr)
     return 0
 

@@ -543,7 +543,7 @@ def _scatter_pairs(records: list[dict], first: str, second: str) -> dict[tuple, 
 def _scatter_panel(axis, label: str, mine: list[tuple[dict, dict]], first: str, second: str) -> None:
     """One domain's panel of :func:`scatter_figure`."""
     shown = [(a, b) for a, b in mine if _timed(a) and _timed(b)]
-    points = {kind: [] for kind in ("both", "out")}
+    points: dict[str, list[tuple[float, float]]] = {kind: [] for kind in ("both", "out")}
     for a, b in shown:
         kind = "both" if a["status"] == SOLVED and b["status"] == SOLVED else "out"
         points[kind].append((max(_time(a), FLOOR), max(_time(b), FLOOR)))

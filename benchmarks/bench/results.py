@@ -10,6 +10,9 @@ import json
 import os
 from pathlib import Path
 
+from asprilo.errors import InputError
+from asprilo.writer import check_output
+
 RESULTS = "results.jsonl"
 
 SOLVED, TIMEOUT, MEMOUT, INVALID, ERROR, NO_MAKESPAN = "solved", "timeout", "memout", "invalid", "error", "no-makespan"
@@ -43,15 +46,19 @@ def load_results(directory: str | Path) -> list[dict]:
 
 
 def append_result(directory: str | Path, record: dict) -> None:
-    """Append one record durably."""
+    """Append one record durably (to a regular file only, as every output: asprilo.writer)."""
     path = Path(directory) / RESULTS
+    check_output(path)
     line = json.dumps(record, sort_keys=True) + "\n"
-    with open(path, "a", encoding="utf-8") as stream:
-        if stream.tell() > 0 and not _ends_with_newline(path):
-            line = "\n" + line  # after a torn line, start afresh
-        stream.write(line)
-        stream.flush()
-        os.fsync(stream.fileno())
+    try:
+        with open(path, "a", encoding="utf-8") as stream:
+            if stream.tell() > 0 and not _ends_with_newline(path):
+                line = "\n" + line  # after a torn line, start afresh
+            stream.write(line)
+            stream.flush()
+            os.fsync(stream.fileno())
+    except OSError as error:  # e.g. a full disk: the records before stay
+        raise InputError(f"cannot be written ({error.strerror or error})", str(path)) from None
 
 
 def _ends_with_newline(path: Path) -> bool:

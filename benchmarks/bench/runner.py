@@ -15,10 +15,12 @@ runs are skipped.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import sys
+import threading
 import time
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Iterator
 from concurrent.futures import ThreadPoolExecutor, as_completed
 from dataclasses import dataclass
 from pathlib import Path
@@ -204,28 +206,84 @@ def forget_unknown_makespans(folder: Path) -> None:
 
 
 class BenchProgress:
-    """``[done/total]`` with solved, time-outs and failures, elapsed time and an estimate."""
+    """``[done/total]`` with solved, time-outs and failures, elapsed time and an estimate.
+
+    On a terminal the line is also redrawn every second while runs are under way (a
+    heartbeat: a run may take its whole time limit); :meth:`close` ends that."""
+
+    #: seconds between two redraws of the heartbeat
+    BEAT = 1.0
 
     def __init__(self, total: int, what: str, stream: TextIO):
         self.total, self.what, self.stream = total, what, stream
         self.done = self.solved = self.timeouts = self.failures = 0
         self.started = time.perf_counter()
         self.live = stream.isatty()
+        self.lock = threading.Lock()
+        self.stopped = threading.Event()
+        if self.live and total:
+            threading.Thread(target=self._beating, daemon=True).start()
 
     def update(self, status: str) -> None:
-        self.done += 1
-        self.solved += status == SOLVED
-        self.timeouts += status in OUT_OF_LIMITS
-        self.failures += status in FAILED
-        elapsed = time.perf_counter() - self.started
-        left = elapsed / self.done * (self.total - self.done)
-        line = (f"{self.what} [{self.done}/{self.total}] solved {self.solved}, time-outs {self.timeouts}, "
-                f"failures {self.failures} | elapsed {_clock(elapsed)}, left ~{_clock(left)}")
-        if self.live:
-            self.stream.write("\r" + line + ("\n" if self.done == self.total else ""))
-        else:
-            self.stream.write(line + "\n")
-        self.stream.flush()
+        with self.lock:
+            self.done += 1
+            self.solved += status == SOLVED
+            self.timeouts += status in OUT_OF_LIMITS
+            self.failures += status in FAILED
+            line = self.line(time.perf_counter())
+            if self.live:
+                self.stream.write("\r" + line + ("\n" if self.done == self.total else ""))
+            else:
+                self.stream.write(line + "\n")
+            self.stream.flush()
+        if self.done == self.total:
+            self.close()
+
+    def line(self, now: float) -> str:
+        elapsed = now - self.started
+        left = f"~{_clock(elapsed / self.done * (self.total - self.done))}" if self.done else "?"
+        return (f"{self.what} [{self.done}/{self.total}] solved {self.solved}, time-outs {self.timeouts}, "
+                f"failures {self.failures} | elapsed {_clock(elapsed)}, left {left}")
+
+    def beat(self) -> None:
+        """Redraw the line (on a terminal, while runs are under way)."""
+        with self.lock:
+            if self.live and not self.stopped.is_set() and self.done < self.total:
+                self.stream.write("\r" + self.line(time.perf_counter()))
+                self.stream.flush()
+
+    def close(self) -> None:
+        """No more heartbeats."""
+        self.stopped.set()
+
+    def _beating(self) -> None:
+        while not self.stopped.wait(self.BEAT):
+            self.beat()
+
+
+@contextlib.contextmanager
+def ticking(stream: TextIO, what: str) -> Iterator[None]:
+    """While the block runs, on a terminal, say ``what`` and the seconds so far every second
+    (a heartbeat for work that prints nothing for a while, e.g. drawing the plots)."""
+    if not stream.isatty():
+        yield
+        return
+    started, stopped = time.perf_counter(), threading.Event()
+
+    def beat() -> None:
+        while not stopped.wait(1.0):
+            stream.write(f"\r\033[K{what} {time.perf_counter() - started:.0f} s")
+            stream.flush()
+
+    ticker = threading.Thread(target=beat, daemon=True)
+    ticker.start()
+    try:
+        yield
+    finally:
+        stopped.set()
+        ticker.join()
+        stream.write("\r\033[K")
+        stream.flush()
 
 
 def _clock(seconds: float) -> str:
@@ -293,13 +351,17 @@ class Runner:
                 status = makespan_status(search)
                 return item, search.report["horizon"] if status == SOLVED else None, status, search.report
 
-            for (instance, _d, _a, label), minimal, status, report in self._parallel(compute, todo):
-                known.setdefault(instance.name, {})[label] = minimal
-                write_text(path, json.dumps(known, indent=1, sort_keys=True) + "\n")
-                if report.get("assignment"):
-                    self.assignments.setdefault(instance.name, {})[label] = report["assignment"]
-                    write_text(self.folder / ASSIGNMENTS, json.dumps(self.assignments, indent=1, sort_keys=True) + "\n")
-                progress.update(status)
+            try:
+                for (instance, _d, _a, label), minimal, status, report in self._parallel(compute, todo):
+                    known.setdefault(instance.name, {})[label] = minimal
+                    write_text(path, json.dumps(known, indent=1, sort_keys=True) + "\n")
+                    if report.get("assignment"):
+                        self.assignments.setdefault(instance.name, {})[label] = report["assignment"]
+                        write_text(self.folder / ASSIGNMENTS,
+                                   json.dumps(self.assignments, indent=1, sort_keys=True) + "\n")
+                    progress.update(status)
+            finally:
+                progress.close()
         return known
 
     # --- runs ----------------------------------------------------------------------------
@@ -318,9 +380,12 @@ class Runner:
         if skipped:
             self.stream.write(f"resuming: {skipped} runs already recorded\n")
         progress = BenchProgress(len(todo), "runs", self.stream)
-        for record in self._parallel(lambda item: self._run_one(*item, makespans), todo):
-            append_result(self.folder, record)
-            progress.update(record["status"])
+        try:
+            for record in self._parallel(lambda item: self._run_one(*item, makespans), todo):
+                append_result(self.folder, record)
+                progress.update(record["status"])
+        finally:
+            progress.close()
         return load_results(self.folder)
 
     def _run_one(self, instance: SuiteInstance, spec: RunSpec, makespans: dict) -> dict:

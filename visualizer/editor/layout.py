@@ -17,6 +17,7 @@ from pathlib import Path
 from PyQt5.QtCore import QObject, QSettings, Qt
 from PyQt5.QtWidgets import QDockWidget, QFileDialog, QMainWindow, QMenu
 
+from asprilo.errors import InputError
 from asprilo.model import Cell, Instance, Robot
 
 from ..panels.commands import Table, make_actions
@@ -323,6 +324,9 @@ class Editor(QObject):
     def _write(self, write: Callable[[], None], path: str | Path, what: str, done: str) -> bool:
         try:
             write()
+        except InputError as error:  # not a regular file, also an input, a failed write
+            self.state.report_error(str(error))
+            return False
         except OSError as error:
             self.state.report_error(f"{path}: cannot write {what} ({error.strerror or error})")
             return False

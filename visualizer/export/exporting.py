@@ -6,6 +6,7 @@ from PyQt5.QtCore import QObject, QSettings, Qt
 from PyQt5.QtWidgets import QFileDialog, QInputDialog, QProgressDialog, QWidget
 
 from asprilo.errors import InputError
+from asprilo.writer import check_output
 
 from ..panels.files import start_folder
 from ..scene.player import Player
@@ -44,6 +45,7 @@ class ExportActions(QObject):
     def picture(self, path: str) -> bool:
         """Save the warehouse as shown now (time, selection, paths), the state's caption below it."""
         try:
+            check_output(path, self.state.document.loaded())
             caption = images.picture_caption(self.player.time, self.player.horizon) if self.player.horizon else None
             images.save_picture(path, self.stage.scene, caption=caption)  # the state shown, said below it
         except InputError as error:
@@ -64,6 +66,7 @@ class ExportActions(QObject):
             progress.setValue(done)
 
         try:
+            check_output(path, self.state.document.loaded())
             images.save_animation(path, self.stage.animator, frames_per_step, self.player.speed, progress=advance)
         except InputError as error:
             self.state.report_error(str(error))
