@@ -13,7 +13,9 @@ arrives and returns what the function returned, or says why there is nothing:
     outcome.status      # "done", "timeout", "memout" or "crashed"
     outcome.value       # the function's return value when done
 
-An exception the function raises is raised again in the parent (it must be picklable,
+:func:`start_isolated` starts a child and returns at once (several children run side by
+side, each waited for by its own thread: ``solve``'s method ``auto``).  An exception the
+function raises is raised again in the parent (it must be picklable,
 like :class:`~asprilo.errors.InputError`).  The child is started by ``fork`` where that is
 safe (no other thread running in the parent) and ``spawn`` otherwise.  A *standalone*
 child (``standalone=True``: a benchmark run) runs as a program of its own would: a fresh
@@ -170,25 +172,48 @@ def run_isolated(function: Callable[..., Any], args: tuple = (), time_limit: flo
     ``timeout``).  ``on_tick(elapsed)`` is called about ten times a second while waiting.
     ``standalone``: the child runs as a program of its own (see the module docstring).
     """
-    started = time.perf_counter()
-    if standalone:
-        process = _Standalone(function, args, memory_mb)
-        receiver = process.receiver
-    else:
-        process, receiver = _start(function, args, memory_mb)
-    outcome = Isolated("crashed")
-    try:
-        outcome = _wait(process, receiver, started, time_limit, on_message, cancel, on_tick)
-        outcome = _blame_memory(outcome, memory_mb)
-    finally:
-        if standalone or process.is_alive():  # standalone: nothing it started outlives it either
-            process.kill()
-        process.join(_GRACE)
-        receiver.close()
-    outcome.seconds = time.perf_counter() - started
-    if isinstance(outcome.value, _Failure):
-        raise outcome.value.error
-    return outcome
+    return start_isolated(function, args, memory_mb, standalone).wait(time_limit, on_message, cancel, on_tick)
+
+
+def start_isolated(function: Callable[..., Any], args: tuple = (), memory_mb: int | None = None,
+                   standalone: bool = False) -> Child:
+    """Start ``function(*args, report=...)`` in a child process and return at once; its
+    :meth:`Child.wait` does the rest of :func:`run_isolated`.  Several children started
+    one after the other from a process that runs no other thread are all forked (fast),
+    also when threads that wait for them start afterwards."""
+    return Child(function, args, memory_mb, standalone)
+
+
+class Child:
+    """A child process started by :func:`start_isolated`, until :meth:`wait` has ended it."""
+
+    def __init__(self, function: Callable[..., Any], args: tuple, memory_mb: int | None, standalone: bool):
+        self.started = time.perf_counter()
+        self.memory_mb, self.standalone = memory_mb, standalone
+        if standalone:
+            self.process: Any = _Standalone(function, args, memory_mb)
+            self.receiver = self.process.receiver
+        else:
+            self.process, self.receiver = _start(function, args, memory_mb)
+
+    def wait(self, time_limit: float | None = None, on_message: Callable[[Any], None] | None = None,
+             cancel: threading.Event | None = None, on_tick: Callable[[float], None] | None = None) -> Isolated:
+        """Wait for the child under ``time_limit`` (counted from its start) and ``cancel``,
+        as :func:`run_isolated` does; the child is gone afterwards."""
+        process, receiver = self.process, self.receiver
+        outcome = Isolated("crashed")
+        try:
+            outcome = _wait(process, receiver, self.started, time_limit, on_message, cancel, on_tick)
+            outcome = _blame_memory(outcome, self.memory_mb)
+        finally:
+            if self.standalone or process.is_alive():  # standalone: nothing it started outlives it either
+                process.kill()
+            process.join(_GRACE)
+            receiver.close()
+        outcome.seconds = time.perf_counter() - self.started
+        if isinstance(outcome.value, _Failure):
+            raise outcome.value.error
+        return outcome
 
 
 def _wait(process, receiver, started: float, time_limit: float | None, on_message, cancel,

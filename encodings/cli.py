@@ -1,17 +1,23 @@
 """Find a plan for an instance with a reference encoding, your own encoding, or max-flow.
 
-Without --horizon the search starts at a lower bound of the makespan and goes up one step
-at a time, so the first plan found has minimal makespan.  --method anytime instead finds a
-plan fast and then better ones until the time limit (default 60 s) or the lower bound;
-each one is checked and reported with its gap to the bound.  The plan is checked, then
-printed as occurs/3 facts (stdout, or -o PLAN); a summary goes to stderr.
+By default (--method auto) two searches run side by side, each in a process of its own:
+the exact search, which starts at a lower bound of the makespan and goes up one step at a
+time, and the anytime planner, which finds a plan fast and then better ones.  The answer is
+the best plan found, proven minimal as soon as the exact search has refuted every shorter
+horizon (or found it), else with the bound proven so far and the gap; a plan once found is
+never lost (time limit, Ctrl-C).  M/Md with anonymous goals: max-flow, exact and fast.
+--method asp, anytime or flow runs that method alone; --encoding runs that encoding alone
+(method asp).  The plan is checked, then printed as occurs/3 facts (stdout, or -o PLAN); a
+summary goes to stderr.  On a terminal a line redrawn twice a second says what the searches
+do (phase, horizon, conflicts, best plan so far, elapsed and remaining time).
 
 --encoding FILE (repeated for several files) runs your own encoding: single-shot with a
 horizon constant, incremental (#include <incmode>, #program step(t)/check(t) and query(t)),
 or with &sum/&diff theory atoms (clingcon / clingo-dl); the summary says which style was
 recognised.  -c NAME=VALUE and clingo's own options (--name=value, e.g.
---configuration=crafty) go to clingo.  Exit status: 0 a valid plan found, 1 no plan within
-the limits or a plan that breaks the rules (the violations are listed), 2 bad input.
+--configuration=crafty) go to clingo.  Exit status: 0 a valid plan found (proven minimal or
+not: the summary and --json say which), 1 no plan within the limits or a plan that breaks
+the rules (the violations are listed), 2 bad input.
 
 Examples:
   asprilo solve instance.lp
@@ -27,17 +33,21 @@ Examples:
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
+import signal
 import sys
 import threading
 import time
+from collections.abc import Iterator
+from pathlib import Path
 from typing import TextIO
 
 from asprilo.arguments import domain_argument, megabytes_argument, seconds_argument
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
 from asprilo.reader import read_instance
-from asprilo.writer import format_action, format_plan, refuse_overwriting, write_text
+from asprilo.writer import check_output, format_action, format_plan, write_text
 
 from .anytime import DEFAULT_SECONDS as ANYTIME_SECONDS
 from .choice import choose_encoding
@@ -70,10 +80,13 @@ def configure(parser: argparse.ArgumentParser) -> None:
                              f"anytime: {ANYTIME_SECONDS:g})")
     parser.add_argument("--memory-limit", type=megabytes_argument, metavar="MB",
                         help="stop when the solver needs more than MB megabytes (default: no limit)")
-    parser.add_argument("--method", choices=method_names(), default="asp",
-                        help="asp: an encoding (default); flow: exact max-flow solver for M/Md; "
-                             "anytime: a plan fast, then better ones")
-    parser.add_argument("-o", "--output", metavar="PLAN", help="write the plan to this file")
+    parser.add_argument("--method", choices=method_names(),
+                        help="auto (default; asp with --encoding): the exact search and the anytime "
+                             "planner side by side, the best plan with its proof or bound; asp: an "
+                             "encoding alone; flow: exact max-flow solver for M/Md; anytime: a plan fast, "
+                             "then better ones")
+    parser.add_argument("-o", "--output", metavar="PLAN",
+                        help="write the plan to this file (a regular file, not an input; - = standard output)")
     parser.add_argument("--json", action="store_true", help="print a JSON report instead of the plan")
     parser.add_argument("--list", action="store_true", help="list the encodings and exit")
 
@@ -86,23 +99,29 @@ def run(args: argparse.Namespace) -> int:
         return 0
     if args.instance is None:
         raise InputError("no instance given (asprilo solve INSTANCE)")
-    refuse_overwriting(args.output, [args.instance])
+    if args.output == "-":
+        args.output = None  # standard output, as without -o
+    inputs = [args.instance, *(name for name in args.encoding or () if Path(name).is_file())]
+    check_output(args.output, inputs, standard_output="-o -")
+    method = args.method or ("asp" if args.encoding else "auto")
     time_limit = args.time_limit
     if time_limit is None:
-        time_limit = ANYTIME_SECONDS if args.method == "anytime" else DEFAULT_TIME_LIMIT
+        time_limit = ANYTIME_SECONDS if method == "anytime" else DEFAULT_TIME_LIMIT
     instance = read_instance(args.instance)
     domain = args.domain or detect_domain(instance)
     encoding, horizon = chosen_encoding(args, domain)
-    progress = SearchProgress(sys.stderr)
+    progress = SearchProgress(sys.stderr, time_limit)
+    cancel = threading.Event()
     try:
-        outcome = solve(instance, domain, encoding=encoding, horizon=horizon,
-                        assign=args.assign, time_limit=time_limit, method=args.method, isolate=True,
-                        memory_limit=args.memory_limit, on_progress=progress.attempt, on_phase=progress.phase)
+        with _stopping_on_interrupt(cancel):
+            outcome = solve(instance, domain, encoding=encoding, horizon=horizon, assign=args.assign,
+                            time_limit=time_limit, method=method, isolate=True, memory_limit=args.memory_limit,
+                            on_progress=progress.attempt, on_phase=progress.phase, cancel=cancel)
     finally:
         progress.close()
     if outcome.plan is not None and outcome.found and args.output:
-        write_text(args.output, format_plan(outcome.plan))
-    _summary(outcome, encoding)
+        write_text(args.output, format_plan(outcome.plan), inputs)
+    _summary(outcome, encoding, hint=args.method == "asp" and horizon is None)
     if args.json:
         print(json.dumps(report(outcome), indent=2))
     elif outcome.found and not args.output:
@@ -118,42 +137,83 @@ def chosen_encoding(args: argparse.Namespace, domain: Domain) -> tuple[Encoding,
 
 
 class SearchProgress:
-    """Says what the search does: a line per horizon tried, and while it works the phase
-    (grounding or solving), the horizon and the seconds so far -- on a terminal as one line
-    redrawn in place, otherwise as a line when each phase begins."""
+    """Says what the search does: a line per horizon tried and per better plan; while it works,
+    on a terminal, one line redrawn twice a second (a heartbeat): what the exact search does
+    (phase, horizon, seconds on it, conflicts so far), the best plan so far and what is proven,
+    the seconds elapsed and left.  Otherwise (a pipe, a file) a line when each phase begins
+    and nothing between.
 
-    def __init__(self, stream: TextIO):
-        self.stream, self.live = stream, stream.isatty()
+    The heartbeat's thread starts with the first word from the search (its child processes
+    are started by then: a process without threads may fork them)."""
+
+    def __init__(self, stream: TextIO, time_limit: float | None = None):
+        self.stream, self.live, self.time_limit = stream, stream.isatty(), time_limit
         self.started = time.perf_counter()
         self.current: Phase | None = None
         self.since = self.started
+        self.best: int | None = None        # the shortest plan reported
+        self.proven: int | None = None      # no plan is shorter (the horizons refuted)
+        self.lock = threading.Lock()
         self.done = threading.Event()
-        if self.live:
-            threading.Thread(target=self._tick, daemon=True).start()
+        self.ticker: threading.Thread | None = None
 
     def phase(self, phase: Phase) -> None:
-        if phase.name not in ("grounding", "solving", "assigning"):
+        if phase.name not in ("bounding", "grounding", "solving", "assigning"):
             return
-        self.current, self.since = phase, time.perf_counter()
-        if not self.live:
-            self._say(f"{self._label(phase)}: {phase.name} (elapsed {self.since - self.started:.1f} s)")
+        with self.lock:
+            current = self.current
+            again = current is not None and (current.name, current.horizon) == (phase.name, phase.horizon)
+            self.current = phase
+            if not again:
+                self.since = time.perf_counter()
+                if not self.live and phase.name != "bounding":
+                    self._say(f"{self._label(phase)}: {phase.name} (elapsed {self.since - self.started:.1f} s)")
+        self._beat()
 
     def attempt(self, attempt: Attempt) -> None:
-        self.current = None
-        if attempt.result == "improved":
-            self._say(f"plan: makespan {attempt.horizon}, {attempt.note} ({attempt.seconds:.2f} s)")
-            return
-        note = f" {attempt.note}" if attempt.note else ""
-        self._say(f"horizon {attempt.horizon}{note}: {attempt.result} ({attempt.seconds:.2f} s)")
+        with self.lock:
+            if attempt.plan is not None and (self.best is None or attempt.horizon < self.best):
+                self.best = attempt.horizon
+            if attempt.refutes:
+                self.proven = max(self.proven or 0, attempt.horizon + 1)
+            if attempt.result == "improved":
+                self._say(f"plan: makespan {attempt.horizon}, {attempt.note} ({attempt.seconds:.2f} s)")
+            else:
+                self.current = None
+                note = f" {attempt.note}" if attempt.note else ""
+                self._say(f"horizon {attempt.horizon}{note}: {attempt.result} ({attempt.seconds:.2f} s)")
+        self._beat()
 
     def close(self) -> None:
         self.done.set()
+        if self.ticker is not None:
+            self.ticker.join()
         if self.live:
             self.stream.write("\r\033[K")
             self.stream.flush()
 
+    def heartbeat(self, now: float) -> str:
+        """The line the heartbeat redraws."""
+        parts = []
+        phase = self.current
+        if phase is not None:
+            conflicts = f", {phase.conflicts:,} conflicts" if phase.conflicts else ""
+            doing = "computing" if phase.name == "bounding" else phase.name
+            parts.append(f"{self._label(phase)}: {doing} {now - self.since:.0f} s{conflicts}")
+        if self.best is not None:
+            proven = " (proven minimal)" if self.proven is not None and self.best <= self.proven else ""
+            parts.append(f"best plan: makespan {self.best}{proven}")
+        if self.proven is not None:
+            parts.append(f"no plan shorter than {self.proven}")
+        elapsed = now - self.started
+        left = "" if self.time_limit is None else f", {max(0.0, self.time_limit - elapsed):.0f} s left"
+        parts.append(f"elapsed {elapsed:.0f} s{left}")
+        return " | ".join(parts)
+
     @staticmethod
     def _label(phase: Phase) -> str:
+        if phase.name == "bounding":
+            return "lower bound"
         return "task assignment" if phase.name == "assigning" else f"horizon {phase.horizon}"
 
     def _say(self, line: str) -> None:
@@ -161,17 +221,49 @@ class SearchProgress:
         self.stream.write(f"{prefix}{line}\n")
         self.stream.flush()
 
+    def _beat(self) -> None:
+        """Start the heartbeat (on a terminal, once)."""
+        if self.live and self.ticker is None and not self.done.is_set():
+            self.ticker = threading.Thread(target=self._tick, daemon=True)
+            self.ticker.start()
+
     def _tick(self) -> None:
         while not self.done.wait(0.5):
-            phase = self.current
-            if phase is not None:
-                now = time.perf_counter()
-                self.stream.write(f"\r\033[K{self._label(phase)}: {phase.name} {now - self.since:.0f} s "
-                                  f"(elapsed {now - self.started:.0f} s)")
+            with self.lock:
+                self.stream.write("\r\033[K" + self.heartbeat(time.perf_counter())[:_width() - 1])
                 self.stream.flush()
 
 
-def _summary(outcome: Outcome, encoding: Encoding | None = None) -> None:
+def _width() -> int:
+    """The terminal's width (the heartbeat fits on one line, so that it redraws in place)."""
+    import shutil
+
+    return max(40, shutil.get_terminal_size((120, 24)).columns)
+
+
+@contextlib.contextmanager
+def _stopping_on_interrupt(cancel: threading.Event) -> Iterator[None]:
+    """While solving, the first Ctrl-C stops the search, which answers with the best plan it
+    found (the second one interrupts as usual)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.getsignal(signal.SIGINT)
+
+    def stop(_signal: int, _frame: object) -> None:
+        cancel.set()
+        signal.signal(signal.SIGINT, previous if previous is not None else signal.SIG_DFL)
+
+    signal.signal(signal.SIGINT, stop)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous if previous is not None else signal.SIG_DFL)
+
+
+def _summary(outcome: Outcome, encoding: Encoding | None = None, hint: bool = False) -> None:
+    """The summary on stderr (``hint``: a search forced to method asp that ran out of time
+    points to the default)."""
     lines = [f"domain {outcome.domain.label}, method {outcome.method}, encoding {outcome.encoding}, "
              f"lower bound {outcome.lower_bound:g}"]
     if encoding is not None and encoding.own and outcome.method == "asp":
@@ -184,16 +276,26 @@ def _summary(outcome: Outcome, encoding: Encoding | None = None) -> None:
             f"{'optimal' if assignment.optimal else 'best found'}, cost {assignment.cost}")
         lines.append(f"assignment ({state}): " + " ".join(assignment.facts))
     lines += _verdict(outcome)
+    if hint and outcome.status.value == "limit":
+        lines.append("for a plan fast (not proven minimal), leave out --method asp: the default runs the "
+                     "anytime planner beside the exact search")
     lines.append(_figures(outcome))
     print("\n".join(lines), file=sys.stderr)
 
 
+#: who found the plan the answer holds (method auto), in words
+_FOUND_BY = {"asp": "the exact search", "anytime": "the anytime planner"}
+
+
 def _verdict(outcome: Outcome) -> list[str]:
-    """What was found: the plan, the violations of a plan that breaks the rules, or why there
-    is none (with the horizons refuted)."""
+    """What was found: the plan (proven minimal, or with the bound proven and the gap), the
+    violations of a plan that breaks the rules, or why there is none; and what was tried
+    and proven on the way, where that is not said by "proven minimal"."""
     if outcome.found:
-        proof = "proven minimal" if outcome.minimal else "not proven minimal"
-        return [f"plan: horizon {outcome.horizon} ({proof}), {len(outcome.plan)} actions, checked: valid"]
+        by = f"; found by {_FOUND_BY[outcome.found_by]}" if outcome.found_by in _FOUND_BY else ""
+        line = f"plan: horizon {outcome.horizon} ({_proof(outcome)}), {len(outcome.plan)} actions, checked: valid{by}"
+        ended = [f"the search ended: {outcome.message}"] if outcome.message and not outcome.minimal else []
+        return [line] + ([] if outcome.minimal else _tried(outcome)) + ended
     if outcome.check is not None and not outcome.check.valid:
         errors = outcome.check.errors
         lines = [error.message for error in errors[:SHOWN_VIOLATIONS]]
@@ -203,10 +305,39 @@ def _verdict(outcome: Outcome) -> list[str]:
                         f"({len(errors)} violation{'s' * (len(errors) != 1)})"]
     lines = [{"none": "no plan exists", "limit": "no plan within the limits", "cancelled": "cancelled",
               "invalid": "no valid plan"}[outcome.status.value] + (f": {outcome.message}" if outcome.message else "")]
-    if outcome.refuted and outcome.status.value == "limit":
+    if outcome.status.value in ("limit", "cancelled"):
+        lines += _tried(outcome)
+    return lines
+
+
+def _proof(outcome: Outcome) -> str:
+    """``proven minimal``, or the bound proven and the gap."""
+    if outcome.minimal:
+        return "proven minimal"
+    bound, gap = outcome.proven_bound, outcome.gap
+    if not bound or bound == float("inf") or gap is None:
+        return "not proven minimal"
+    return (f"not proven minimal: no plan is shorter than {bound:g}, gap {gap:g} step{'s' * (gap != 1)}, "
+            f"{100 * gap / bound:.0f}%")
+
+
+def _tried(outcome: Outcome) -> list[str]:
+    """What was tried and proven: the horizons refuted (for the problem, and those refuted only
+    along the task assignment), the horizons left undecided, the anytime planner's plans."""
+    lines = []
+    if outcome.refuted:
         lines.append(f"refuted horizons {_spans(outcome.refuted)}: no plan is shorter than {outcome.proven_bound:g}")
-    if outcome.status.value == "limit" and outcome.method == "asp":
-        lines.append("for a plan fast (not proven minimal), try --method anytime")
+    along = [horizon for horizon in outcome.refuted_along if horizon not in outcome.refuted]
+    if along:
+        lines.append(f"no plan along the task assignment at horizon{'s' * (len(along) > 1)} {_spans(along)} "
+                     "(refuted along the assignment only, not for the problem)")
+    undecided = sorted({a.horizon for a in outcome.horizons_tried if a.result == "unknown"} - set(outcome.refuted))
+    if undecided:
+        lines.append(f"undecided: horizon{'s' * (len(undecided) > 1)} {_spans(undecided)}")
+    plans = [a.horizon for a in outcome.horizons_tried if a.result == "improved"]
+    if plans and outcome.method == "auto":
+        shown = str(plans[0]) if len(plans) == 1 else f"{plans[0]} -> {min(plans)}"
+        lines.append(f"anytime planner: {len(plans)} plan{'s' * (len(plans) > 1)}, makespan {shown}")
     return lines
 
 
@@ -218,12 +349,15 @@ def _figures(outcome: Outcome) -> str:
     if outcome.method == "anytime":
         return (f"first plan {stats.get('first_plan_seconds', 0):.2f} s, {len(outcome.history)} plans reported, "
                 f"{stats.get('neighbourhoods', 0)} neighbourhoods tried")
-    return (f"ground {stats['ground_time']:.2f} s, solve {stats['solve_time']:.2f} s, rules {stats['rules']}, "
-            f"atoms {stats['atoms']}, choices {stats['choices']}, conflicts {stats['conflicts']}")
+    figures = (f"ground {stats.get('ground_time', 0):.2f} s, solve {stats.get('solve_time', 0):.2f} s, "
+               f"rules {stats.get('rules', 0)}, atoms {stats.get('atoms', 0)}, choices {stats.get('choices', 0)}, "
+               f"conflicts {stats.get('conflicts', 0)}")
+    return f"exact search: {figures}" if outcome.method == "auto" else figures
 
 
 def report(outcome: Outcome) -> dict:
     """The outcome as plain data (``--json``)."""
+    finite = outcome.proven_bound != float("inf")
     return {
         "status": outcome.status.value,
         "domain": outcome.domain.value,
@@ -234,12 +368,15 @@ def report(outcome: Outcome) -> dict:
         "lower_bound": outcome.lower_bound if outcome.lower_bound != float("inf") else None,
         "horizons_tried": [attempt.as_json() for attempt in outcome.horizons_tried],
         "refuted": outcome.refuted,
-        "proven_bound": outcome.proven_bound if outcome.proven_bound != float("inf") else None,
+        "refuted_along_assignment": outcome.refuted_along,
+        "proven_bound": outcome.proven_bound if finite else None,
+        "gap": outcome.gap if finite else None,
         "stats": outcome.stats,
         "assignment": outcome.assignment.facts if outcome.assignment is not None else None,
         "plan": [format_action(action) for action in outcome.plan.actions] if outcome.found else None,
         "message": outcome.message,
-        **({"history": outcome.history} if outcome.method == "anytime" else {}),
+        **({"found_by": outcome.found_by} if outcome.method == "auto" else {}),
+        **({"history": outcome.history} if outcome.method in ("anytime", "auto") else {}),
     }
 
 

@@ -100,12 +100,13 @@ def test_solve_loads_and_plays_a_plan_of_minimal_makespan(window, qtbot, write):
     assert "minimal makespan 6" in window.statusBar().currentMessage()
 
 
-def test_a_solve_out_of_time_points_to_the_anytime_method(window, qtbot, write):
+def test_a_solve_out_of_time_points_to_the_default_method(window, qtbot, write):
     window.open_files([str(write("corridor.lp", CORRIDOR))])
+    window.settings.setValue("tools/method", "asp")  # the exact search alone, chosen in the Run menu
     assert window.jobs.solve(time_limit=1.0) is not None, window.state.last_error
     finish(qtbot, window)
     assert window.state.last_error == ("No plan: limit. For a plan fast (not proven minimal), "
-                                       "choose Run > Solve method > Anytime.")
+                                       "choose Run > Solve method > Best plan fast.")
 
 
 def test_solving_keeps_the_window_alive_and_can_be_cancelled(window, qtbot):
@@ -114,7 +115,7 @@ def test_solving_keeps_the_window_alive_and_can_be_cancelled(window, qtbot):
     timer = QTimer(window)
     timer.timeout.connect(lambda: ticks.append(window.jobs.bar.label.text()))
     timer.start(50)
-    window.jobs.solve()
+    window.jobs.solve(method="asp")  # the exact search alone (the default answers with a plan: test_solve_auto)
     assert window.jobs.bar.isVisible() and window.jobs.bar.label.text() == "Solve…"
     # A on the small example: the search starts at the lower bound, and no horizon from there
     # on is settled within minutes; the progress line says what it works on meanwhile
@@ -145,7 +146,7 @@ def test_anytime_solve_shows_each_better_plan_then_plays_the_best(window, qtbot,
     anytime.trigger()
     assert window.settings.value("tools/method") == "anytime"
     window.jobs._show_method()  # what the menu shows when it opens
-    assert [a.isChecked() for a in window.jobs.methods.actions()] == [False, True]
+    assert [a.isChecked() for a in window.jobs.methods.actions()] == [False, False, True]
     seen = watch_plans(window)
     window.jobs.solve()
     finish(qtbot, window)

@@ -60,7 +60,7 @@ def test_every_style_finds_the_minimal_makespan(name, minimum, capsys):
 
 
 def test_clingo4_incremental_files_are_run_as_their_author_meant(capsys):
-    _code, _out, err = _solve(capsys, PAPER_M, "--encoding", OWN / "m-split/main.ilp", "-o", "/dev/null")
+    _code, _out, err = _solve(capsys, PAPER_M, "--encoding", OWN / "m-split/main.ilp", "-o", "-")
     assert [line for line in err.splitlines() if line.startswith("  assumed: ")] == [
         "  assumed: #program cumulative(t) read as step(t) (clingo 4's iclingo)",
         "  assumed: #program volatile(t) read as check(t) (clingo 4's iclingo)",
@@ -68,7 +68,7 @@ def test_clingo4_incremental_files_are_run_as_their_author_meant(capsys):
 
 
 def test_clingcon4_programs_run_without_their_csp_include(capsys):
-    code, _out, err = _solve(capsys, M_TINY, "--encoding", OWN / "m-clingcon4.clp", "-o", "/dev/null")
+    code, _out, err = _solve(capsys, M_TINY, "--encoding", OWN / "m-clingcon4.clp", "-o", "-")
     assert code == 0
     assert ("  assumed: #include <csp>. left out: clingcon 5 reads &sum/&dom without it (clingcon 4's style)"
             in err.splitlines())
@@ -118,7 +118,7 @@ def test_a_constant_horizon_solves_at_that_horizon_only(minimum, capsys):
 
 def test_clingo_options_pass_and_refusals_say_why(capsys):
     code, _out, _err = _solve(capsys, M_TINY, "--encoding", OWN / "m-single.lp", "--configuration=crafty",
-                              "-o", "/dev/null")
+                              "-o", "-")
     assert code == 0
     code, _out, err = _solve(capsys, M_TINY, "--encoding", OWN / "m-single.lp", "--frobnicate=3")
     assert code == 2

@@ -140,9 +140,11 @@ def test_anytime_replanning_answers_at_its_time_limit_with_the_best_plan(monkeyp
     # it planned at step 0 and again when order 3 arrived (step 2); every other step was
     # answered from the plan
     assert [line.split(":")[0] for line in said if "planning from" in line] == ["step 0", "step 2"]
-    # no plan meets the lower bound, so each search ran to its time limit (nothing else ends
-    # it: the planner's cancel is never set) and answered with the best plan found by then
-    assert [(o.status, o.method, o.minimal) for o in searches] == [(SolveStatus.FOUND, "anytime", False)] * 2
+    # each search answered with the best plan found: at step 0 (orders 1 and 2 only) one of the
+    # lower bound's makespan, proven minimal by it, at once; at step 2 (all three orders) none
+    # meets the bound, so that search ran to its time limit (the planner's cancel is never set)
+    assert [(o.status, o.method) for o in searches] == [(SolveStatus.FOUND, "anytime")] * 2
+    assert [o.minimal for o in searches] == [o.horizon == o.lower_bound for o in searches] == [True, False]
 
 
 # --- both servers on loopback, a plain client -----------------------------------------------------------

@@ -41,18 +41,21 @@ def test_the_time_limit_ends_a_search_that_has_no_end(write, isolate):
 
 
 def test_command_says_what_a_search_that_ran_out_of_time_proved(write, capsys):
-    assert main(["solve", str(write("corridor.lp", CORRIDOR)), "--domain", "b", "--time-limit", "1.5"]) == 1
+    assert main(["solve", str(write("corridor.lp", CORRIDOR)), "--domain", "b", "--time-limit", "1.5",
+                 "--method", "asp"]) == 1
     summary = capsys.readouterr().err.splitlines()[-4:-1]
     assert summary[0] == "no plan within the limits"
     refuted = re.fullmatch(r"refuted horizons (\d+)-(\d+): no plan is shorter than (\d+)", summary[1])
     assert refuted and int(refuted[3]) == int(refuted[2]) + 1
-    assert summary[2] == "for a plan fast (not proven minimal), try --method anytime"
+    assert summary[2] == ("for a plan fast (not proven minimal), leave out --method asp: the default runs the "
+                          "anytime planner beside the exact search")
 
 
 def test_the_time_limit_holds_while_clingo_grounds(capsys):
     """At horizon 100,000 the small example grounds for minutes; the limit ends it anyway."""
     assert main(["solve", str(SMALL_A), "--domain", "b", "--horizon", "100000", "--time-limit", "2"]) == 1
-    assert "no plan within the limits: stopped at the time limit (2 s)\n" in capsys.readouterr().err
+    assert "no plan within the limits: stopped at the time limit (2 s) while grounding horizon 100000\n" \
+        in capsys.readouterr().err
 
 
 def test_cancel_from_another_thread():
@@ -88,7 +91,7 @@ def test_no_plan_when_an_ordered_product_cannot_reach_its_station(write):
                             "plain-inc, split-inc, clingcon-inc)"),
     (dict(domain="b", encoding="dl"), "no encoding 'dl' for domain B (choose one of plain)"),
     (dict(domain="a", method="flow"), "the flow method solves domains M and Md only, not A"),
-    (dict(method="sat"), "unknown method 'sat' (choose asp, flow or anytime)"),
+    (dict(method="sat"), "unknown method 'sat' (choose auto, asp, flow or anytime)"),
     (dict(horizon=-1), "the horizon must be at least 0, got -1"),
     (dict(domain="e"), "unknown domain 'e' (choose one of a, b, c, m, md)"),
 ])
@@ -102,7 +105,7 @@ def test_bad_requests(arguments, message):
 # --- the command ----------------------------------------------------------------------------
 
 def test_command_prints_plan_and_summary(capsys):
-    assert main(["solve", str(X3), "--domain", "b"]) == 0
+    assert main(["solve", str(X3), "--domain", "b", "--method", "asp"]) == 0
     out, err = capsys.readouterr()
     assert out.splitlines()[3] == "occurs(object(robot,1),action(pickup,()),4)."
     assert read_plan(_source(out)).horizon == 9

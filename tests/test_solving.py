@@ -35,11 +35,11 @@ def test_a_request_and_the_keywords_solve_alike():
 
 
 def test_methods_are_found_by_name_in_one_table():
-    assert method_names() == ["asp", "flow", "anytime"]
+    assert method_names() == ["auto", "asp", "flow", "anytime"]
     assert find_method("flow").name == "flow" and find_method("asp").encoded
     with pytest.raises(InputError) as unknown:
         find_method("sat")
-    assert unknown.value.message == "unknown method 'sat' (choose asp, flow or anytime)"
+    assert unknown.value.message == "unknown method 'sat' (choose auto, asp, flow or anytime)"
 
 
 @pytest.mark.parametrize("path, options", [

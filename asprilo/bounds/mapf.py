@@ -17,6 +17,10 @@ from .floor import INFINITE, Floor
 #: matchings in Python up to this many goal x robot pairs, SciPy beyond (SciPy is faster
 #: on big problems but takes longer to import than a small one needs)
 _PYTHON_MATCHING = 2_500
+#: goal x robot pairs up to which the bounds come from matchings; beyond (a matrix of 8 MB,
+#: a matching that takes cubic time), each goal is bounded by its nearest robot alone: one
+#: search from all robots at once, time and memory linear in the floor
+MATCHED_PAIRS = 1_000_000
 
 
 def bottleneck_assignment(costs: np.ndarray) -> float:
@@ -158,10 +162,30 @@ def mapf_bounds(instance: Instance, floor: Floor | None = None, total: bool = Tr
     taken = set(assigned.values())
     goals = [cell for cell in goal_cells(instance) if cell not in taken]
     starts = [robot.at for ident, robot in sorted(instance.robots.items()) if ident not in assigned]
-    costs = floor.distances(goals, starts)
-    makespan, cost = bottleneck_assignment(costs), min_cost_assignment(costs) if total else 0.0
+    if len(goals) * len(starts) > MATCHED_PAIRS:
+        makespan, cost = nearest_robot_bounds(floor, goals, starts)
+    else:
+        costs = floor.distances(goals, starts)
+        makespan, cost = bottleneck_assignment(costs), min_cost_assignment(costs) if total else 0.0
     if assigned:
         robots = sorted(assigned)
         own = floor.distances([assigned[r] for r in robots], [instance.robots[r].at for r in robots]).diagonal()
         makespan, cost = max(makespan, float(own.max())), cost + float(own.sum())
     return makespan, cost
+
+
+def nearest_robot_bounds(floor: Floor, goals: list[Cell], starts: list[Cell]) -> tuple[float, float]:
+    """``(makespan bound, sum-of-costs bound)`` without a matching: every goal needs a robot
+    of its own, which is no nearer than the nearest robot; so the largest and the sum of
+    these nearest distances are admissible too (weaker than the matchings' when robots
+    would have to share their nearest goal)."""
+    if not goals:
+        return 0.0, 0.0
+    if len(starts) < len(goals):
+        return INFINITE, INFINITE
+    nearest = floor.plane_distances(starts)
+    inside = [cell for cell in goals if 0 <= cell[0] < nearest.shape[0] and 0 <= cell[1] < nearest.shape[1]]
+    if len(inside) < len(goals):
+        return INFINITE, INFINITE
+    reach = nearest[tuple(np.array(inside).T)]
+    return float(reach.max()), float(reach.sum())

@@ -27,9 +27,9 @@ from .grid import Grid
 HERE = Path(__file__).resolve().parent
 #: robots offered for each shelf or goal at first (the nearest ones); doubled while that is too few
 NEAREST = 12
-#: what a robot-shelf pair without a path costs in the matching of :func:`_carriers` (more than
-#: any pair with a path: the matching takes such a pair only where it cannot do otherwise)
-NO_PATH_COST = np.iinfo(np.int32).max // 2
+#: the robots' work is summed in the shelf assignment only where (steps counted) x (robot-shelf
+#: pairs offered) stays below this: the sums ground per step
+WORK_SIZE = 200_000
 
 
 @dataclass
@@ -134,9 +134,35 @@ def shelf_problem(instance: Instance, grid: Grid, domain: Domain, homes: dict[in
     facts += [f"haul({s},{ps},{d})." for (s, ps), d in haul.items()]
     robots = max(1, sum(1 for r in instance.robots.values() if r.carries is None))
     cap = max(1, math.ceil(len(lines) / robots))
-    facts += _carriers(instance, grid, homes, shelves, nearest, cap)
+    options = _carriers(instance, grid, homes, shelves, nearest, cap)
+    facts += [f"option({r},{s},{d})." for r, s, d in options]
+    # the robots' work is summed where some robot must bring several shelves: more lines than
+    # robots, or a line that needs more units than any one shelf holds
+    several = cap > 1 or any(q > max((stock[s].get(p) or 0 for s in shelves), default=0)
+                             for (_, p), q in lines.items() if domain.counts_units)
+    facts += _workloads(instance, options, haul, cap) if several else []
     facts.append(f"cap({cap}).")
     return ShelfProblem(lines, Assigner("assign_shelves.lp", facts, {"delivery": domain.delivery.value}), haul)
+
+
+def _workloads(instance: Instance, options: list[tuple[int, int, int]], haul: dict[tuple[int, int], int],
+               cap: int) -> list[str]:
+    """``most(K)``: no robot's work (its shelves' rounds one after the other) is counted beyond
+    K steps -- the longest round times the cap, plus one: an assignment above that is bad
+    anyway; ``spread(W)``: the steps between the two stations farthest apart.  None on big
+    instances (robots x steps beyond :data:`WORK_SIZE`), where the sums would ground too much."""
+    if not options or not haul:
+        return []
+    longest = max(haul.values())
+    reach = {r: 0 for r, _, _ in options}
+    for r, _, d in options:
+        reach[r] = max(reach[r], d)
+    most = (max(reach.values()) + 2 * longest + 2 + len(instance.orders)) * (cap + 1)
+    if most * len(options) > WORK_SIZE:
+        return []
+    stations = [station.at for station in instance.stations.values()]
+    spread = max((abs(a[0] - b[0]) + abs(a[1] - b[1]) for a in stations for b in stations), default=0)
+    return [f"most({most}).", f"spread({spread})."]
 
 
 def _hauls(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: list[int]) -> dict[tuple[int, int], int]:
@@ -155,24 +181,38 @@ def _hauls(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: list
 
 
 def _carriers(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: list[int], nearest: int,
-              cap: int) -> list[str]:
-    """``option(R,S,D)``: the robots nearest to each shelf, and the robot a cheapest matching
-    of robots (each up to ``cap`` times) to shelves gives it, so that the cap can be kept
-    even where many shelves have the same nearest robots; a robot that starts with a shelf
-    carries that one or none, and nobody else carries it."""
-    from scipy.optimize import linear_sum_assignment  # imported when needed: it is slow to import
-
+              cap: int) -> list[tuple[int, int, int]]:
+    """``option(R,S,D)`` as (R, S, D): the robots nearest to each shelf, and the robot a
+    matching of robots (each up to ``cap`` times) to shelves gives it, so that the cap can be
+    kept even where many shelves have the same nearest robots; a robot that starts with a
+    shelf carries that one or none, and nobody else carries it."""
     carried = {r.carries: r.id for r in instance.robots.values() if r.carries is not None}
     free = sorted(r.id for r in instance.robots.values() if r.carries is None)
-    facts = [f"option({carried[s]},{s},0)." for s in shelves if s in carried]
+    facts = [(carried[s], s, 0) for s in shelves if s in carried]
     loose = [s for s in shelves if s not in carried]
     distance = grid.table([instance.robots[r].at for r in free], [homes[s] for s in loose])
     offered = {(int(row), column) for column in range(len(loose))
                for row in np.argsort(distance[:, column], kind="stable")[:nearest]}
     if free and loose:
-        copies = np.repeat(np.where(distance < INFINITE, distance, NO_PATH_COST), cap, axis=0)
-        rows, columns = linear_sum_assignment(copies)
-        offered |= {(int(row) // cap, int(column)) for row, column in zip(rows, columns, strict=True)}
-    facts += [f"option({free[row]},{loose[column]},{int(distance[row, column])})."
+        offered |= _matching(distance, cap)
+    facts += [(free[row], loose[column], int(distance[row, column]))
               for row, column in sorted(offered) if distance[row, column] < INFINITE]
     return facts
+
+
+def _matching(distance: np.ndarray, cap: int) -> set[tuple[int, int]]:
+    """(row, column) pairs of robots (rows, each at most ``cap`` times) and shelves (columns):
+    shelf after shelf, the one whose nearest robot is nearest first, to its nearest robot
+    with room left (greedy: scipy's optimal assignment takes longer to import than the
+    whole first plan of an exercise-size instance)."""
+    load = np.zeros(distance.shape[0], dtype=np.int64)
+    pairs = set()
+    for column in np.argsort(distance.min(axis=0), kind="stable"):
+        for row in np.argsort(distance[:, column], kind="stable"):
+            if distance[row, column] >= INFINITE:
+                break
+            if load[row] < cap:
+                load[row] += 1
+                pairs.add((int(row), int(column)))
+                break
+    return pairs

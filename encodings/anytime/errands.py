@@ -6,9 +6,10 @@ of a few cells for good.  Between two tasks the robot walks (or waits); ``carryi
 whether it carries a shelf on the way to a task.  Routing (:mod:`.router`) turns an errand
 into a timed track; this module only says what is to be done.
 
-A shelf goes back to the cell it came from before its robot fetches the next one, so the
-shelves never rest anywhere but on their own cells: robots planned later find them where
-the instance put them, or away while being carried.  After its last delivery a robot
+Before its robot fetches the next one, a shelf is put down on a free storage cell on the
+way (one that no shelf starts on and no other shelf is put down on: :class:`~.work.Work`
+chooses it), or else on the cell it came from; so the shelves rest on their own cells
+until they are fetched, and on their new cells afterwards.  After its last delivery a robot
 parks with the shelf on the shelf's own cell (or, when nobody else needs the station any
 more, on the station).
 """
@@ -55,12 +56,14 @@ def shelf_home(instance: Instance, shelf: int) -> Cell:
     return instance.shelves[shelf].at
 
 
-def delivery_errand(instance: Instance, robot: int, trips: list[Trip], park_cells: tuple[Cell, ...]) -> list[Task]:
+def delivery_errand(instance: Instance, robot: int, trips: list[Trip], park_cells: tuple[Cell, ...],
+                    putdowns: dict[int, Cell] | None = None) -> list[Task]:
     """The tasks of a robot that brings ``trips`` (at least one) one after the other.
 
-    Every shelf but the last goes back to its own cell and is put down there; the last one
-    is kept and the robot parks with it on one of ``park_cells``.
+    Every shelf but the last is put down on its cell of ``putdowns`` (by default its own
+    cell); the last one is kept and the robot parks with it on one of ``park_cells``.
     """
+    putdowns = putdowns or {}
     carried = instance.robots[robot].carries
     tasks: list[Task] = []
     for number, trip in enumerate(trips):
@@ -70,7 +73,7 @@ def delivery_errand(instance: Instance, robot: int, trips: list[Trip], park_cell
         for station, lines, args in trip.deliveries:
             tasks.append(Task("deliver", (station,), True, trip.shelf, args, lines))
         if number < len(trips) - 1:
-            tasks.append(Task("putdown", (home,), True, trip.shelf))
+            tasks.append(Task("putdown", (putdowns.get(trip.shelf, home),), True, trip.shelf))
         else:
             tasks.append(Task("park", park_cells, True, trip.shelf))
     return tasks

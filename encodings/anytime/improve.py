@@ -11,7 +11,13 @@ Neighbourhoods, chosen with weights that grow with their successes:
   the tracks up to that step stay, the rest is routed again (a window of steps).
 - ``random``: a few robots drawn at random.
 - ``swap``: a late robot and its nearest neighbours, whose work (goals, shelves, order
-  lines) is assigned among them anew by the grounded assignment program first.
+  lines) is assigned among them anew by the grounded assignment program first; half of the
+  time one of the late robot's shelves (A/B/C) must go to another robot, so that the swap
+  leaves the program's own optimum (an estimate) for another assignment.
+- ``order``: a late robot with several shelves brings them in another order (A/B/C).
+
+Robots parked for good on a station the freed robots deliver at are freed as well (routed
+after them): a changed errand may need that station later than before.
 """
 
 from __future__ import annotations
@@ -26,7 +32,7 @@ from .reservations import Reservations, Track
 from .router import LEVELS, Router
 from .work import Work
 
-KINDS = ("alone", "crowd", "tail", "random", "swap")
+KINDS = ("alone", "crowd", "tail", "random", "swap", "order")
 #: the most robots one neighbourhood frees
 GROUP = 8
 #: how many steps before a robot's finish a ``tail`` neighbourhood starts
@@ -52,6 +58,7 @@ class Improver:
         self.weights = dict.fromkeys(KINDS, 1.0)
         if work.domain.work is Job.GOALS:
             self.weights["alone"] = 0.2
+            self.weights["order"] = 0.0  # a robot of M/Md has one goal
         self.tried = dict.fromkeys(KINDS, 0)
         self.won = dict.fromkeys(KINDS, 0)
 
@@ -62,9 +69,12 @@ class Improver:
         """Try one neighbourhood; whether the plan got better."""
         kind = self.random.choices(KINDS, [self.weights[k] for k in KINDS])[0]
         late = self._late_robot()
+        saved = self.work.save()  # before a neighbourhood that changes the work (order)
         group, start, reassign = self._neighbourhood(kind, late)
         self.tried[kind] += 1
-        better = bool(group) and self._repair(group, start, reassign, stopped)
+        better = bool(group) and self._repair(group, start, reassign, stopped, saved)
+        if not better:
+            self.work.restore(saved)
         self.weights[kind] = min(10.0, self.weights[kind] * 1.5) if better else max(0.1, self.weights[kind] * 0.97)
         self.won[kind] += better
         return better
@@ -89,6 +99,8 @@ class Improver:
         size = self.random.randint(2, GROUP)
         if kind == "alone":
             return [late], 0, False
+        if kind == "order":
+            return ([late], 0, False) if self._reorder(late) else ([], 0, False)
         if kind in ("crowd", "tail"):
             group = [late, *self._met(late)[:size - 1]]
             if kind == "crowd":
@@ -114,6 +126,31 @@ class Improver:
         ranked = sorted(met, key=lambda r: -met[r])
         return ranked
 
+    def _parked_on_stations(self, group: list[int]) -> list[int]:
+        """The other robots whose tracks end on a station that the ``group`` delivers at."""
+        stations = {cell for robot in group for cell in self.work.stations_of(robot)}
+        return [robot for robot, track in self.table.tracks.items()
+                if robot not in group and track.cells[-1] in stations]
+
+    def _reorder(self, robot: int) -> bool:
+        """Let ``robot`` bring its shelves in another order (whether it has several)."""
+        trips = self.work.trips.get(robot, [])
+        if len(trips) < 2:
+            return False
+        order = trips[:]
+        while order == trips:
+            self.random.shuffle(order)
+        self.work.trips = {**self.work.trips, robot: order}  # a new table: a restore brings the old one back
+        return True
+
+    def _shaken(self, late: int) -> int | None:
+        """Half of the time, a shelf of the ``late`` robot that must go to another robot in a
+        swap (A/B/C; ``None``: the program's optimum may keep it)."""
+        shelves = [trip.shelf for trip in self.work.trips.get(late, [])]
+        if not shelves or self.random.random() < 0.5:
+            return None
+        return self.random.choice(shelves)
+
     def _nearest(self, robot: int) -> list[int]:
         """The robots with work whose start cells are nearest to ``robot``'s."""
         x, y = self.table.instance.robots[robot].at
@@ -123,14 +160,17 @@ class Improver:
 
     # --- routing the neighbourhood again -----------------------------------------------------------
 
-    def _repair(self, group: list[int], start: int, reassign: bool, stopped: Callable[[], bool]) -> bool:
+    def _repair(self, group: list[int], start: int, reassign: bool, stopped: Callable[[], bool],
+                saved: tuple) -> bool:
         before = self.score()
         old = {robot: self.table.tracks[robot] for robot in group}
-        saved = self.work.save()
-        if reassign and not self.work.reassign(set(group), SWAP_SECONDS):
+        if reassign and not self.work.reassign(set(group), SWAP_SECONDS, self._shaken(late=group[0])):
             return False
         if start > 0:
             group = [r for r in group if old[r].finish > start]
+        else:  # the robots parked for good on the group's stations go too (the group may need them later now)
+            group += self._parked_on_stations(group)
+            old.update({robot: self.table.tracks[robot] for robot in group if robot not in old})
         for robot in group:
             self.table.remove(robot)
             if start > 0:
@@ -148,7 +188,7 @@ class Improver:
         return False
 
     def _route(self, robot: int, old: Track, start: int, routed: set[int]) -> bool:
-        tasks = self.work.errand(robot, routed, roomy=True)
+        tasks = self.work.errand(robot, routed, roomy=True, parked=self.table.parked_cells(robot))
         begin: Cell = self.table.instance.robots[robot].at
         if start > 0:
             tasks = tasks[sum(1 for step in old.done if step <= start):]

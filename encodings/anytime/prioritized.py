@@ -36,7 +36,8 @@ def route_in_turn(order: list[int], work: Work, router: Router, reservations: Re
         if stopped():
             return robot
         start = reservations.instance.robots[robot].at
-        found = router.route(robot, work.errand(robot, set(reservations.tracks)), start, avoid=work.parking())
+        errand = work.errand(robot, set(reservations.tracks), parked=reservations.parked_cells(robot))
+        found = router.route(robot, errand, start, avoid=work.parking())
         if found is not None:
             reservations.add(Track(robot, *found))
             continue

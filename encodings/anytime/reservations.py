@@ -4,7 +4,8 @@ A :class:`Track` says where its robot is at every step from 0 until it parks, wh
 does at which step, and from which step on it stays where it is.  :class:`Reservations`
 holds the tracks of the robots planned so far, indexed for the questions routing asks:
 who stands on a cell at a step, who moves from where into a cell at a step, who stays on
-a cell for good, and when a shelf rests on a cell.
+a cell for good, when a shelf rests on its own cell, and where and from when a shelf put
+down elsewhere rests (:meth:`Reservations.placed`).
 """
 
 from __future__ import annotations
@@ -46,6 +47,16 @@ class Track:
                 last = step
         return max([last, *self.done])
 
+    def placed(self, homes: dict[int, Cell]) -> dict[int, tuple[Cell, int]]:
+        """Shelf -> (cell, step) of the shelves the robot puts down elsewhere than on their
+        own cells (``homes``): they rest there from that step on."""
+        return {task.shelf: (self.at(step), step) for step, task in self.done.items()
+                if task.name == "putdown" and task.shelf is not None and self.at(step) != homes.get(task.shelf)}
+
+    def loaded(self, carried: int | None) -> list[tuple[int, int]]:
+        """The steps ``(first, last)`` during which the robot carries a shelf."""
+        return [period for periods in self.shelf_periods(carried).values() for period in periods]
+
     def shelf_periods(self, carried: int | None) -> dict[int, list[tuple[int, int]]]:
         """Shelf -> the steps ``(first, last)`` during which the robot carries it
         (``carried``: the shelf it carries from the start)."""
@@ -73,6 +84,8 @@ class Reservations:
         self.entries: dict[Cell, list[tuple[Cell, int, int]]] = defaultdict(list)  # to -> (from, step, robot)
         self.stays: dict[Cell, dict[int, int]] = defaultdict(dict)     # cell -> robot -> from step
         self.away: dict[int, list[tuple[int, int]]] = {}               # shelf -> carried periods
+        self.moved: dict[int, tuple[Cell, int]] = {}                   # shelf -> cell and step put down there
+        self.loads: dict[int, list[tuple[int, int]]] = {}              # robot -> carrying periods
         self.carried_from_start = {r.carries: r.id for r in instance.robots.values() if r.carries is not None}
         self.still = True
 
@@ -81,7 +94,7 @@ class Reservations:
     def reset(self, still: bool) -> None:
         """Forget all tracks and holds; ``still``: how robots not planned are held."""
         self.tracks.clear()
-        for table in (self.visits, self.entries, self.stays, self.away):
+        for table in (self.visits, self.entries, self.stays, self.away, self.moved, self.loads):
             table.clear()
         self.still = still
 
@@ -104,7 +117,10 @@ class Reservations:
             if track.cells[step] != track.cells[step - 1]:
                 self.entries[track.cells[step]].append((track.cells[step - 1], step, robot))
         self.stays[track.cells[-1]][robot] = track.parked
-        self.away.update(track.shelf_periods(self.instance.robots[robot].carries))
+        carried = self.instance.robots[robot].carries
+        self.away.update(track.shelf_periods(carried))
+        self.moved.update(track.placed(self.homes))
+        self.loads[robot] = track.loaded(carried)
 
     def remove(self, robot: int) -> Track:
         """Take a robot's track out of the table (the robot is then held on its start cell)."""
@@ -118,6 +134,8 @@ class Reservations:
         self.stays[track.cells[-1]].pop(robot, None)
         for shelf in track.shelf_periods(self.instance.robots[robot].carries):
             self.away.pop(shelf, None)
+            self.moved.pop(shelf, None)
+        self.loads.pop(robot, None)
         self.hold(robot)
         return track
 
@@ -132,6 +150,10 @@ class Reservations:
         """From which step on another robot stays on ``cell`` for good (``None``: nobody)."""
         return min((since for other, since in self.stays.get(cell, {}).items() if other != robot), default=None)
 
+    def parked_cells(self, robot: int) -> set[Cell]:
+        """The cells where other robots stay for good."""
+        return {cell for cell, who in self.stays.items() if any(other != robot for other in who)}
+
     def last_visit(self, cell: Cell, robot: int) -> int:
         """The last step at which another robot is on ``cell`` (-1: never)."""
         steps = [step for step, other in self.visits.get(cell, {}).items() if other != robot]
@@ -143,7 +165,7 @@ class Reservations:
                 if first <= step <= last and other != robot]
 
     def resting(self, shelf: int) -> list[tuple[int, int]]:
-        """The steps ``(first, last)`` during which ``shelf`` rests on its cell."""
+        """The steps ``(first, last)`` during which ``shelf`` rests on its own cell."""
         periods = sorted(self.away.get(shelf, []))
         if not periods and shelf in self.carried_from_start:
             return []  # carried from the start by a robot not planned yet: it is never put down
@@ -152,9 +174,26 @@ class Reservations:
             if first > since:
                 result.append((since, first - 1))
             since = last + 1
-        if since < FOREVER:
+        if since < FOREVER and shelf not in self.moved:  # a shelf put down elsewhere never comes back
             result.append((since, FOREVER))
         return result
+
+    def placed(self, skip: set[int]) -> dict[int, tuple[Cell, int]]:
+        """Shelf -> (cell, step) of the shelves put down elsewhere than on their own cells,
+        resting there from that step on (none of ``skip``)."""
+        return {shelf: where for shelf, where in self.moved.items() if shelf not in skip}
+
+    def last_loaded_visit(self, cell: Cell, robot: int) -> int:
+        """The last step at which another robot carrying a shelf is on ``cell`` (-1: never):
+        a shelf put down there must come later."""
+        last = -1
+        for step, other in self.visits.get(cell, {}).items():
+            if other != robot and step > last and any(first <= step <= end for first, end in self.loads.get(other, ())):
+                last = step
+        for other, since in self.stays.get(cell, {}).items():  # parked there with a shelf: for good
+            if other != robot and any(end >= since for _first, end in self.loads.get(other, ())):
+                return FOREVER
+        return last
 
     def still_shelves(self, skip: set[int]) -> list[Cell]:
         """The cells of the shelves that rest there all the time (none of ``skip``)."""

@@ -91,7 +91,7 @@ class Router:
         legs = self._legs(tasks, begin, 0, passable, Level(1, 0), frozenset())
         if legs is None:
             return []
-        table, met = self.reservations, Counter()
+        table, met = self.reservations, Counter[int]()
         for cell in {cell for leg in legs for cell in leg.windows}:
             for other in table.stays.get(cell, {}):
                 met[other] += 1000
@@ -112,6 +112,7 @@ class Router:
         own = {t.shelf for t in tasks if t.shelf is not None}
         blocked = self.reservations.still_shelves(own)
         blocked += [self.reservations.homes[s] for s in own if s != task.shelf]
+        blocked += [t.cells[0] for t in tasks if t.name == "putdown" and t.shelf != task.shelf]
         return self.grid.floor & ~self.grid.mask(blocked)
 
     def _legs(self, tasks: list[Task], begin: Cell, step: int, passable: list[np.ndarray],
@@ -166,8 +167,14 @@ class Router:
 
     def _task_cells(self, robot: int, number: int, leg: Leg) -> list[str]:
         out = []
+        table = self.reservations
         for cell in leg.task.cells:
-            if leg.task.name != "park":
+            if leg.task.name == "putdown" and leg.task.shelf is not None and cell != table.homes.get(leg.task.shelf):
+                out.append(f"task({number},{_c(cell)}).")
+                settle = table.last_loaded_visit(cell, robot) + 1
+                if settle > 0:
+                    out.append(f"settle({number},{min(settle, FOREVER)}).")
+            elif leg.task.name != "park":
                 out.append(f"task({number},{_c(cell)}).")
             elif self.reservations.stay(cell, robot) is None:
                 out.append(f"task({number},{_c(cell)}).")
@@ -199,6 +206,9 @@ class Router:
             if cell in cells:
                 out += [f"rests({_c(cell)},{first},{min(last, FOREVER)})."
                         for first, last in self.reservations.resting(shelf)]
+        for cell, since in self.reservations.placed(own).values():  # put down away from their cells
+            if cell in cells:
+                out.append(f"rests({_c(cell)},{since},{FOREVER}).")
         return out
 
     def _solve(self, robot: int, legs: list[Leg], begin: Cell, step: int

@@ -27,7 +27,7 @@ from asprilo.checker import Report, check
 from asprilo.domain import Domain
 from asprilo.model import Instance, Plan
 
-from ..solving.bounds import LowerBounds
+from ..solving.bounds import AwaitedBounds, LowerBounds
 from ..solving.status import IMPROVED, Attempt, SolveStatus
 from ..solving.watch import Watch
 from . import DEFAULT_SECONDS
@@ -107,6 +107,8 @@ class _Run:
         self.on_improvement = on_improvement
         self.result = AnytimeResult(SolveStatus.LIMIT, domain, bound=bounds.makespan,
                                     sum_of_costs_bound=bounds.sum_of_costs)
+        #: bounds another process computes (method ``auto``): zero until they arrive
+        self.awaited = bounds if isinstance(bounds, AwaitedBounds) else None
         self.check_seconds = 0.0
         self.last_check = -math.inf
         self.pending: dict[int, Track] | None = None
@@ -119,7 +121,17 @@ class _Run:
         """``CANCELLED`` when the caller cancelled, else ``status`` (by default ``LIMIT``)."""
         return SolveStatus.CANCELLED if self.watch.cancelled else status or SolveStatus.LIMIT
 
+    def refresh_bounds(self) -> None:
+        """Take the awaited bounds once they have come."""
+        if self.awaited is None:
+            return
+        bounds = self.awaited.arrived()
+        if bounds is not None:
+            self.result.bound, self.result.sum_of_costs_bound = bounds.makespan, bounds.sum_of_costs
+            self.awaited = None
+
     def reached_bound(self, tracks: dict[int, Track]) -> bool:
+        self.refresh_bounds()
         makespan = max((t.finish for t in tracks.values()), default=0)
         soc = sum(t.finish for t in tracks.values())
         bound, soc_bound = self.result.bound, self.result.sum_of_costs_bound
@@ -139,6 +151,7 @@ class _Run:
         tracks, self.pending = self.pending, None
         if tracks is None:
             return True
+        self.refresh_bounds()
         result, clock = self.result, self.watch.clock
         plan = plan_of(tracks, self.instance, self.domain)
         began = clock()
@@ -175,7 +188,9 @@ def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = 
     plan meets the lower bound.  ``on_improvement`` hears of every plan reported.
 
     ``watch``: the stop-watch of a solve that runs the planner (its time limit and cancel
-    replace ``time_limit`` and ``cancel``); ``bounds``: the lower bounds, when known.
+    replace ``time_limit`` and ``cancel``); ``bounds``: the lower bounds, when known (or
+    :class:`~asprilo.encodings.solving.bounds.AwaitedBounds`, when another process computes
+    them: the planner starts at once and takes them when they come).
     """
     limit = DEFAULT_SECONDS if time_limit is None else time_limit
     own = watch is None

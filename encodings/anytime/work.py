@@ -3,16 +3,19 @@
 :class:`Work` turns an assignment (goal cells in M/Md, shelves and order lines in A/B/C)
 into errands, one per robot, and re-assigns the robots a neighbourhood frees.  Robots
 without work that stand where others need to be (a station, a shelf to be fetched, a goal)
-are sent to park nearby.
+are sent to park nearby.  A robot with several shelves puts each one but the last down on
+the spare storage cell (one no shelf starts on) that makes its way on shortest.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Collection
+from itertools import pairwise
 
 import clingo
 
+from asprilo.bounds import INFINITE
 from asprilo.domain import Domain, Job
 from asprilo.model import DIRECTIONS, Cell, Instance
 
@@ -44,6 +47,12 @@ class Work:
         self._parking: dict[Cell, tuple[Cell, ...]] = {}
         self._parking_cells: frozenset[Cell] | None = None
         self._movers: list[int] | None = None
+        #: shelf -> the spare cell it is put down on after its trip (chosen with its errand)
+        self.claims: dict[int, Cell] = {}
+        storage = instance.storage_cells
+        self._spare = sorted(storage - set(self.homes.values()))
+        self._carrying = grid.floor & ~grid.mask(self.resting)  # where a robot with a shelf gets through
+        self._ways: dict[tuple[Cell, bool], object] = {}
 
     # --- the first assignment ----------------------------------------------------------------
 
@@ -80,20 +89,24 @@ class Work:
 
     def save(self) -> tuple:
         """The current assignment, to :meth:`restore` it later."""
-        return self.choice, self.trips, self.goals
+        return self.choice, self.trips, self.goals, dict(self.claims)
 
     def restore(self, saved: tuple) -> None:
-        self.choice, self.trips, self.goals = saved
+        self.choice, self.trips, self.goals, claims = saved
+        self.claims = dict(claims)
         self._parking_cells = self._movers = None
 
     # --- re-assigning a neighbourhood --------------------------------------------------------------
 
-    def reassign(self, freed: set[int], budget: float) -> bool:
-        """Assign the work of the ``freed`` robots among them anew (others keep theirs);
-        whether the assignment changed."""
+    def reassign(self, freed: set[int], budget: float, moved: int | None = None) -> bool:
+        """Assign the work of the ``freed`` robots among them anew (others keep theirs;
+        ``moved``: a shelf that must go to another robot than its own now); whether the
+        assignment changed."""
         if self._problem is None:
             return False
         keep, drop = self._fixed(freed)
+        if moved is not None:
+            drop += [atom for atom in self.choice.atoms if atom.name == "carry" and atom.arguments[1].number == moved]
         choice = self._problem.assigner.solve(keep, drop, budget=budget)
         if choice is None or choice.atoms == self.choice.atoms:
             return False
@@ -121,11 +134,13 @@ class Work:
     def stations_of(self, robot: int) -> set[Cell]:
         return {cell for trip in self.trips.get(robot, []) for cell, _, _ in trip.deliveries}
 
-    def errand(self, robot: int, routed: set[int], roomy: bool = False) -> list[Task]:
+    def errand(self, robot: int, routed: set[int], roomy: bool = False,
+               parked: Collection[Cell] = ()) -> list[Task]:
         """What ``robot`` does.  ``roomy``: every other robot's track is known (``routed``
         holds those that are), so it may park on its last station when no other robot needs
         that station any more, or on a free cell near it; the first plan does neither
-        (robots parked there would block the ones routed later)."""
+        (robots parked there would block the ones routed later).  ``parked``: cells where
+        other robots stay for good (no shelf is put down there)."""
         if self.domain.work is Job.GOALS:
             return goal_errand(self.goals[robot]) if robot in self.goals else self._make_room(robot)
         trips_ = self.trips.get(robot, [])
@@ -140,7 +155,42 @@ class Work:
             if all(other in routed for other in self.trips if other != robot and last in self.stations_of(other)):
                 park = (last,)
             park += self._near(last)
-        return delivery_errand(self.instance, robot, trips_, park)
+        putdowns = self._putdowns(trips_, set(parked))
+        spared = set(self.claims.values())  # a shelf put down there stays: no robot parks there with one
+        park = tuple(cell for cell in park if cell not in spared) or park
+        return delivery_errand(self.instance, robot, trips_, park, putdowns)
+
+    def _putdowns(self, trips_: list[Trip], parked: set[Cell]) -> dict[int, Cell]:
+        """Where the shelves of ``trips_`` but the last are put down: on the spare storage cell
+        (or the shelf's own cell, when that is as good) that makes the way from its last
+        station to the next shelf shortest, one no other shelf is put down on and no robot
+        stays on (the choice is kept in :attr:`claims`)."""
+        mine = {trip.shelf for trip in trips_}
+        taken = {cell for shelf, cell in self.claims.items() if shelf not in mine} | parked
+        putdowns = {}
+        for trip, following in pairwise(trips_):
+            home = self.homes[trip.shelf]
+            start = trip.deliveries[-1][0] if trip.deliveries else home
+            carry, walk = self._way(start, True), self._way(self.homes[following.shelf], False)
+            candidates = [home] if home in self.instance.storage_cells else []
+            candidates += [cell for cell in self._spare if cell not in taken]
+            reachable = [cell for cell in candidates if carry[cell] < INFINITE and walk[cell] < INFINITE]
+            if not reachable:
+                continue
+            best = min(reachable, key=lambda cell: (carry[cell] + walk[cell], cell != home))
+            putdowns[trip.shelf] = best
+            taken.add(best)
+        for shelf in mine:
+            self.claims.pop(shelf, None)
+        self.claims.update({shelf: cell for shelf, cell in putdowns.items() if cell != self.homes[shelf]})
+        return putdowns
+
+    def _way(self, cell: Cell, carrying: bool):
+        """Steps from ``cell`` to every cell (``carrying``: around the resting shelves)."""
+        key = (cell, carrying)
+        if key not in self._ways:
+            self._ways[key] = self.grid.distances([cell], self._carrying if carrying else None)
+        return self._ways[key]
 
     def _near(self, station: Cell) -> tuple[Cell, ...]:
         """Cells a few steps from a station where a robot with a shelf may park."""

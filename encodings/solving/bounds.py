@@ -3,7 +3,8 @@ part that needs them: the method, the checker's metrics, the anytime planner's g
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import Any
 
 from asprilo.bounds import Floor, makespan_bound, mapf_bounds
 from asprilo.domain import Bound, Domain
@@ -17,6 +18,26 @@ class LowerBounds:
 
     makespan: float
     sum_of_costs: float | None = None
+
+
+@dataclass(frozen=True)
+class AwaitedBounds(LowerBounds):
+    """Lower bounds that another process is computing (the exact search beside the anytime
+    planner in method ``auto``): zero, which is admissible, until they arrive on ``inbox``
+    (the receiving end of a pipe); :meth:`arrived` looks for them without waiting."""
+
+    makespan: float = 0.0
+    inbox: Any = field(default=None, compare=False, repr=False)
+
+    def arrived(self) -> LowerBounds | None:
+        """The bounds, once they have come (``None`` before, and when they never will)."""
+        try:
+            if self.inbox is not None and self.inbox.poll():
+                bounds = self.inbox.recv()
+                return bounds if isinstance(bounds, LowerBounds) else None
+        except (EOFError, OSError):  # the sender is gone: they will not come
+            return None
+        return None
 
 
 def lower_bounds(instance: Instance, domain: Domain, floor: Floor | None = None) -> LowerBounds:

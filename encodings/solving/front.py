@@ -10,6 +10,7 @@ horizons refuted so far still prove a bound.
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -24,10 +25,10 @@ from asprilo.solver import Statistics
 from ..registry import Encoding, find_encoding
 from .bounds import LowerBounds, lower_bounds
 from .method import Method
-from .methods import method_for
+from .methods import method_for, resolve
 from .outcome import Outcome
 from .request import SolveOptions, SolveRequest, given_assignment
-from .status import Attempt, Phase, PhaseListener, Progress, SolveStatus
+from .status import Attempt, Phase, PhaseListener, Progress, SolveStatus, Totals
 from .watch import Listeners, Watch
 
 if TYPE_CHECKING:
@@ -45,11 +46,14 @@ def solve(instance: SolveRequest | Instance | str | Path, domain: Domain | str |
 
     ``domain``: a|b|c|m|md or a :class:`Domain` (default: detected).  ``method``: ``asp``
     (default: the ``encoding``, by default ``plain``, over growing horizons), ``flow`` (the
-    exact max-flow solver of M/Md) or ``anytime`` (a checked plan fast, then better ones until
-    ``time_limit``, default 60 s, or the lower bound).  The other keywords are the fields of
-    :class:`SolveRequest`.  ``on_progress`` is called after every horizon (anytime: every
-    better plan), ``on_phase`` when grounding, solving or assigning starts; setting ``cancel``
-    stops the search from another thread.
+    exact max-flow solver of M/Md), ``anytime`` (a checked plan fast, then better ones until
+    ``time_limit``, default 60 s, or the lower bound) or ``auto`` (the command's default: the
+    horizon search and the anytime planner at once, each in a child process, the best plan
+    with its proven bound; M/Md with anonymous goals: ``flow``).  The other keywords are the
+    fields of :class:`SolveRequest`.  ``on_progress`` is called after every horizon (anytime:
+    every better plan), ``on_phase`` when grounding, solving or assigning starts (and again
+    with the conflicts so far while a horizon is solved); setting ``cancel`` stops the search
+    from another thread.
     """
     if isinstance(instance, SolveRequest):
         if domain is not None or options:
@@ -83,28 +87,35 @@ def request_for(instance: Instance | str | Path, domain: Domain | str | None = N
 
 def solve_request(request: SolveRequest, listeners: Listeners | None = None,
                   cancel: threading.Event | None = None) -> Outcome:
-    """Run ``request`` with its method, here or (``isolate``) in a child process."""
+    """Run ``request`` with its method, here or (``isolate``) in a child process (a method
+    that runs its own child processes, ``auto``, always runs here)."""
+    request = resolve(request)
     method = method_for(request)
     listeners = listeners or Listeners()
-    if request.isolate:
+    if request.isolate and not method.isolates_itself:
         return _solve_isolated(request, method, listeners, cancel)
-    return _solve_here(request, method, listeners, cancel)
+    return solve_here(request, method, listeners, cancel)
 
 
-def _solve_here(request: SolveRequest, method: Method, listeners: Listeners,
-                cancel: threading.Event | None) -> Outcome:
+def solve_here(request: SolveRequest, method: Method, listeners: Listeners,
+               cancel: threading.Event | None) -> Outcome:
+    """Run ``request`` with ``method`` in this process: the bounds (unless the request has
+    them, or the method has its child processes compute them), one watch, the method, the
+    check of its plan."""
     with Watch(method.time_limit(request), cancel, listeners) as watch:
-        if request.bounds is None:
+        if request.bounds is None and not method.isolates_itself:
+            watch.phase("bounding", 0)
             request = replace(request, bounds=lower_bounds(request.instance, request.domain))
-        watch.lower_bounds(request.bounds)
+        if request.bounds is not None:
+            watch.lower_bounds(request.bounds)
         outcome = method.run(request, watch)
     outcome.stats = outcome.stats or watch.totals()
     if outcome.plan is not None and outcome.check is None:
-        _check_plan(request, outcome)
+        check_plan(request, outcome)
     return outcome
 
 
-def _check_plan(request: SolveRequest, outcome: Outcome) -> None:
+def check_plan(request: SolveRequest, outcome: Outcome) -> None:
     """Check the plan with the ASP checker (which gets the bounds known already)."""
     bounds = request.bounds
     outcome.check = check(request.instance, outcome.plan, request.domain,
@@ -117,52 +128,76 @@ def _check_plan(request: SolveRequest, outcome: Outcome) -> None:
 
 def _solve_isolated(request: SolveRequest, method: Method, listeners: Listeners,
                     cancel: threading.Event | None) -> Outcome:
-    def forward(message: Attempt | Phase | LowerBounds) -> None:
+    time_limit = request.time_limit
+    child = run_isolated(solve_in_child, (request,),
+                         time_limit=None if time_limit is None else time_limit + _CHILD_GRACE,
+                         memory_mb=request.memory_limit, on_message=forwarder(listeners), cancel=cancel)
+    if child.done:
+        return child.value
+    return _stopped_from_outside(request, method, child, cancel)
+
+
+def forwarder(listeners: Listeners) -> Callable[[object], None]:
+    """What hands each message of a child process to the listener that hears its kind."""
+    def forward(message: object) -> None:
         if isinstance(message, Attempt) and listeners.progress is not None:
             listeners.progress(message)
         elif isinstance(message, Phase) and listeners.phase is not None:
             listeners.phase(message)
         elif isinstance(message, LowerBounds) and listeners.bounds is not None:
             listeners.bounds(message)
+        elif isinstance(message, Totals) and listeners.totals is not None:
+            listeners.totals(message)
 
-    time_limit = request.time_limit
-    child = run_isolated(_solve_in_child, (request,),
-                         time_limit=None if time_limit is None else time_limit + _CHILD_GRACE,
-                         memory_mb=request.memory_limit, on_message=forward, cancel=cancel)
-    if child.done:
-        return child.value
-    return _stopped_from_outside(request, method, child, cancel)
+    return forward
 
 
-def _solve_in_child(request: SolveRequest, report) -> Outcome:
-    return _solve_here(request, method_for(request), Listeners(report, report, report), None)
+def solve_in_child(request: SolveRequest, report: Callable[[object], None]) -> Outcome:
+    """The side of a child process: the request solved, everything heard reported at once."""
+    return solve_here(request, method_for(request), Listeners(report, report, report, report), None)
 
 
 def _stopped_from_outside(request: SolveRequest, method: Method, child: Isolated,
                           cancel: threading.Event | None) -> Outcome:
     """The outcome of a child process killed at a limit or on cancel, from what it reported:
-    the horizons tried and, from the anytime method, its last plan (checked)."""
+    the horizons tried, the statistics so far and the best plan reported (checked here)."""
     cancelled = cancel is not None and cancel.is_set()
     outcome = Outcome(SolveStatus.CANCELLED if cancelled else SolveStatus.LIMIT, request.domain, request.method,
                       method.label(request))
     outcome.horizons_tried = [m for m in child.messages if isinstance(m, Attempt)]
     request = replace(request, bounds=_bounds_heard(request, child))
     outcome.lower_bound = request.lower_bound
+    totals = [message.figures for message in child.messages if isinstance(message, Totals)]
+    outcome.stats = totals[-1] if totals else {key: value for key, value in Statistics().as_dict().items()
+                                               if key != "models"}
+    stopped = why_stopped(request, child.status, child.detail, cancelled)
+    if child.status == "timeout":
+        stopped += _doing(child.messages)
     best = [attempt for attempt in outcome.horizons_tried if attempt.plan is not None]
-    if best:  # the anytime method stopped from outside: its last plan reported (checked) is the answer
-        _last_plan(request, outcome, best)
+    if best and best_plan(request, outcome, best):
+        outcome.message = f"{stopped}; the answer is the best plan found before"
         return outcome
-    outcome.stats = {key: value for key, value in Statistics().as_dict().items() if key != "models"}
-    outcome.message = _why_stopped(request, child, cancelled)
+    outcome.message = stopped
     return outcome
 
 
-def _last_plan(request: SolveRequest, outcome: Outcome, best: list[Attempt]) -> None:
-    """The outcome found: the last of the plans reported by a method stopped from outside."""
-    outcome.status, outcome.plan, outcome.horizon = SolveStatus.FOUND, best[-1].plan, best[-1].horizon
-    _check_plan(request, outcome)
-    outcome.minimal = outcome.horizon <= outcome.lower_bound
-    outcome.history = [{"seconds": a.seconds, "makespan": a.horizon} for a in best]
+def best_plan(request: SolveRequest, outcome: Outcome, found: list[Attempt]) -> bool:
+    """The outcome found with the shortest of the plans ``found`` that passes the check (of
+    two as short, the later: the anytime method's later plan has the smaller sum of costs);
+    whether one passed.  Minimal when no plan is shorter than the bound the horizons refuted
+    prove."""
+    ranked = sorted(range(len(found)), key=lambda i: (found[i].horizon, -i))
+    for index in ranked:
+        attempt = found[index]
+        outcome.status, outcome.plan, outcome.horizon, outcome.check = (
+            SolveStatus.FOUND, attempt.plan, attempt.horizon, None)
+        check_plan(request, outcome)
+        if outcome.found:
+            outcome.message = ""
+            outcome.minimal = outcome.horizon <= outcome.proven_bound
+            outcome.history = [{"seconds": a.seconds, "makespan": a.horizon} for a in found]
+            return True
+    return False
 
 
 def _bounds_heard(request: SolveRequest, child: Isolated) -> LowerBounds:
@@ -173,10 +208,32 @@ def _bounds_heard(request: SolveRequest, child: Isolated) -> LowerBounds:
     return request.bounds or lower_bounds(request.instance, request.domain)
 
 
-def _why_stopped(request: SolveRequest, child: Isolated, cancelled: bool) -> str:
+def why_stopped(request: SolveRequest, status: str, detail: str, cancelled: bool) -> str:
+    """Why a child process ended without an answer, in words."""
     if cancelled:
         return "cancelled"
     time_limit = request.time_limit
     return {"timeout": f"stopped at the time limit ({time_limit:g} s)" if time_limit else "stopped",
             "memout": f"stopped at the memory limit ({request.memory_limit} MB)",
-            "crashed": f"the solver process died ({child.detail})"}[child.status]
+            "crashed": f"the solver process died ({detail})"}[status]
+
+
+def _doing(messages: list[object]) -> str:
+    """What a child stopped from outside was doing then: the last phase it began, unless an
+    attempt ended it."""
+    for message in reversed(messages):
+        if isinstance(message, Attempt):
+            return ""
+        if isinstance(message, Phase):
+            return " while " + phase_words(message)
+    return ""
+
+
+def phase_words(phase: Phase) -> str:
+    """``solving horizon 25 (12,345 conflicts so far)``, ``computing the task assignment``."""
+    if phase.name == "assigning":
+        return "computing the task assignment"
+    if phase.name == "bounding":
+        return "computing the lower bound"
+    conflicts = f" ({phase.conflicts:,} conflicts so far)" if phase.conflicts else ""
+    return f"{phase.name} horizon {phase.horizon}{conflicts}"

@@ -26,6 +26,9 @@ class Method(ABC):
     #: whether it runs a logic program (``SolveRequest.encoding``, resolved by name when the
     #: caller gives a name)
     encoded: ClassVar[bool] = False
+    #: whether it runs its parts in child processes itself (the front end then never runs it
+    #: in a child, ``isolate`` or not)
+    isolates_itself: ClassVar[bool] = False
 
     def check(self, request: SolveRequest) -> None:
         """Raise :class:`~asprilo.errors.InputError` if this method cannot serve ``request``

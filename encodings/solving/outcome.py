@@ -10,7 +10,7 @@ from asprilo.domain import Domain
 from asprilo.model import Plan
 
 from ..assignment import Assignment
-from .status import WITHOUT_ASSIGNMENT, Attempt, SolveStatus
+from .status import Attempt, SolveStatus
 
 
 @dataclass
@@ -37,8 +37,9 @@ class Outcome:
     minimal_along_assignment: bool = False  # no shorter plan follows the assignment
     check: Report | None = None  # the ASP checker's verdict on the plan
     message: str = ""
-    history: list[dict[str, Any]] = field(default_factory=list)  # method anytime: the plans reported
+    history: list[dict[str, Any]] = field(default_factory=list)  # anytime, auto: the plans reported
     warnings: list[str] = field(default_factory=list)  # clingo's warnings on a user's encoding
+    found_by: str = ""  # method auto: the method whose plan is the answer (asp or anytime)
 
     @property
     def found(self) -> bool:
@@ -46,15 +47,31 @@ class Outcome:
 
     @property
     def refuted(self) -> list[int]:
-        """The horizons proven to have no plan (with an assignment: only those tried without)."""
-        return sorted({a.horizon for a in self.horizons_tried
-                       if a.result == "unsat" and (a.note == WITHOUT_ASSIGNMENT or self.assignment is None)})
+        """The horizons proven to have no plan at all (not those refuted only along a task
+        assignment: see :attr:`refuted_along`)."""
+        return sorted({a.horizon for a in self.horizons_tried if a.refutes})
+
+    @property
+    def refuted_along(self) -> list[int]:
+        """The horizons with no plan along the task assignment followed (not refuted for the
+        problem, unless :attr:`refuted` has them too)."""
+        return sorted({a.horizon for a in self.horizons_tried if a.result == "unsat" and a.along})
 
     @property
     def proven_bound(self) -> float:
-        """No plan is shorter: the lower bound raised past every horizon refuted in a row."""
-        bound = self.lower_bound
-        for horizon in self.refuted:
-            if horizon == bound:
-                bound += 1
-        return bound
+        """No plan is shorter: the lower bound raised past every horizon refuted."""
+        return proven_bound(self.lower_bound, self.refuted)
+
+    @property
+    def gap(self) -> float | None:
+        """How many steps the plan may be longer than a minimal one (``None``: no plan)."""
+        if self.plan is None or self.horizon is None:
+            return None
+        return max(0.0, self.horizon - self.proven_bound)
+
+
+def proven_bound(lower_bound: float, refuted: list[int]) -> float:
+    """The lower bound raised past the horizons ``refuted``: a plan is a plan at every larger
+    horizon too (its robots may wait at the end), so no horizon below a refuted one has a
+    plan either; an upward search refutes them in a row from the lower bound."""
+    return max([lower_bound, *(horizon + 1 for horizon in refuted)])

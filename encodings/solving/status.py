@@ -37,8 +37,10 @@ class Attempt:
     not follow the task assignment of a search with one: the probe before the assignment, and
     the tries after a plan along it, looking for a shorter plan or the proof that there is
     none; ``"along the plan's assignment"`` for the probe's plan found again.  The anytime
-    method reports each better plan as ``improved`` at its makespan, the plan itself in
-    ``plan`` (so that a search stopped from outside still has its best plan).
+    method reports each better plan as ``improved`` at its makespan; every plan a method
+    finds travels in ``plan`` as it is found (so that a search stopped from outside still has
+    it).  ``along``: the try followed a task assignment, so ``unsat`` refutes the horizon only
+    along that assignment, not for the problem.
     """
 
     horizon: int
@@ -46,18 +48,39 @@ class Attempt:
     seconds: float
     note: str = ""
     plan: Plan | None = field(default=None, repr=False, compare=False)
+    along: bool = False
+
+    @property
+    def refutes(self) -> bool:
+        """Whether this try proves that no plan of its horizon exists at all."""
+        return self.result == "unsat" and not self.along
 
     def as_json(self) -> dict[str, Any]:
         """The attempt as plain data (``asprilo solve --json``: ``horizons_tried``)."""
-        return {"horizon": self.horizon, "result": self.result, "seconds": self.seconds, "note": self.note}
+        return {"horizon": self.horizon, "result": self.result, "seconds": self.seconds, "note": self.note,
+                "along_assignment": self.along}
 
 
 @dataclass
 class Phase:
-    """What the search is doing now: ``grounding``, ``solving`` or ``assigning`` (horizon 0)."""
+    """What the search is doing now: ``bounding`` (computing the lower bounds, horizon 0),
+    ``grounding``, ``solving`` or ``assigning`` (horizon 0).
+
+    A long solve says the same phase again now and then with the ``conflicts`` of this
+    horizon so far (the search runs in slices of conflicts: see ``methods/program.py``).
+    """
 
     name: str
     horizon: int
+    conflicts: int | None = None
+
+
+@dataclass
+class Totals:
+    """The statistics of a solve so far (ground and solve time, rules, atoms, choices,
+    conflicts): said after every attempt, so that a search stopped from outside has them."""
+
+    figures: dict[str, Any]
 
 
 Progress = Callable[[Attempt], None]

@@ -18,7 +18,7 @@ from typing import Any
 from asprilo.solver import Solver, Statistics
 
 from .bounds import LowerBounds
-from .status import Attempt, Phase, PhaseListener, Progress
+from .status import Attempt, Phase, PhaseListener, Progress, Totals
 
 #: how often the helper thread looks at the cancel event (seconds)
 _POLL = 0.05
@@ -27,11 +27,13 @@ _POLL = 0.05
 @dataclass(frozen=True)
 class Listeners:
     """Who hears what a solve does: each attempt (``progress``), each phase as it begins
-    (``phase``), and the lower bounds once they are known (``bounds``)."""
+    (``phase``), the lower bounds once they are known (``bounds``), and the statistics so far
+    after each attempt (``totals``)."""
 
     progress: Progress | None = None
     phase: PhaseListener | None = None
     bounds: Callable[[LowerBounds], None] | None = None
+    totals: Callable[[Totals], None] | None = None
 
 
 class Watch:
@@ -39,9 +41,10 @@ class Watch:
 
     ``time_limit`` counts from the moment the watch is made; ``clock`` reads the time (a
     caller may pass its own, to make a search see time pass in steps).  With ``cancel``, a
-    helper thread interrupts the attached clingo solver as soon as it is set; grounding is
-    not interruptible, so a cancelled search stops at its next solve call.  Use it as a
-    context manager (or call :meth:`close`) to end the helper thread.
+    helper thread (started with the first solver attached) interrupts the attached clingo
+    solver as soon as it is set; grounding is not interruptible, so a cancelled search stops
+    at its next solve call.  Use it as a context manager (or call :meth:`close`) to end the
+    helper thread.
     """
 
     def __init__(self, time_limit: float | None = None, cancel: threading.Event | None = None,
@@ -54,8 +57,7 @@ class Watch:
         self.current: Solver | None = None
         self.solvers: list[Statistics] = []
         self.done = threading.Event()
-        if cancel is not None:
-            threading.Thread(target=self._interrupt_when_cancelled, daemon=True).start()
+        self._helper: threading.Thread | None = None
 
     def __enter__(self) -> Watch:
         return self
@@ -100,12 +102,20 @@ class Watch:
     # --- listeners -----------------------------------------------------------------------------
 
     def progress(self, attempt: Attempt) -> None:
+        """Report ``attempt`` (the statistics so far first: a listener that stops the solve on
+        hearing the attempt has them)."""
+        if self.listeners.totals is not None:
+            self.listeners.totals(Totals(self.totals()))
         if self.listeners.progress is not None:
             self.listeners.progress(attempt)
 
-    def phase(self, name: str, horizon: int) -> None:
+    def phase(self, name: str, horizon: int, conflicts: int | None = None) -> None:
+        """Report the phase that begins (or, with ``conflicts``, goes on: the statistics so
+        far go with it)."""
+        if conflicts is not None and self.listeners.totals is not None:
+            self.listeners.totals(Totals(self.totals()))
         if self.listeners.phase is not None:
-            self.listeners.phase(Phase(name, horizon))
+            self.listeners.phase(Phase(name, horizon, conflicts))
 
     def lower_bounds(self, bounds: LowerBounds) -> None:
         if self.listeners.bounds is not None:
@@ -117,6 +127,11 @@ class Watch:
         """The clingo solver that runs now: interrupted on cancel, its statistics counted."""
         self.current = solver
         self.solvers.append(solver.stats)
+        if self.cancel is not None and self._helper is None:
+            # started here, not with the watch: a process that solves nothing itself (its
+            # children do) runs no thread of its own, so it may fork them
+            self._helper = threading.Thread(target=self._interrupt_when_cancelled, daemon=True)
+            self._helper.start()
         if self.cancelled:
             solver.control.interrupt()
 

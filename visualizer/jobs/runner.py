@@ -9,10 +9,13 @@ A job's thread belongs to no window: closing the window while a job still runs n
 destroys a running thread (Qt would abort the process); the application waits for such
 jobs when its window has gone (:func:`wait_for_jobs`).
 
-Solve has two methods (Run > Solve method, kept in the settings like the encoding): a plan
-of minimal makespan with a reference encoding, or the anytime planner, whose better plans
-are shown as they come (a draft, outside the undo history) and which answers with its best
-plan when cancelled.
+Solve has three methods (Run > Solve method, kept in the settings like the encoding): by
+default the exact search and the anytime planner together (``auto``: a plan fast, proven
+minimal when the exact search gets there), a plan of minimal makespan with a reference
+encoding alone, or the anytime planner alone.  With ``auto`` and the anytime planner the
+better plans are shown as they come (a draft, outside the undo history) and the job answers
+with its best plan when cancelled.  While a solve runs, the status bar says what it does, and
+beside it the best plan so far, the seconds elapsed and the seconds left to the time limit.
 
 Solve with encoding file… runs a user's own encoding (``asprilo.encodings.own``) the way the
 references run, its style recognised and said while it runs, in a child process (a program
@@ -25,17 +28,19 @@ from __future__ import annotations
 
 import contextlib
 import copy
+import functools
 import threading
 import time
 from collections.abc import Callable, Sequence
 from typing import Any
 
 import clingo
-from PyQt5.QtCore import QObject, QSettings, QThread, pyqtSignal
+from PyQt5.QtCore import QObject, QSettings, QThread, QTimer, pyqtSignal
 from PyQt5.QtWidgets import (
     QAction,
     QActionGroup,
     QHBoxLayout,
+    QLabel,
     QMainWindow,
     QMenu,
     QProgressBar,
@@ -59,9 +64,13 @@ from . import encoding_files
 SOLVE_SECONDS, GENERATE_SECONDS = 300.0, 120.0
 #: the least and the most pixels a running job's progress takes in the status bar (more ends in …)
 JOB_TEXT_PX = (160, 360)
-#: the Solve methods: setting -> menu entry (``asp``: minimal makespan with the encoding chosen)
-SOLVE_METHODS = {"asp": "&Minimal makespan (with the encoding chosen)",
-                 "anytime": "&Anytime: a plan fast, then better ones"}
+#: the Solve methods: setting -> menu entry (``asp``: minimal makespan with the encoding chosen;
+#: ``auto``, the default: the exact search with that encoding and the anytime planner together)
+SOLVE_METHODS = {"auto": "&Best plan fast, proven minimal when possible (exact search and anytime together)",
+                 "asp": "&Minimal makespan only (the encoding chosen, alone)",
+                 "anytime": "&Anytime only: a plan fast, then better ones"}
+#: the Solve method until another is chosen
+DEFAULT_METHOD = "auto"
 
 JOB_ACTIONS: Table = {
     "generate": ("&Generate (fill this layout)…", ("Ctrl+Shift+G",)),
@@ -140,9 +149,33 @@ class JobBar(QWidget):
         self.bar.setMaximumHeight(14)
         self.cancel = QToolButton(self)
         self.cancel.setText("Cancel")
-        for widget in (self.label, self.bar, self.cancel):
+        self.clock = QLabel(self)  # a solve's best plan so far, seconds elapsed and left
+        for widget in (self.label, self.clock, self.bar, self.cancel):
             layout.addWidget(widget)
+        self.started = 0.0
+        self.time_limit: float | None = None
+        self.best: int | None = None
+        self.ticker = QTimer(self)
+        self.ticker.setInterval(1000)
+        self.ticker.timeout.connect(self.tick)
         self.hide()
+
+    def begin(self, time_limit: float | None) -> None:
+        """A job starts: the clock from 0, counting down to ``time_limit`` (when it has one)."""
+        self.started, self.time_limit, self.best = time.perf_counter(), time_limit, None
+        self.tick()
+        self.ticker.start()
+
+    def end(self) -> None:
+        self.ticker.stop()
+        self.clock.clear()
+
+    def tick(self) -> None:
+        """Redraw the clock: ``best makespan 30 · 12 s, 288 s left``."""
+        elapsed = time.perf_counter() - self.started
+        text = f"{elapsed:.0f} s" + ("" if self.time_limit is None else
+                                     f", {max(0.0, self.time_limit - elapsed):.0f} s left")
+        self.clock.setText(text if self.best is None else f"best makespan {self.best} · {text}")
 
 
 class JobRunner(QObject):
@@ -234,9 +267,9 @@ class JobRunner(QObject):
 
     @property
     def method(self) -> str:
-        """The Solve method chosen (``asp`` or ``anytime``)."""
-        method = str(self.settings.value("tools/method", "asp"))
-        return method if method in SOLVE_METHODS else "asp"
+        """The Solve method chosen (``auto``, ``asp`` or ``anytime``)."""
+        method = str(self.settings.value("tools/method", DEFAULT_METHOD))
+        return method if method in SOLVE_METHODS else DEFAULT_METHOD
 
     def _show_method(self) -> None:
         for action in self.methods.actions():
@@ -245,11 +278,12 @@ class JobRunner(QObject):
     # --- running jobs ----------------------------------------------------------------------------
 
     def start(self, title: str, work: Callable[[Job], Any], done: Callable[[Job, Any], None],
-              better: Callable[[Any], None] | None = None) -> Job | None:
+              better: Callable[[Any], None] | None = None, time_limit: float | None = None) -> Job | None:
         """Run ``work`` in the background; ``done(job, result)`` in the window's thread afterwards.
 
         ``better(value)``, in the window's thread, hears of each better result so far; such
-        a job still answers when cancelled (with its best result)."""
+        a job still answers when cancelled (with its best result).  ``time_limit``: the
+        seconds the job may take (the clock beside its progress counts down to it)."""
         if self.job is not None or self.state.document.scenario is None:
             return None
         job = Job(title, work)
@@ -261,6 +295,7 @@ class JobRunner(QObject):
         job.failed.connect(lambda message: self._finished(job) and self.state.report_error(message))
         self.job = job
         self.bar.label.setText(f"{title}…")
+        self.bar.begin(time_limit)
         self.bar.show()
         self.player.pause()
         self.state.begin_job(title)
@@ -283,6 +318,7 @@ class JobRunner(QObject):
 
     def _idle(self) -> None:
         self.job = None
+        self.bar.end()
         self.bar.hide()
         self.state.end_job()
 
@@ -334,16 +370,19 @@ class JobRunner(QObject):
             self.state.say(f"generated in {job.seconds:.1f} s: {counts['robots']} robots, {counts['shelves']} "
                            f"shelves, {counts['orders']} orders (Undo takes it back)", 8000)
 
-        return self.start("Generate", work, done)
+        return self.start("Generate", work, done, time_limit=GENERATE_SECONDS)
 
     # --- solve ----------------------------------------------------------------------------------
 
     def solve(self, encoding: str | None = None, time_limit: float | None = None,
               method: str | None = None) -> Job | None:
-        """Find a plan for the instance shown and play it: of minimal makespan with a reference
-        encoding (``method`` ``asp``), or with the anytime planner (``anytime``: each better
-        plan shown as it comes).  Default: the method and encoding chosen in the Run menu, the
-        time limit :data:`SOLVE_SECONDS` (anytime: the planner's own default)."""
+        """Find a plan for the instance shown and play it: by default (``method`` ``auto``)
+        the exact search with the encoding chosen and the anytime planner together, the best
+        plan proven minimal when the search gets there; of minimal makespan with the encoding
+        alone (``asp``); or with the anytime planner alone (``anytime``).  With ``auto`` and
+        ``anytime`` each better plan is shown as it comes, and Cancel keeps the best.  Default:
+        the method and encoding chosen in the Run menu, the time limit :data:`SOLVE_SECONDS`
+        (anytime: the planner's own default)."""
         from asprilo.encodings.anytime import DEFAULT_SECONDS as ANYTIME_SECONDS
 
         document = self.state.document
@@ -351,16 +390,17 @@ class JobRunner(QObject):
             return None
         scenario, instance, domain = document.scenario, copy.deepcopy(document.instance), document.domain
         method = method or self.method
-        anytime = method == "anytime"
+        drafts = method in ("auto", "anytime")
         encoding = encoding or str(self.settings.value("tools/encoding", "plain"))
         if time_limit is None:
-            time_limit = ANYTIME_SECONDS if anytime else SOLVE_SECONDS
+            time_limit = ANYTIME_SECONDS if method == "anytime" else SOLVE_SECONDS
 
         def work(job: Job):
             from asprilo.encodings import solve
 
             def heard(attempt) -> None:
-                job.progress.emit(tried(attempt))
+                if method != "auto" or attempt.result != "improved":  # auto: the label follows the exact search
+                    job.progress.emit(tried(attempt))
                 if attempt.plan is not None:
                     job.better.emit(attempt)
 
@@ -368,14 +408,22 @@ class JobRunner(QObject):
                          cancel=job.cancel, on_progress=heard,
                          on_phase=lambda phase: job.progress.emit(doing(phase)))
 
-        def better(attempt) -> None:
-            if document.scenario is scenario:
-                document.draft_plan(attempt.plan)
-
         def done(job: Job, outcome) -> None:
             self._solved(job, outcome, scenario, domain.label)
 
-        return self.start("Solve", work, done, better if anytime else None)
+        better = functools.partial(self._show_better, scenario) if drafts else None
+        return self.start("Solve", work, done, better, time_limit)
+
+    def _show_better(self, scenario, attempt) -> None:
+        """A better plan of a solve for ``scenario``: drafted (while that scenario is shown) and
+        its makespan beside the job's clock."""
+        if self.bar.best is not None and attempt.horizon > self.bar.best:
+            return  # (the anytime planner's next plan of the same makespan has a smaller sum of costs)
+        self.bar.best = attempt.horizon
+        self.bar.tick()
+        document = self.state.document
+        if document.scenario is scenario:
+            document.draft_plan(attempt.plan)
 
     def ask_solve_file(self) -> None:
         """Run > Solve with encoding file…: choose the files of an encoding and solve with them."""
@@ -417,7 +465,7 @@ class JobRunner(QObject):
             encoding, outcome = result
             self._solved(job, outcome, scenario, domain.label, encoding)
 
-        return self.start("Solve", work, done)
+        return self.start("Solve", work, done, time_limit=time_limit)
 
     def _solved(self, job: Job, outcome, scenario, domain: str, own=None) -> None:
         """Load and play the plan found in ``scenario`` (if still shown), show a plan that breaks
@@ -438,8 +486,8 @@ class JobRunner(QObject):
                 self.state.report_error(no_plan(outcome, own))
                 return
             why = f" ({outcome.message})" if outcome.message else ""
-            hint = (" For a plan fast (not proven minimal), choose Run > Solve method > Anytime."
-                    if outcome.status.value == "limit" and outcome.method == "asp" else "")
+            hint = (" For a plan fast (not proven minimal), choose Run > Solve method > Best plan fast."
+                    if outcome.status.value == "limit" and outcome.method == "asp" and self.method == "asp" else "")
             self.state.report_error(f"No plan: {outcome.status.value}{why}.{hint}")
             return
         verdict = "" if outcome.found else ", invalid"
@@ -486,6 +534,8 @@ class JobRunner(QObject):
 
 def doing(phase) -> str:
     """What the progress line says while the search grounds or solves one horizon."""
+    if phase.name == "bounding":
+        return "computing the lower bound…"
     if phase.horizon == 0:
         return f"{phase.name}…"
     return f"horizon {phase.horizon}: {phase.name}…"
@@ -501,6 +551,14 @@ def tried(attempt) -> str:
 def found(outcome, job: Job, domain: str, own=None) -> str:
     """What the status bar says of the plan a solve found (``own``: with the user's encoding)."""
     minimal = "minimal " if outcome.minimal else ""
+    if outcome.method == "auto":
+        head = f"Solve stopped after {job.seconds:.1f} s, best plan" if job.cancel.is_set() else \
+            f"plan found in {job.seconds:.1f} s"
+        by = {"asp": "the exact search", "anytime": "the anytime planner"}.get(outcome.found_by, "")
+        bound = outcome.proven_bound
+        proof = "" if outcome.minimal or not bound else f" (no plan is shorter than {bound:g}: not proven minimal)"
+        return (f"{head}: {minimal}makespan {outcome.horizon}{proof}, {len(outcome.plan)} actions "
+                f"({domain}, {outcome.encoding} and anytime, found by {by})")
     if outcome.method != "anytime":
         return (f"plan found in {job.seconds:.1f} s: {minimal}makespan {outcome.horizon}, "
                 f"{len(outcome.plan)} actions ({domain}, {encoding_words(outcome, own)})")

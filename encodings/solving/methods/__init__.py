@@ -1,9 +1,11 @@
 """The ways to solve, looked up by name in one table (:data:`METHODS`).
 
-``asp`` (:mod:`.exact`: a logic program over growing horizons, with :mod:`.assigned` for a
-task assignment and :mod:`.program` for what is grounded), ``flow`` (:mod:`.flow`: max-flow
-for M/Md) and ``anytime`` (:mod:`.anytime`).  A new method is a
-:class:`~asprilo.encodings.solving.method.Method` added to the table.
+``auto`` (:mod:`.auto`: the exact search and the anytime planner together, each in a child
+process; where one method serves alone, that one), ``asp`` (:mod:`.exact`: a logic program
+over growing horizons, with :mod:`.assigned` for a task assignment and :mod:`.program` for
+what is grounded), ``flow`` (:mod:`.flow`: max-flow for M/Md) and ``anytime``
+(:mod:`.anytime`).  A new method is a :class:`~asprilo.encodings.solving.method.Method` added
+to the table.
 """
 
 from __future__ import annotations
@@ -13,11 +15,12 @@ from asprilo.errors import InputError
 from ..method import Method
 from ..request import SolveRequest
 from .anytime import Anytime
+from .auto import Auto, resolve
 from .exact import ExactSearch
 from .flow import MaxFlow
 
 #: every method by its name, in the order the command line lists them
-METHODS: dict[str, Method] = {method.name: method for method in (ExactSearch(), MaxFlow(), Anytime())}
+METHODS: dict[str, Method] = {method.name: method for method in (Auto(), ExactSearch(), MaxFlow(), Anytime())}
 
 
 def method_names() -> list[str]:
@@ -45,4 +48,4 @@ def method_for(request: SolveRequest) -> Method:
     return method
 
 
-__all__ = ["METHODS", "Method", "find_method", "method_for", "method_names"]
+__all__ = ["METHODS", "Method", "find_method", "method_for", "method_names", "resolve"]

@@ -120,13 +120,13 @@ class AssignedSearch:
         size = len(instance.robots) * len(self.program.floor.cells) * bound
         budget = allowance = min(PROBE_CONFLICTS, PROBE_WORK // max(1, size))
         while budget > 0 and not self.watch.cancelled and not self.watch.expired:
-            result, used = self._probe_at(horizon, budget)
+            result, used, plan = self._probe_at(horizon, budget)
             budget -= used
             if result.status is Status.UNSAT:
                 horizon += 1
                 continue
-            if result.status is Status.SAT:
-                self._probe_found(self.program.plan(result), horizon, allowance)
+            if plan is not None:
+                self._probe_found(plan, horizon, allowance)
             return horizon
         return horizon
 
@@ -139,9 +139,9 @@ class AssignedSearch:
         outcome.assignment, exact = assignment_of_plan(self.request.instance, self.request.domain, plan)
         program.assignment = outcome.assignment
         if not exact:
-            again, _ = self._probe_at(horizon, allowance)
-            if again.status is Status.SAT:
-                plan = program.plan(again)
+            _, _, again = self._probe_at(horizon, allowance)
+            if again is not None:
+                plan = again
             else:
                 self.probe_plan, plan = (plan, outcome.assignment), None
         if plan is not None:
@@ -150,14 +150,15 @@ class AssignedSearch:
         else:
             outcome.assignment = program.assignment = None
 
-    def _probe_at(self, horizon: int, conflicts: int) -> tuple[Result, int]:
-        """One try of the probe (along the assignment when one is followed): the result and
-        the conflicts it used."""
+    def _probe_at(self, horizon: int, conflicts: int) -> tuple[Result, int, Plan | None]:
+        """One try of the probe (along the assignment when one is followed): the result, the
+        conflicts it used and the plan found (which goes with its report)."""
         started = time.perf_counter()
         result, used = self.program.probe(horizon, conflicts)
         note = ALONG_THE_PLAN if self.program.assignment is not None else WITHOUT_ASSIGNMENT
-        self.search.record(Attempt(horizon, result.status.value, time.perf_counter() - started, note))
-        return result, used
+        plan = self.program.plan(result) if result.status is Status.SAT else None
+        self.search.record(Attempt(horizon, result.status.value, time.perf_counter() - started, note, plan))
+        return result, used, plan
 
     def _return_probe_plan(self) -> Outcome:
         """The probe's plan, when no plan along an assignment was found, or (``tighten``) one
@@ -208,12 +209,13 @@ class AssignedSearch:
             horizon = outcome.horizon - 1
             started = time.perf_counter()
             result = self.program.solve_at(horizon, limit)
+            plan = self.program.plan(result) if result.status is Status.SAT else None
             self.search.record(Attempt(horizon, result.status.value, time.perf_counter() - started,
-                                       WITHOUT_ASSIGNMENT))
+                                       WITHOUT_ASSIGNMENT, plan))
             if result.status is Status.UNSAT:
                 outcome.minimal = True
                 return
-            if result.status is not Status.SAT:
+            if plan is None:
                 return
-            outcome.plan, outcome.horizon = self.program.plan(result), horizon
+            outcome.plan, outcome.horizon = plan, horizon
             outcome.minimal = horizon <= self.bound

@@ -113,6 +113,8 @@ class HorizonSearch:
             self._single_shot(first, last)
 
     def record(self, attempt: Attempt) -> None:
+        """Keep and report one try (tried along the task assignment when the program follows one)."""
+        attempt.along = self.program.assignment is not None
         self.outcome.horizons_tried.append(attempt)
         self.outcome.warnings = self.program.warnings
         self.watch.progress(attempt)
@@ -130,12 +132,14 @@ class HorizonSearch:
     def _tried(self, horizon: int, result: Result, seconds: float) -> bool:
         """Record one horizon of the search; whether the search goes on."""
         outcome = self.outcome
-        self.record(Attempt(horizon, result.status.value, seconds))
         if result.status is Status.SAT:
             outcome.status, outcome.plan = SolveStatus.FOUND, self.program.plan(result)
             if self._shows_no_plan(result):
                 outcome.status, outcome.plan, outcome.message = SolveStatus.INVALID, None, INTERFACE
+            # the plan goes with its report: a search stopped from outside later still has it
+            self.record(Attempt(horizon, result.status.value, seconds, plan=outcome.plan))
             return False
+        self.record(Attempt(horizon, result.status.value, seconds))
         if result.status is Status.UNSAT:
             outcome.status = SolveStatus.NONE
             return True

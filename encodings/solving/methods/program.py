@@ -33,6 +33,11 @@ HINTED_ROBOTS = 20
 #: as the turn before last, starting with this many conflicts (counted, not timed, so that a
 #: search takes the same path on every machine and under any load); learned clauses are kept
 FIRST_TURN = 1_000
+#: without hints, a reference encoding is searched in slices of this many conflicts (learned
+#: clauses kept; a few seconds each on the exercise-size instances), so that a long search
+#: says how far it got between two slices (``Phase.conflicts``); a user's own encoding, which
+#: may optimise, is solved in one call
+SLICE = 5_000
 
 
 class Program:
@@ -92,8 +97,10 @@ class Program:
             remaining = limit if remaining is None else min(limit, remaining)
         self.watch.phase("solving", horizon)
         if not hinted:
-            return solver.solve(time_limit=remaining)
-        return self._solve_in_turns(solver, remaining)
+            if self.encoding.own:
+                return solver.solve(time_limit=remaining)
+            return self._solve_in_slices(solver, horizon, remaining)
+        return self._solve_in_turns(solver, horizon, remaining)
 
     def solve_at(self, horizon: int, limit: float | None = None) -> Result:
         """Ground and solve the encoding for exactly this horizon, in a fresh solver."""
@@ -114,10 +121,23 @@ class Program:
         symbols = [_with_values(symbol, result.assignment) for symbol in result.symbols]
         return name_robots(self.encoding, self.facts, symbols)
 
-    def _solve_in_turns(self, solver: Solver, limit: float | None) -> Result:
-        """Search with and without hints in turns on one grounding (turns of 1,000, 1,000,
-        2,000, 2,000, ... conflicts)."""
+    def _solve_in_slices(self, solver: Solver, horizon: int, limit: float | None) -> Result:
+        """Search in slices of :data:`SLICE` conflicts on one grounding, saying the conflicts
+        so far after each."""
         end = None if limit is None else time.perf_counter() + limit
+        before = solver.stats.conflicts
+        while True:
+            left = None if end is None else max(end - time.perf_counter(), 0.0)
+            result = solver.solve(time_limit=left, conflicts=SLICE)
+            if result.status is not Status.UNKNOWN or result.timed_out or self.watch.cancelled:
+                return result
+            self.watch.phase("solving", horizon, solver.stats.conflicts - before)
+
+    def _solve_in_turns(self, solver: Solver, horizon: int, limit: float | None) -> Result:
+        """Search with and without hints in turns on one grounding (turns of 1,000, 1,000,
+        2,000, 2,000, ... conflicts), saying the conflicts so far after each."""
+        end = None if limit is None else time.perf_counter() + limit
+        before = solver.stats.conflicts
         turn, hints = FIRST_TURN, True
         while True:
             left = None if end is None else max(end - time.perf_counter(), 0.0)
@@ -125,6 +145,7 @@ class Program:
             result = solver.solve(time_limit=left, conflicts=turn)
             if result.status is not Status.UNKNOWN or result.timed_out or self.watch.cancelled:
                 return result
+            self.watch.phase("solving", horizon, solver.stats.conflicts - before)
             if not hints:
                 turn *= 2
             hints = not hints
