@@ -25,13 +25,16 @@ from . import Report, check
 
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("instance", metavar="INSTANCE", help="instance file (- = stdin)")
-    parser.add_argument("plan", metavar="PLAN", help="plan file or clingo output (- = stdin); "
-                        "instance facts in it are ignored")
+    parser.add_argument("plan", metavar="PLAN", nargs="?", help="plan file or clingo output (- = stdin); "
+                        "instance facts in it are ignored (with --watch --encoding: where the plan found "
+                        "is written, if given)")
     parser.add_argument("--domain", type=domain_argument, help="a|b|c|m|md (default: detected)")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.plan is None:
+        raise InputError("no plan given (check INSTANCE PLAN)")
     instance, plan = read_instance(args.instance), read_plan(args.plan)
     try:
         require_plan_fits(instance, plan)
@@ -48,10 +51,7 @@ def run(args: argparse.Namespace) -> int:
 def summary(report: Report, detected: bool = False) -> str:
     """One line per violation, then the verdict and the metrics."""
     lines = [error.message for error in report.errors]
-    domain = report.domain.label + (" (detected)" if detected else "")
-    count = len(report.errors)
-    verdict = "valid plan" if report.valid else f"invalid plan: {count} violation{'s' * (count != 1)}"
-    lines.append(f"{verdict} (domain {domain}, horizon {report.horizon})")
+    lines.append(verdict(report, detected))
     m = report.metrics
     actions = ", ".join(f"{n} {name}" for name, n in m["actions"].items()) or "none"
     lines.append(f"actions: {sum(m['actions'].values())} ({actions}); sum of costs {m['sum_of_costs']}, "
@@ -64,6 +64,14 @@ def summary(report: Report, detected: bool = False) -> str:
                                               (("makespan", "makespan"), ("sum_of_costs", "sum of costs"))
                                               if f"{name}_bound" in m))
     return "\n".join(lines)
+
+
+def verdict(report: Report, detected: bool = False) -> str:
+    """The verdict line: ``valid plan (domain A, horizon 12)`` or ``invalid plan: 3 violations (...)``."""
+    domain = report.domain.label + (" (detected)" if detected else "")
+    count = len(report.errors)
+    words = "valid plan" if report.valid else f"invalid plan: {count} violation{'s' * (count != 1)}"
+    return f"{words} (domain {domain}, horizon {report.horizon})"
 
 
 def _bound(metrics: dict, name: str, word: str) -> str:

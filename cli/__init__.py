@@ -6,12 +6,14 @@ and only ``viz`` loads Qt.  Bad input (:class:`InputError`) becomes one line
 ``error: FILE[:LINE]: what is wrong`` on stderr and exit status 2; input read with
 something ignored (:class:`InputWarning`) one line ``warning: FILE[:LINE]: ...``.  Every
 command that reads data takes ``--allow-rules`` and ``--limit NAME=N`` (README: "Reading
-data").
+data").  Standard output that cannot be written (a full disk) is one line ``error: standard
+output: ...`` and exit status 2; a reader that goes away (``| head``) ends the command quietly.
 """
 
 from __future__ import annotations
 
 import argparse
+import errno
 import importlib
 import os
 import sys
@@ -27,7 +29,8 @@ from asprilo.limits import using
 COMMANDS: dict[str, tuple[str, str]] = {
     "demo": ("asprilo.cli.demo", "generate, solve, check and render a small warehouse: the whole tool chain"),
     "info": ("asprilo.cli.info", "summarise an instance (and plan): counts, domain, horizon"),
-    "check": ("asprilo.checker.cli", "check a plan with the ASP checker: violations in plain words, metrics, bounds"),
+    "check": ("asprilo.cli.check", "check a plan with the ASP checker: violations in plain words, metrics, bounds; "
+              "--watch: again on every save"),
     "gen": ("asprilo.generator.cli", "generate instances: random, structured (-H), templates (-T), YAML batches (-j)"),
     "viz": ("asprilo.visualizer.cli", "show a warehouse, animate a plan, export pictures and animations"),
     "bench": ("asprilo.bench.cli", "run benchmark suites under limits, report tables and plots, export for btool"),
@@ -38,6 +41,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
 }
 #: the commands that read no data files
 WITHOUT_DATA = {"demo"}
+#: what standard output is called in messages
+STANDARD_OUTPUT = "standard output"
 
 
 def _parser(name: str, prog: str, summary: str, parent=None) -> argparse.ArgumentParser:
@@ -59,12 +64,65 @@ def run_command(run: Callable[[argparse.Namespace], int | None], args: argparse.
     with using(reading_limits(args)), warnings.catch_warnings():
         warnings.simplefilter("always", InputWarning)
         warnings.showwarning = _show_warning
-        return _run(run, args)
+        stdout = sys.stdout
+        sys.stdout = _StandardOutput(stdout)
+        try:
+            return _run(run, args)
+        finally:
+            sys.stdout = stdout
+
+
+class _StandardOutput:
+    """Standard output whose write errors name it (``filename`` is ``standard output``), so
+    that a full disk there is told apart from other failures; everything else is the stream's.
+
+    A long text goes to the byte stream until all of it is written: Python's text stream drops
+    the rest of a long write that the system takes only in part (a disk filling up), silently."""
+
+    LONG = 8192
+
+    def __init__(self, stream):
+        self._stream = stream
+
+    def write(self, text: str) -> int:
+        try:
+            if len(text) <= self.LONG or not hasattr(self._stream, "buffer"):
+                return self._stream.write(text)
+            self._stream.flush()
+            data = memoryview(text.encode(self._stream.encoding or "utf-8", self._stream.errors or "strict"))
+            while data:
+                written = self._stream.buffer.write(data)
+                if not written:
+                    raise OSError(errno.EIO, os.strerror(errno.EIO))
+                data = data[written:]
+            return len(text)
+        except OSError as error:
+            raise _named(error) from None
+
+    def writelines(self, lines) -> None:
+        for line in lines:
+            self.write(line)
+
+    def flush(self) -> None:
+        try:
+            self._stream.flush()
+        except OSError as error:
+            raise _named(error) from None
+
+    def __getattr__(self, name: str):
+        return getattr(self._stream, name)
+
+
+def _named(error: OSError) -> OSError:
+    """The error as one of standard output (EPIPE stays a BrokenPipeError)."""
+    return OSError(error.errno, error.strerror, STANDARD_OUTPUT) if error.errno else error
 
 
 def _run(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespace) -> int:
     try:
-        return run(args) or 0
+        code = run(args) or 0
+        sys.stdout.flush()  # here, so that a full disk or a closed pipe is said, not met at exit
+        return code
     except InputError as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
@@ -76,8 +134,24 @@ def _run(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespa
         return 130
     except BrokenPipeError:
         # the reader went away (e.g. `| head`): stop quietly
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        _silence_stdout()
         return 0
+    except OSError as error:
+        if error.filename != STANDARD_OUTPUT:
+            raise
+        # e.g. a full disk: one line, and what is still buffered is dropped
+        print(f"error: {STANDARD_OUTPUT}: cannot be written ({error.strerror or error})", file=sys.stderr)
+        _silence_stdout()
+        return 2
+
+
+def _silence_stdout() -> None:
+    """Send what is left for standard output nowhere (so that exiting does not fail on it)."""
+    try:
+        descriptor = sys.stdout.fileno()
+    except (AttributeError, OSError, ValueError):
+        return  # not a file (e.g. captured by a test)
+    os.dup2(os.open(os.devnull, os.O_WRONLY), descriptor)
 
 
 def _show_warning(message, category, filename, lineno, file=None, line=None) -> None:
@@ -125,7 +199,7 @@ def _parse(parser: argparse.ArgumentParser, argv: list[str], chosen: str | None)
 
 def _standalone(name: str) -> int:
     parser = _parser(name, name, COMMANDS[name][1])
-    args = parser.parse_args()
+    args = _parse(parser, sys.argv[1:], name)
     return run_command(args.run, args)
 
 

@@ -177,9 +177,16 @@ def _features(program: list[Path]) -> _Features:
     return features
 
 
-def _program_files(files: list[Path]) -> list[Path]:
+def program_files(paths: Sequence[str | Path]) -> list[Path]:
+    """The files of an encoding made of ``paths`` and those they ``#include``, as far as
+    they can be read now: a missing file or one that cannot be read is listed, not followed
+    (what ``check --watch --encoding`` watches; never an error)."""
+    return _program_files([Path(path) for path in paths], strict=False)
+
+
+def _program_files(files: list[Path], strict: bool = True) -> list[Path]:
     """The files and, after each, those it includes (``#include "file".``, relative to it),
-    each once."""
+    each once (``strict``: a missing file is an error)."""
     seen: list[Path] = []
     stack: list[tuple[Path, Path | None]] = [(file, None) for file in reversed(files)]
     while stack:
@@ -187,10 +194,15 @@ def _program_files(files: list[Path]) -> list[Path]:
         file = file.resolve()
         if file in seen:
             continue
-        if not file.is_file():
-            raise InputError(f"#include of a missing file {str(file)!r}", str(includer or file))
         seen.append(file)
-        text = _uncommented(_text(file))
+        try:
+            if not file.is_file():
+                raise InputError(f"#include of a missing file {str(file)!r}", str(includer or file))
+            text = _uncommented(_text(file))
+        except (InputError, OSError):
+            if strict:
+                raise
+            continue
         stack.extend((file.parent / name, file) for name in reversed(_INCLUDED.findall(text)))
     return seen
 

@@ -10,6 +10,7 @@ Examples:
   python -m clingo instance.lp encoding.lp | viz          (output shows init/2 and occurs/3)
   viz instance.lp plan.lp --export state.png --step 12
   viz instance.lp plan.lp --export plan.gif --frames 4 --speed 4
+  viz instance.lp plan.lp --export strip.png --strip 3-8      (steps 3 to 8 side by side)
   viz --solver 5000 --simulator 5001          (watch asprilo serve solver/simulator live)
 """
 
@@ -17,11 +18,13 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import sys
 import traceback
 
 from asprilo.arguments import domain_argument
 from asprilo.errors import InputError
+from asprilo.writer import check_output
 
 from .state.display import INSTALL, window_problem
 
@@ -33,7 +36,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="show the state after step K (pictures: default 0, the initial state)")
     group = parser.add_argument_group("export without a window")
     group.add_argument("--export", metavar="OUT",
-                       help="write OUT and exit: .png, .jpg or .svg (one state), .gif or .mp4 (the whole plan)")
+                       help="write OUT and exit: .png, .jpg or .svg (one state), .gif or .mp4 (the whole plan); "
+                            "a regular file, not an input")
     group.add_argument("--frames", type=int, default=1, metavar="N",
                        help="animation frames per step; N > 1 adds in-between frames (default 1)")
     group.add_argument("--speed", type=float, default=2.0, metavar="S",
@@ -43,6 +47,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
                             "less for big warehouses)")
     group.add_argument("--no-caption", dest="caption", action="store_false",
                        help="pictures: leave out the line below the warehouse that says which state it shows")
+    group.add_argument("--strip", type=strip_argument, metavar="FIRST-LAST",
+                       help="with --export OUT.png or .jpg: the states after steps FIRST to LAST side by side, "
+                            "each captioned, in rows (e.g. --strip 3-8)")
+    group.add_argument("--columns", type=int, metavar="N",
+                       help="panels per row of a strip (default: as many as fit in 2000 pixels)")
     online = parser.add_argument_group("online link (see asprilo serve)")
     online.add_argument("--solver", type=int, metavar="PORT",
                         help="connect to a solver: it plans step by step for the INSTANCE, "
@@ -52,8 +61,18 @@ def configure(parser: argparse.ArgumentParser) -> None:
     online.add_argument("--host", default="127.0.0.1", help="where solver and simulator run (default 127.0.0.1)")
 
 
+
+def strip_argument(text: str) -> tuple[int, int]:
+    """``3-8`` -> ``(3, 8)``: the first and the last step of a strip."""
+    match = re.fullmatch(r"\s*(\d+)\s*-\s*(\d+)\s*", text)
+    if match is None:
+        raise argparse.ArgumentTypeError(f"'{text}' is not FIRST-LAST, two steps such as 3-8")
+    return int(match[1]), int(match[2])
+
+
 def run(args: argparse.Namespace) -> int:
     _check_options(args)
+    check_output(args.export, args.files)  # before any work: a regular file, none of the inputs
     if args.export:
         os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")  # never needs a screen
     else:
@@ -91,9 +110,23 @@ def _check_options(args: argparse.Namespace) -> None:
         raise InputError("--solver needs an INSTANCE to plan for, or a --simulator to say what the world is")
     if args.solver is not None and args.export:
         raise InputError("--solver and --export do not go together: an online session runs in the window")
+    _check_strip(args)
+
+
+def _check_strip(args: argparse.Namespace) -> None:
+    if args.strip is not None and not args.export:
+        raise InputError("--strip goes with --export OUT.png (or .jpg): a strip is a picture")
+    if args.strip is not None and args.step is not None:
+        raise InputError("--strip FIRST-LAST names its steps; leave out --step")
+    if args.columns is not None and args.strip is None:
+        raise InputError("--columns goes with --strip: the panels per row of a strip")
+    if args.columns is not None and args.columns < 1:
+        raise InputError(f"--columns must be at least 1, got {args.columns}")
 
 
 def _export(args: argparse.Namespace, scenario) -> int:
+    if args.strip is not None:
+        return _export_strip(args, scenario)
     from .export.render import render
 
     def progress(done: int, total: int) -> None:
@@ -102,6 +135,16 @@ def _export(args: argparse.Namespace, scenario) -> int:
 
     written = render(scenario.instance, scenario.plan, args.export, scenario.domain, args.step,
                      args.frames, args.speed, args.cell, progress, args.caption)
+    print(f"wrote {args.export}: {written}", file=sys.stderr)
+    return 0
+
+
+
+def _export_strip(args: argparse.Namespace, scenario) -> int:
+    from .export.strip import export_strip
+    first, last = args.strip
+    written = export_strip(scenario.instance, scenario.plan, args.export, first, last, scenario.domain,
+                           args.columns, args.cell)
     print(f"wrote {args.export}: {written}", file=sys.stderr)
     return 0
 

@@ -23,16 +23,20 @@ from PyQt5.QtWidgets import (
 
 from .editor.layout import Editor
 from .export.exporting import ExportActions
+from .export.strip import StripExport
 from .jobs.live import LiveControl
 from .jobs.runner import JobRunner
 from .panels.atoms_pane import AtomsPane
 from .panels.banner import SessionBanner
+from .panels.checker_rule import RuleNote
 from .panels.commands import Table, make_actions, show_shortcuts
 from .panels.controls import TransportBar
 from .panels.dialogs import confirm_discard
 from .panels.docks import Panels
 from .panels.files import FileActions
 from .panels.legend import Legend
+from .panels.presentation import NarrationBar, Presentation
+from .panels.reload_on_save import ReloadOnSave
 from .panels.screen import fit
 from .panels.status import StatusLine
 from .scene.paths import PathMode
@@ -49,6 +53,7 @@ ACTIONS: Table = {
     "reload": ("&Reload", ("F5", "Ctrl+R")),
     "export_picture": ("&Export picture…", ("Ctrl+E",)),
     "export_animation": ("Export &animation…", ("Ctrl+Shift+E",)),
+    "export_strip": ("Export str&ip of states…", ()),
     "quit": ("&Quit", ("Ctrl+Q",)),
     "zoom_in": ("Zoom &in", ("Ctrl++", "+", "=")),
     "zoom_out": ("Zoom &out", ("Ctrl+-", "-")),
@@ -70,6 +75,7 @@ ACTIONS: Table = {
     "loop": ("&Loop", ("L",)),
     "shortcuts": ("&Keyboard shortcuts", ("F1",)),
     "legend": ("&Legend: what the symbols mean", ("F2",)),
+    "present": ("Presentation &mode (Esc leaves it)", ("F11", "Shift+F5")),
 }
 #: the side panels' width (pixels) in a new window
 DOCK_WIDTH = 470
@@ -106,6 +112,8 @@ class MainWindow(QMainWindow):
         self.status_line = StatusLine(self.state, self.statusBar())
         self.stage = Stage(self.state, self.view, self.player, self)
         self.files = FileActions(self.state, self.settings, self)
+        self.reload_on_save = ReloadOnSave(self.state, self.files, self.settings, self)
+        layout.insertWidget(layout.indexOf(self.banner) + 1, self.reload_on_save.banner)
         self.exports = ExportActions(self.state, self.stage, self.player, self.settings, self)
         self.editor = Editor(self.state, self.stage, self, self.settings)
         self.jobs = JobRunner(self.state, self.player, self, self.settings)
@@ -114,6 +122,12 @@ class MainWindow(QMainWindow):
         self.transport = TransportBar(self.player, self.commands, self)
         self._make_menus()
         self._connect()
+        self.narration = NarrationBar(self.state, centre)  # under the map, in the presentation mode
+        layout.addWidget(self.narration)
+        self.presentation = Presentation(self, self.view, self.narration)
+        self.presentation.toggled.connect(self.commands["present"].setChecked)
+        self.strips = StripExport(self.state, self.stage, self.settings, self)
+        self.rule_note = RuleNote(self.state, self.panels.tables["violations"])
         bar = QToolBar("Playback", self)
         bar.setObjectName("playback")
         bar.setMovable(False)
@@ -162,8 +176,9 @@ class MainWindow(QMainWindow):
             "back": player.step_back, "start": player.to_start, "end": player.to_end, "goto": self.ask_go_to,
             "faster": player.faster, "slower": player.slower,
             "loop": lambda: player.set_loop(self.commands["loop"].isChecked()),
-            "shortcuts": lambda: show_shortcuts(self), "legend": lambda: self._show_dock("legend")})
-        for name in ("goals", "labels", "paths", "whole_paths", "loop"):
+            "shortcuts": lambda: show_shortcuts(self), "legend": lambda: self._show_dock("legend"),
+            "present": lambda: self.presentation.toggle(), "export_strip": lambda: self.strips.ask()})
+        for name in ("goals", "labels", "paths", "whole_paths", "loop", "present"):
             actions[name].setCheckable(True)
         for name in ("goals", "labels", "paths"):
             actions[name].setChecked(True)
@@ -174,13 +189,15 @@ class MainWindow(QMainWindow):
     def _make_menus(self) -> None:
         menus, commands, editor = self.menus, self.commands, self.editor.commands
         file = menus["file"]
-        _fill(file, [editor["new"], commands["open"], commands["open_plan"], commands["reload"]])
+        _fill(file, [editor["new"], commands["open"], commands["open_plan"], commands["reload"],
+                     self.reload_on_save.action])
         self.files.install_recent(file.addMenu("Recent &files"))
         _fill(file, [None, editor["save"], editor["save_as"], editor["save_template"], editor["save_plan"], None,
-                     commands["export_picture"], commands["export_animation"], None, commands["quit"]])
+                     commands["export_picture"], commands["export_animation"], commands["export_strip"], None,
+                     commands["quit"]])
         _fill(menus["view"], [commands[n] if n else None for n in (
             "zoom_in", "zoom_out", "fit", None, "goals", "labels", "paths", "whole_paths", "select_all",
-            "select_none")])
+            "select_none", None, "present")])
         menus["view"].addMenu(self.panels.menu)
         _fill(menus["play"], [commands[n] if n else None for n in ("play", "forward", "back", "start", "end",
                                                                    "goto", None, "faster", "slower", "loop")])
@@ -275,6 +292,7 @@ class MainWindow(QMainWindow):
         self.state.selection.set([r for r in robots if track and r in track.robot_index])
 
     def clear_selection(self) -> None:
+        self.presentation.leave()  # Esc ends the presentation mode too
         self.stage.clear_highlight()
         self.state.selection.set([])
 
@@ -302,6 +320,7 @@ class MainWindow(QMainWindow):
         if not confirm_discard(self, self.state.document, self.editor.save_unsaved):
             event.ignore()
             return
+        self.presentation.leave()  # the layout saved is the one with the panels
         self.player.pause()
         self.live.disconnect()
         self.jobs.close()

@@ -195,10 +195,23 @@ class Document:
         """The instance in the canonical format, with a header naming the viewer."""
         return format_instance(self.instance, header_lines(self.instance, tool=TOOL))
 
+    def loaded(self, part: str | None = None) -> list[str]:
+        """The files the scenario was read from that writing ``part`` must not replace: saving
+        the instance (``INSTANCE``) may replace the instance's own file, saving the plan
+        (``PLAN``) the plan's, unless the other part came from that file too; a template or a
+        picture (``None``) replaces none of them."""
+        if self.scenario is None:
+            return []
+        instances, plans = self.scenario.files
+        if part == INSTANCE:
+            shared = len(self.scenario.plan) and not self.scenario.plan_sources  # the plan came from there
+            return plans + instances if shared else plans
+        return instances if part == PLAN else instances + plans
+
     def save(self, path: str | Path) -> None:
         """Write the instance (atomically); the scenario now comes from that file."""
         text = self.text()
-        write_text(path, text)
+        write_text(path, text, self.loaded(INSTANCE))
         self.path = Path(path)
         scenario = self.scenario
         if scenario is not None:
@@ -214,12 +227,12 @@ class Document:
         template = edits.template_of(self.instance)
         header = header_lines(template, tool=TOOL)
         header[1:1] = [f"template for the generator: gen -T {Path(path).name} (adds products and orders)"]
-        write_text(path, format_instance(template, header))
+        write_text(path, format_instance(template, header), self.loaded())
 
     def save_plan(self, path: str | Path) -> None:
         """Write the plan shown (atomically); the scenario's plan now comes from that file."""
         text = format_plan(self.plan)
-        write_text(path, text)
+        write_text(path, text, self.loaded(PLAN))
         if self.scenario is not None:
             self.scenario.plan_sources = [Source(str(path), text)]
         self.history.mark(PLAN)

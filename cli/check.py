@@ -1,0 +1,368 @@
+"""The ``check`` command: the checker's command line (:mod:`asprilo.checker.cli`) and
+``--watch``, the student's edit-run loop in a terminal.
+
+``check INSTANCE PLAN --watch`` checks, then checks again whenever the instance or the plan
+is saved; with ``--encoding FILE`` (repeated, with ``-c`` and clingo's options, as ``asprilo
+solve`` reads them) it solves with that encoding instead, again whenever the instance or an
+encoding file (or a file one ``#include``\\ s) is saved, and checks the plan found.  Each run
+prints a line with the time and what changed, then the violations (the first few) and the
+verdict.  Bad input in a watched file is one line and the watch goes on; Ctrl-C ends it
+(exit status 130).  The watch lives here, above the tools, because with ``--encoding`` it
+solves (the checker is below the encodings).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import threading
+import time
+import warnings
+from collections.abc import Sequence
+from pathlib import Path
+from typing import TextIO
+
+from asprilo.arguments import seconds_argument
+from asprilo.checker import Report, check
+from asprilo.checker import cli as checker_cli
+from asprilo.domain import Domain, detect_domain
+from asprilo.encodings import Attempt, Encoding, Outcome, Phase, SolveStatus, solve
+from asprilo.encodings.choice import choose_encoding, is_encoding_file
+from asprilo.encodings.own import program_files
+from asprilo.errors import InputError, InputWarning
+from asprilo.limits import require_plan_fits
+from asprilo.reader import read_instance, read_plan
+from asprilo.writer import check_output, format_plan, write_text
+
+from .watching import POLL, Stamps, watch
+
+#: options asprilo does not know are clingo's (for ``--watch --encoding``; refused otherwise)
+CLINGO_OPTIONS = True
+#: violations a re-check prints unless told otherwise, and seconds a re-solve may take
+SHOWN_VIOLATIONS = 5
+WATCH_TIME_LIMIT = 60.0
+#: clingo's warnings on an encoding shown per run
+SHOWN_WARNINGS = 3
+
+__doc__ = (checker_cli.__doc__ or "").rstrip() + f"""
+
+Watching (the edit-run loop):
+  check INSTANCE PLAN --watch             re-check whenever INSTANCE or PLAN is saved
+  check INSTANCE [PLAN] --watch --encoding my.lp [-c lanes=2] [--configuration=crafty]
+                                          re-solve with your encoding whenever INSTANCE, my.lp
+                                          or a file it #includes is saved, and check the plan
+                                          found (written to PLAN if given: a viz showing PLAN
+                                          reloads it)
+  Each run prints a line with the time and what changed, the first violations (--violations N,
+  default {SHOWN_VIOLATIONS}) and the verdict; bad input is one line and the watch goes on; a solve still
+  running when a file is saved again is cancelled; Ctrl-C ends the watch (exit status 130).
+"""
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    checker_cli.configure(parser)
+    group = parser.add_argument_group("watching", "check --watch: check (or solve and check) again on every save")
+    group.add_argument("--watch", action="store_true",
+                       help="check again whenever the instance or the plan (or an --encoding file) is saved")
+    group.add_argument("--encoding", action="append", metavar="NAME|FILE",
+                       help="with --watch: solve with this encoding (a file of your own, repeat for several; "
+                            "or a reference encoding by name) and check the plan found")
+    group.add_argument("-c", "--const", action="append", default=[], metavar="NAME=VALUE",
+                       help="with --encoding: a constant for your encoding, as clingo's -c")
+    group.add_argument("--horizon", type=int, metavar="H", help="with --encoding: solve at this makespan only")
+    group.add_argument("--time-limit", type=seconds_argument, metavar="S",
+                       help=f"with --encoding: seconds each solve may take (default {WATCH_TIME_LIMIT:g})")
+    group.add_argument("--violations", type=_count, metavar="N",
+                       help=f"with --watch: violations shown per run (default {SHOWN_VIOLATIONS})")
+
+
+def run(args: argparse.Namespace) -> int:
+    clingo_options = list(getattr(args, "clingo_options", None) or [])
+    if not args.watch:
+        _refuse_watch_options(args, clingo_options)
+        return checker_cli.run(args)
+    rerun = _watched(args, clingo_options)
+    watch(rerun.paths, rerun, poll=POLL)
+    return 130  # watch() ends only by Ctrl-C (KeyboardInterrupt: the command line says 130 too)
+
+
+def _count(text: str) -> int:
+    try:
+        number = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if number < 0:
+        raise argparse.ArgumentTypeError(f"must be 0 or more, got {number}")
+    return number
+
+
+def _refuse_watch_options(args: argparse.Namespace, clingo_options: list[str]) -> None:
+    if args.violations is not None:
+        raise InputError("--violations goes with --watch")
+    _refuse_solve_options(args, clingo_options, "--watch --encoding")
+
+
+def _refuse_solve_options(args: argparse.Namespace, clingo_options: list[str], where: str) -> None:
+    """Options of a solve, without one to make."""
+    if clingo_options:
+        raise InputError(f"unrecognized arguments: {' '.join(clingo_options)} (clingo's options go with {where})")
+    given = [flag for flag, value in (("--encoding", args.encoding), ("-c", args.const),
+                                      ("--horizon", args.horizon is not None),
+                                      ("--time-limit", args.time_limit is not None)) if value]
+    if given:
+        raise InputError(f"{given[0]} goes with {where}")
+
+
+def _watched(args: argparse.Namespace, clingo_options: list[str]) -> Rerun:
+    """What ``--watch`` runs on every save, its options checked before the first run."""
+    if args.json:
+        raise InputError("--json and --watch do not go together (a watch prints a few lines per run)")
+    if "-" in (args.instance, args.plan):
+        raise InputError("--watch watches files: standard input (-) is never saved")
+    shown = SHOWN_VIOLATIONS if args.violations is None else args.violations
+    if not args.encoding:
+        if args.plan is None:
+            raise InputError("no plan given (check INSTANCE PLAN --watch, or --encoding FILE to solve)")
+        _refuse_solve_options(args, clingo_options, "--encoding")
+        _require_files([args.instance, args.plan])
+        return PlanCheck(Path(args.instance), Path(args.plan), args.domain, shown)
+    encodings = [value for value in args.encoding if is_encoding_file(value)]
+    _require_files([args.instance, *encodings])
+    check_output(args.plan, [args.instance, *program_files(encodings)])
+    solver = EncodingSolve(Path(args.instance), None if args.plan is None else Path(args.plan), args.domain, shown,
+                           args.encoding, args.const, clingo_options, args.horizon,
+                           args.time_limit or WATCH_TIME_LIMIT)
+    solver.validate()
+    return solver
+
+
+def _require_files(paths: Sequence[str]) -> None:
+    """The files a watch starts on must be there (a name mistyped is no save to wait for)."""
+    for path in paths:
+        if not Path(path).exists():
+            raise InputError("no such file", path)
+
+
+class Rerun:
+    """What a watch does on every save: ``paths()`` to watch, called with the files changed
+    (none: the first run); ``out`` gets its lines."""
+
+    def __init__(self, instance: Path, domain: Domain | None, shown: int, out: TextIO | None = None):
+        self.instance, self.domain, self.shown = instance, domain, shown
+        self.out = out if out is not None else sys.stdout
+
+    def paths(self) -> list[Path]:
+        raise NotImplementedError
+
+    def __call__(self, changed: list[Path]) -> None:
+        raise NotImplementedError
+
+    def say(self, lines: Sequence[str]) -> None:
+        self.out.write("".join(f"{line}\n" for line in lines))
+        self.out.flush()
+
+    def heading(self, changed: list[Path], doing: str) -> str:
+        """``--- 14:02:31 plan.lp changed: checking ---``."""
+        now = time.strftime("%H:%M:%S")
+        if not changed:
+            what = f"watching {', '.join(map(_shown, self.paths()))} (Ctrl-C ends)"
+        else:
+            what = f"{', '.join(map(_shown, changed))} changed"
+        return f"--- {now} {what}: {doing} ---"
+
+    def report_lines(self, report: Report) -> list[str]:
+        """The first violations and the verdict."""
+        errors = report.errors
+        lines = [error.message for error in errors[:self.shown]]
+        if len(errors) > self.shown:
+            lines.append(f"... and {len(errors) - self.shown} more (check without --watch lists them all)")
+        return lines + [checker_cli.verdict(report, detected=self.domain is None)]
+
+
+class PlanCheck(Rerun):
+    """``check INSTANCE PLAN --watch``: the plan checked again on every save."""
+
+    def __init__(self, instance: Path, plan: Path, domain: Domain | None, shown: int, out: TextIO | None = None):
+        super().__init__(instance, domain, shown, out)
+        self.plan = plan
+
+    def paths(self) -> list[Path]:
+        return list(dict.fromkeys([self.instance, self.plan]))
+
+    def __call__(self, changed: list[Path]) -> None:
+        heading = self.heading(changed, "checking")
+        try:
+            instance, plan = read_instance(str(self.instance)), read_plan(str(self.plan))
+            try:
+                require_plan_fits(instance, plan)
+            except InputError as error:
+                raise error.at(str(self.plan)) from None
+            report = check(instance, plan, self.domain)
+        except InputError as error:
+            self.say([heading, f"error: {error}"])
+            return
+        except Exception as error:  # noqa: BLE001 - whatever broke, the student's loop goes on
+            self.say([heading, _unexpected(error)])
+            return
+        self.say([heading, *self.report_lines(report)])
+
+
+class EncodingSolve(Rerun):
+    """``check INSTANCE [PLAN] --watch --encoding FILE...``: solved again (in a child process
+    under the time limit) on every save of the instance or the encoding; a solve still
+    running when the next save comes is cancelled.
+
+    The solve runs in the watch's own thread, which looks at the files while it waits for the
+    child (:class:`SavedMeanwhile`): no other thread, so the child is forked (no start-up)
+    and a Ctrl-C meets the watch, which kills the child on its way out."""
+
+    def __init__(self, instance: Path, plan: Path | None, domain: Domain | None, shown: int,
+                 encoding: Sequence[str], const: Sequence[str], options: Sequence[str], horizon: int | None,
+                 time_limit: float, out: TextIO | None = None, err: TextIO | None = None):
+        super().__init__(instance, domain, shown, out)
+        self.plan, self.encoding, self.const, self.options = plan, list(encoding), list(const), list(options)
+        self.horizon, self.time_limit = horizon, time_limit
+        self.err = err if err is not None else sys.stderr
+
+    def paths(self) -> list[Path]:
+        return [self.instance, *program_files([value for value in self.encoding if is_encoding_file(value)])]
+
+    def validate(self) -> None:
+        """Refuse what no save can mend (clingo's options, -c, a reference name), when the
+        instance can be read now (otherwise the first run says what is wrong with it)."""
+        try:
+            with warnings.catch_warnings():  # the first run says them
+                warnings.simplefilter("ignore", InputWarning)
+                instance = read_instance(str(self.instance))
+            self.choose(self.domain or detect_domain(instance))
+        except InputError as error:
+            if error.file is None:
+                raise
+
+    def choose(self, domain: Domain) -> tuple[Encoding, int | None]:
+        return choose_encoding(self.encoding, self.const, self.options, domain, self.horizon)
+
+    def __call__(self, changed: list[Path]) -> None:
+        self.say([self.heading(changed, "solving")])
+        cancel = SavedMeanwhile(self.paths())
+        try:
+            lines = self._lines(cancel)
+        except InputError as error:
+            lines = [f"error: {error}"]
+        except Exception as error:  # noqa: BLE001 - whatever broke, the student's loop goes on
+            lines = [_unexpected(error)]
+        if threading.Event.is_set(cancel):  # set while the solve ran (not looked at now)
+            lines = [f"(cancelled: {', '.join(map(_shown, cancel.changed))} changed)"]
+        self.say(lines)
+
+    def _lines(self, cancel: threading.Event) -> list[str]:
+        instance = read_instance(str(self.instance))
+        domain = self.domain or detect_domain(instance)
+        encoding, horizon = self.choose(domain)
+        progress = Progress(self.err)
+        try:
+            outcome = solve(instance, domain, encoding=encoding, horizon=horizon, time_limit=self.time_limit,
+                            isolate=True, cancel=cancel, on_progress=progress.attempt, on_phase=progress.phase)
+        finally:
+            progress.close()
+        lines = []
+        if encoding.own:
+            lines.append(f"your encoding: {encoding.summary}")
+            lines += [f"  assumed: {note}" for note in encoding.assumed]
+            lines += [f"  clingo: {' '.join(warning.split())}" for warning in outcome.warnings[:SHOWN_WARNINGS]]
+        return lines + self._outcome_lines(outcome)
+
+    def _outcome_lines(self, outcome: Outcome) -> list[str]:
+        if outcome.plan is None or outcome.check is None:
+            return _no_plan(outcome, self.time_limit)
+        plan = outcome.plan
+        proof = f" ({'proven minimal' if outcome.minimal else 'not proven minimal'})" if outcome.found else ""
+        line = f"plan: horizon {plan.horizon}{proof}, {len(plan)} actions"
+        if self.plan is not None:
+            write_text(self.plan, format_plan(plan), self.paths())
+            line += f", written to {self.plan}"
+        return [line, *self.report_lines(outcome.check)]
+
+
+class SavedMeanwhile(threading.Event):
+    """The cancel of a solve: set once one of ``paths`` is saved.  The solve asks whether it
+    is set about ten times a second while it waits for its child; the files are looked at
+    then, at most every ``POLL`` seconds."""
+
+    def __init__(self, paths: Sequence[Path]):
+        super().__init__()
+        self.stamps = Stamps(paths)
+        self.changed: list[Path] = []
+        self.looked = time.monotonic()
+
+    def is_set(self) -> bool:
+        if not super().is_set() and time.monotonic() - self.looked >= POLL:
+            self.looked = time.monotonic()
+            self.changed = self.stamps.changed()
+            if self.changed:
+                self.set()
+        return super().is_set()
+
+    def wait(self, timeout: float | None = None) -> bool:
+        deadline = None if timeout is None else time.monotonic() + timeout
+        while not self.is_set():
+            left = POLL if deadline is None else min(POLL, deadline - time.monotonic())
+            if left <= 0:
+                return False
+            super().wait(left)
+        return True
+
+
+class Progress:
+    """What the search does, on standard error: a line per horizon tried, and the phase under
+    way -- on a terminal on one line redrawn in place, otherwise a line per phase.  (No
+    clock redrawn: that would take a thread, and the child is forked only from a process
+    that runs none.)"""
+
+    def __init__(self, stream: TextIO):
+        self.stream, self.live = stream, stream.isatty()
+
+    def phase(self, phase: Phase) -> None:
+        if phase.name in ("grounding", "solving", "assigning"):
+            what = "task assignment" if phase.name == "assigning" else f"horizon {phase.horizon}: {phase.name}"
+            self._write(f"{what}…" if self.live else what, final=not self.live)
+
+    def attempt(self, attempt: Attempt) -> None:
+        note = f" {attempt.note}" if attempt.note else ""
+        self._write(f"horizon {attempt.horizon}{note}: {attempt.result} ({attempt.seconds:.2f} s)", final=True)
+
+    def close(self) -> None:
+        if self.live:
+            self.stream.write("\r\033[K")
+            self.stream.flush()
+
+    def _write(self, text: str, final: bool) -> None:
+        prefix = "\r\033[K" if self.live else ""
+        self.stream.write(prefix + text + ("\n" if final else ""))
+        self.stream.flush()
+
+
+def _no_plan(outcome: Outcome, time_limit: float) -> list[str]:
+    """Why there is no plan, in a line (and the horizons refuted)."""
+    words = {SolveStatus.NONE: "no plan exists", SolveStatus.LIMIT: f"no plan within the limits ({time_limit:g} s)",
+             SolveStatus.CANCELLED: "cancelled", SolveStatus.INVALID: "no valid plan"}.get(outcome.status,
+                                                                                       outcome.status.value)
+    lines = [words + (f": {outcome.message}" if outcome.message else "")]
+    if outcome.refuted:
+        lines.append(f"refuted horizons: {', '.join(map(str, outcome.refuted))}")
+    return lines
+
+
+def _shown(path: Path) -> str:
+    """A path for the heading: relative to the working folder when it is in it."""
+    if path.is_absolute():
+        try:
+            return str(path.relative_to(Path.cwd()))
+        except ValueError:
+            pass
+    return str(path)
+
+
+def _unexpected(error: Exception) -> str:
+    return f"error: {type(error).__name__}: {' '.join(str(error).split())}"
+
