@@ -36,10 +36,12 @@ import subprocess
 import sys
 import threading
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from multiprocessing.connection import Connection
 from typing import Any
+
+from .objects import KINDS, ObjectKind, register_kind, registered_kinds
 
 #: how long a killed child may take to go, and how often the parent looks at the clock
 _GRACE = 1.0
@@ -72,8 +74,12 @@ class _OutOfMemory:
     pass
 
 
-def _child(connection, function: Callable, args: tuple, memory_mb: int | None) -> None:
+def _child(connection, function: Callable, args: tuple, memory_mb: int | None,
+           kinds: Sequence[ObjectKind] = ()) -> None:
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when to stop
+    for kind in kinds:  # object kinds the parent registered at run time (a fresh interpreter lacks them)
+        if kind.name not in KINDS:
+            register_kind(kind)
     if memory_mb:
         size = memory_mb * 2**20
         resource.setrlimit(resource.RLIMIT_AS, (size, size))
@@ -105,7 +111,8 @@ def _start(function: Callable, args: tuple, memory_mb: int | None):
     """A child process that runs :func:`_child`, and the end of the pipe it answers on."""
     context = _context()
     receiver, sender = context.Pipe(duplex=False)
-    process = context.Process(target=_child, args=(sender, function, args, memory_mb), daemon=True)
+    process = context.Process(target=_child, args=(sender, function, args, memory_mb, registered_kinds()),
+                              daemon=True)
     process.start()
     sender.close()
     return process, receiver
@@ -133,7 +140,7 @@ class _Standalone:
         stdin = self.popen.stdin
         assert stdin is not None  # stdin=PIPE
         with contextlib.suppress(OSError):  # a child that died at once says so through the pipe
-            stdin.write(pickle.dumps((writing, function, args, memory_mb)))
+            stdin.write(pickle.dumps((writing, function, args, memory_mb, registered_kinds())))
         with contextlib.suppress(OSError):
             stdin.close()
 
@@ -157,8 +164,8 @@ class _Standalone:
 
 def _standalone_main() -> None:
     """The standalone child's side: read what to run, run it as :func:`_child` does."""
-    pipe, function, args, memory_mb = pickle.load(sys.stdin.buffer)
-    _child(Connection(pipe, readable=False), function, args, memory_mb)
+    pipe, function, args, memory_mb, kinds = pickle.load(sys.stdin.buffer)
+    _child(Connection(pipe, readable=False), function, args, memory_mb, kinds)
 
 
 def run_isolated(function: Callable[..., Any], args: tuple = (), time_limit: float | None = None,

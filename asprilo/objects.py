@@ -116,6 +116,12 @@ def unregister_kind(name: str) -> None:
         del KINDS[name]
 
 
+def registered_kinds() -> list[ObjectKind]:
+    """The kinds registered at run time (:func:`register_kind`), which a fresh interpreter
+    (a child process started by ``spawn``) must be told of."""
+    return [kind for kind in KINDS.values() if kind.table is None]
+
+
 def placed_kinds() -> list[ObjectKind]:
     """The kinds whose objects stand on a cell (their ``at`` is checked against the limits)."""
     return [kind for kind in KINDS.values() if "at" in kind.attributes]

@@ -10,6 +10,7 @@ even, and 2 moves cannot pass (2,2)); without the charger, 2 moves suffice.
 from __future__ import annotations
 
 import dataclasses
+import threading
 
 import pytest
 from helpers import ROOT
@@ -81,7 +82,22 @@ def test_the_variant_checks_with_its_own_concern_and_words(mc):
     assert check(instance, STRAIGHT, Domain.parse("md")).valid  # Md itself does not ask for charging
 
 
-def test_the_variant_solves_with_its_encoding_from_the_command_line(mc, tmp_path, capsys):
+@pytest.fixture(params=["fork", "spawn"])
+def start_method(request):
+    """How solve's child process starts: ``fork`` (it inherits the variant) or ``spawn`` (a
+    fresh interpreter that never saw it registered: used while another thread runs)."""
+    if request.param == "fork":
+        yield
+        return
+    done = threading.Event()
+    other = threading.Thread(target=done.wait, daemon=True)
+    other.start()
+    yield
+    done.set()
+    other.join()
+
+
+def test_the_variant_solves_with_its_encoding_from_the_command_line(mc, tmp_path, capsys, start_method):
     plan = tmp_path / "plan.lp"
     assert main(["solve", str(CORRIDOR), "--domain", "mc", "--encoding", "charge", "-o", str(plan)]) == 0
     report = check(read_instance(CORRIDOR), read_plan(plan), mc)

@@ -11,7 +11,7 @@ one (``a.py`` ... ``md.py``); docs/DOMAINS.md shows how to add one.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from enum import Enum
 from typing import Any, ClassVar
 
@@ -80,7 +80,8 @@ class Generation:
 class Domain:
     """One problem domain.  Two descriptors are the same domain only if they are the same
     object: :func:`register` keeps one per name, and a pickled descriptor comes back as the
-    registered one."""
+    registered one (in a process where its name is unknown, a child started by ``spawn``
+    that never saw a domain registered at run time, it is registered there)."""
 
     value: str                           # the name on the command line: a, b, c, m, md
     label: str                           # the name in prose: A, B, C, M, Md
@@ -127,13 +128,18 @@ class Domain:
         return found
 
     def __reduce__(self) -> tuple[Any, ...]:
-        return Domain.parse, (self.value,)
+        return _restored, (self.value, {item.name: getattr(self, item.name) for item in fields(self)})
 
     def __repr__(self) -> str:
         return f"Domain({self.label})"
 
 
 _REGISTRY: dict[str, Domain] = {}
+
+
+def _restored(name: str, values: dict[str, Any]) -> Domain:
+    """An unpickled descriptor: the one registered under ``name``, else this one, registered."""
+    return _REGISTRY.get(name) or register(Domain(**values))
 
 
 def register(domain: Domain) -> Domain:
