@@ -26,19 +26,21 @@ Two places build a ``clingo.Control`` of their own, on purpose:
 from __future__ import annotations
 
 import re
-import tempfile
 import time
 from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from enum import Enum
 from pathlib import Path
-from typing import cast
+from typing import TYPE_CHECKING, cast
 
 import clingo
 import clingo.ast
 
 from . import clingo_logger
 from .errors import InputError
+
+if TYPE_CHECKING:
+    import tempfile
 
 clingo_logger.install()
 
@@ -218,6 +220,7 @@ class Solver:
             done[path] = path
             return path
         if self._copies is None:
+            import tempfile  # here: only a program that includes files is copied
             self._copies = tempfile.TemporaryDirectory(prefix="asprilo-program-")
         copy = Path(self._copies.name) / f"{len(self._originals)}-{path.name}"
         done[path] = copy

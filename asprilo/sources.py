@@ -24,7 +24,6 @@ import clingo
 from . import clingo_logger
 from .errors import InputError
 from .facts import fact_atom, fact_text, scan_facts
-from .isolation import run_isolated
 from .limits import Limits, current
 from .parse import NotData, Reader, check_program_tokens, find_constants, line_at, resolve_constants, shown, to_symbol
 from .policy import BOM, decode
@@ -244,6 +243,8 @@ def _ground_rules(programs: list[Source], limits: Limits) -> str:
     grounds for ever).  Their text is checked first (:func:`asprilo.parse.check_program_tokens`:
     every token as clingo reads it, never ``#include`` or ``#script``).  The atoms of the
     first answer come back as fact text, which is parsed like any data."""
+    from .isolation import run_isolated  # multiprocessing: only for rules (reading facts never needs it)
+
     checked = [(p.name, check_program_tokens(p.text, p.name, limits)) for p in programs]
     names = ", ".join(program.name for program in programs) or None
     outcome = run_isolated(_atoms_text, (checked,), time_limit=limits.rule_seconds, memory_mb=limits.rule_mb)

@@ -16,21 +16,26 @@ from asprilo.limits import require_plan_fits
 from asprilo.model import Instance, Plan
 
 from .programs import err_atoms
-from .report import Report, build_report
+from .report import STRENGTHS, Report, Strength, build_report
 
-__all__ = ["check", "Report"]
+__all__ = ["check", "Report", "STRENGTHS", "Strength"]
 
 
 def check(instance: Instance, plan: Plan, domain: Domain | None = None, *, makespan_bound: float | None = None,
-          sum_of_costs_bound: float | None = None) -> Report:
+          sum_of_costs_bound: float | None = None, bound: Strength | None = "cheap") -> Report:
     """Check ``plan`` on ``instance`` with the ASP checker of ``domain`` (a plan beyond the
     ``robot-steps`` limit is refused: :class:`~asprilo.errors.InputError`).
 
     ``makespan_bound`` and ``sum_of_costs_bound``: the lower bounds of the metrics, when the
     caller has computed them already (a solver checking its plans); those not given are
-    computed here.
+    computed here, after the verdict, at strength ``bound``: ``cheap`` (the default:
+    milliseconds) or ``strong`` (the strongest: up to seconds on A/B/C), or ``None`` (none:
+    :func:`~asprilo.checker.report.add_bounds` puts them in later).  The verdict and the
+    violations do not depend on it; ``report.metrics["bounds"]`` says which bounds the
+    metrics show (``given``, ``cheap`` or ``strong``).
     """
     require_plan_fits(instance, plan)
     domain = domain or detect_domain(instance, plan)
     atoms, statistics = err_atoms(instance, plan, domain)
-    return build_report(instance, plan, domain, atoms, statistics.as_dict(), (makespan_bound, sum_of_costs_bound))
+    return build_report(instance, plan, domain, atoms, statistics.as_dict(), (makespan_bound, sum_of_costs_bound),
+                        bound)

@@ -2,10 +2,15 @@
 the plan's metrics (horizon, actions, sum of costs, idle steps, orders fulfilled, lower
 bounds and the ratios plan/bound).
 
+The lower bounds shown are the cheap ones (milliseconds) unless --bound strong asks for the
+strongest (what solve starts from; up to seconds on A/B/C, printed after the verdict); the
+line says which, and so does "bounds" in the JSON's metrics.
+
 Exit status: 0 the plan is valid, 1 it is not, 2 bad input.
 
 Examples:
   check instance.lp plan.lp
+  check instance.lp plan.lp --bound strong
   check instance.lp plan.lp --domain b --json
   python -m clingo instance.lp encoding.lp | check instance.lp -
 """
@@ -18,9 +23,11 @@ import json
 from asprilo.arguments import domain_argument
 from asprilo.errors import InputError
 from asprilo.limits import require_plan_fits
+from asprilo.model import Instance, Plan
 from asprilo.reader import read_instance, read_plan
 
-from . import Report, check
+from . import STRENGTHS, Report, Strength, check
+from .report import add_bounds
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -30,6 +37,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         "is written, if given)")
     parser.add_argument("--domain", type=domain_argument, help="a|b|c|m|md (default: detected)")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
+    parser.add_argument("--bound", choices=STRENGTHS, default="cheap",
+                        help="the lower bounds shown: cheap (default: milliseconds) or strong (the strongest, "
+                             "as solve computes them: up to seconds on A/B/C, shown after the verdict)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -40,16 +50,31 @@ def run(args: argparse.Namespace) -> int:
         require_plan_fits(instance, plan)
     except InputError as error:
         raise error.at(args.plan) from None
-    report = check(instance, plan, args.domain)
+    return show(instance, plan, args)
+
+
+def show(instance: Instance, plan: Plan, args: argparse.Namespace) -> int:
+    """Check ``plan`` on ``instance`` (both read) as the options ``args`` say (``domain``,
+    ``json``, ``bound``), print the report and return the exit status: the verdict and the
+    violations first, then the bounds (``--bound strong``: when they come)."""
+    strength: Strength = "strong" if getattr(args, "bound", None) == "strong" else "cheap"
     if args.json:
+        report = check(instance, plan, args.domain, bound=strength)
         print(json.dumps(report.as_json(), indent=2))
-    else:
+    elif strength == "cheap":
+        report = check(instance, plan, args.domain, bound=strength)
         print(summary(report, detected=args.domain is None))
+    else:
+        report = check(instance, plan, args.domain, bound=None)
+        print(summary(report, detected=args.domain is None), flush=True)
+        add_bounds(report, instance, strength)
+        print(bound_line(report.metrics))
     return 0 if report.valid else 1
 
 
 def summary(report: Report, detected: bool = False) -> str:
-    """One line per violation, then the verdict and the metrics."""
+    """One line per violation, then the verdict and the metrics, the bounds last
+    (:func:`bound_line`) where the metrics have them."""
     lines = [error.message for error in report.errors]
     lines.append(verdict(report, detected))
     m = report.metrics
@@ -60,10 +85,20 @@ def summary(report: Report, detected: bool = False) -> str:
         lines.append(f"destinations reached: {m['destinations_reached']} of {m['destinations']}")
     else:
         lines.append(f"orders fulfilled: {m['orders_fulfilled']} of {m['orders']}")
-    lines.append("lower bounds: " + "; ".join(_bound(m, name, word) for name, word in
-                                              (("makespan", "makespan"), ("sum_of_costs", "sum of costs"))
-                                              if f"{name}_bound" in m))
+    if "bounds" in m:
+        lines.append(bound_line(m))
     return "\n".join(lines)
+
+
+#: what the bound line says of the bounds it shows
+_WHICH = {"cheap": " (cheap; --bound strong for the strongest)", "strong": " (the strongest)", "given": ""}
+
+
+def bound_line(metrics: dict) -> str:
+    """``lower bounds (cheap; --bound strong for the strongest): makespan 17 (plan/bound 1.71)``."""
+    return f"lower bounds{_WHICH[metrics['bounds']]}: " + "; ".join(
+        _bound(metrics, name, word) for name, word in (("makespan", "makespan"), ("sum_of_costs", "sum of costs"))
+        if f"{name}_bound" in metrics)
 
 
 def verdict(report: Report, detected: bool = False) -> str:

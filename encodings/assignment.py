@@ -11,11 +11,10 @@ encodings/README.md).
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-
-import numpy as np
 
 from asprilo.bounds import Floor, goal_cells
 from asprilo.domain import Domain, Job
@@ -63,6 +62,8 @@ def distance_facts(instance: Instance, domain: Domain, floor: Floor | None = Non
         pairs = [(robots, shelves), (shelves, sorted({p.at for p in instance.stations.values()}))]
     else:
         pairs = [(robots, goal_cells(instance))]
+    import numpy as np  # here, not on import: every solve and check imports this module
+
     facts = []
     for sources, targets in pairs:
         table = floor.distances(sources, targets)
@@ -81,7 +82,7 @@ def _set_down_facts(instance: Instance, floor: Floor) -> list[str]:
         return []
     table = floor.distances([station.at for _, station in stations], free)
     return [f"set_down({number},{int(row.min())})" for (number, _), row in zip(stations, table, strict=True)
-            if np.isfinite(row.min())]
+            if math.isfinite(row.min())]
 
 
 def _cell(cell: Cell) -> str:

@@ -9,7 +9,6 @@ from __future__ import annotations
 from itertools import permutations
 
 import clingo
-import numpy as np
 
 from asprilo.bounds import INFINITE, Floor, goal_cells
 from asprilo.model import Cell, Instance
@@ -23,7 +22,8 @@ def unusable_goals(instance: Instance, horizon: int, floor: Floor | None = None)
     matching.  An edge lies on some perfect matching exactly when it is matched or lies
     on an alternating cycle (Dulmage-Mendelsohn); every other pair can be ruled out.
     """
-    from scipy.sparse import csr_matrix  # slow to import: only where the hints are wanted
+    import numpy as np  # slow to import, as scipy: only where the hints are wanted
+    from scipy.sparse import csr_matrix
     from scipy.sparse.csgraph import connected_components, maximum_bipartite_matching
 
     floor = floor or Floor(instance.cells)

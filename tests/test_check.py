@@ -10,7 +10,7 @@ import pytest
 from helpers import EXAMPLES, OUTCOME, SMALL_A, WRONG_OUTCOME
 from helpers.worlds import plan, walk, world
 
-from asprilo.bounds import makespan_bound
+from asprilo.bounds import cheap_bounds, makespan_bound
 from asprilo.checker import check
 from asprilo.checker.programs import run_checker
 from asprilo.cli import main
@@ -61,13 +61,15 @@ def test_packed_and_plain_facts_give_the_same_atoms(small_a):
 # --- metrics -----------------------------------------------------------------------------
 
 def test_metrics_of_the_outcome(small_a):
-    report = check(small_a, read_plan(OUTCOME))
+    report = check(small_a, read_plan(OUTCOME), bound="strong")
     bound = makespan_bound(small_a, Domain.A)  # its value is tested on hand-made cases in test_bounds.py
     assert report.metrics == {
         "horizon": 29, "actions": {"deliver": 11, "move": 58, "pickup": 5, "putdown": 5},
-        "sum_of_costs": 87, "idle_steps": 8, "orders": 3, "orders_fulfilled": 3,
+        "sum_of_costs": 87, "idle_steps": 8, "orders": 3, "orders_fulfilled": 3, "bounds": "strong",
         "makespan_bound": bound, "makespan_ratio": round(29 / bound, 3)}
     assert 0 < bound <= 29  # the outcome is a valid plan of 29 steps
+    cheap = check(small_a, read_plan(OUTCOME)).metrics  # by default: the cheap bound
+    assert (cheap["bounds"], cheap["makespan_bound"]) == ("cheap", cheap_bounds(small_a, Domain.A)[0]) == ("cheap", 17)
     assert check(small_a, read_plan(WRONG_OUTCOME)).metrics["orders_fulfilled"] == 2
 
 
@@ -76,12 +78,15 @@ def test_m_metrics_have_assignment_bounds():
     # assignment has a robot 3 steps away, the cheapest costs 3 + 1
     instance = world("R..S/SR..", products={1: {1: 1}, 2: {2: 1}}, orders={1: ({1: 1}, None), 2: ({2: 1}, None)})
     steps = plan(*walk(1, "EEE"), (1, 2, "W"))
-    report = check(instance, steps)
+    report = check(instance, steps, bound="strong")
     assert report.valid and report.domain is Domain.M
     assert report.metrics == {
         "horizon": 3, "actions": {"move": 4}, "sum_of_costs": 4, "idle_steps": 2, "orders": 2,
-        "orders_fulfilled": 2, "makespan_bound": 3, "sum_of_costs_bound": 4, "sum_of_costs_ratio": 1.0,
-        "makespan_ratio": 1.0}
+        "orders_fulfilled": 2, "bounds": "strong", "makespan_bound": 3, "sum_of_costs_bound": 4,
+        "sum_of_costs_ratio": 1.0, "makespan_ratio": 1.0}
+    # the cheap pair gives each shelf its nearest robot: 3 steps to shelf 1, 1 to shelf 2
+    cheap = check(instance, steps).metrics
+    assert (cheap["bounds"], cheap["makespan_bound"], cheap["sum_of_costs_bound"]) == ("cheap", 3, 4)
 
 
 def test_md_metrics_count_destinations():
@@ -143,7 +148,7 @@ def _run(capsys, *argv, stdin: str | None = None) -> tuple[int, str, str]:
     return code, out, err
 
 
-BOUND = int(makespan_bound(read_instance(SMALL_A), Domain.A))
+BOUND = int(cheap_bounds(read_instance(SMALL_A), Domain.A)[0])
 
 
 def test_check_prints_one_line_per_violation_then_a_summary(capsys):
@@ -156,14 +161,14 @@ def test_check_prints_one_line_per_violation_then_a_summary(capsys):
         "invalid plan: 3 violations (domain A (detected), horizon 29)",
         "actions: 79 (11 deliver, 58 move, 5 pickup, 5 putdown); sum of costs 87, idle steps 8",
         "orders fulfilled: 2 of 3",
-        f"lower bounds: makespan {BOUND} (plan/bound {29 / BOUND:.2f})",
+        f"lower bounds (cheap; --bound strong for the strongest): makespan {BOUND} (plan/bound {29 / BOUND:.2f})",
     ]
 
 
 def test_check_and_solve_report_the_same_bound(small_a):
     from asprilo.encodings import solve
     for domain in (Domain.A, Domain.B, Domain.C):
-        checked = check(small_a, read_plan(OUTCOME), domain).metrics["makespan_bound"]
+        checked = check(small_a, read_plan(OUTCOME), domain, bound="strong").metrics["makespan_bound"]
         assert solve(small_a, domain, horizon=1).lower_bound == checked
 
 

@@ -264,7 +264,7 @@ def test_the_bounds_are_computed_once_by_the_exact_search_and_handed_over(monkey
         return count
 
     for module in (bounds, checker_report, anytime_search):
-        for name in ("makespan_bound", "mapf_bounds", "sum_of_costs_bound"):
+        for name in ("makespan_bound", "mapf_bounds", "sum_of_costs_bound", "strong_bounds", "cheap_bounds"):
             if hasattr(module, name):
                 monkeypatch.setattr(module, name, counted(getattr(module, name)))
     outcome = solve_until_a_plan(path, domain)

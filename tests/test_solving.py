@@ -71,7 +71,8 @@ def test_bounds_the_caller_knows_are_not_computed_again(monkeypatch):
         raise AssertionError("computed again")
 
     monkeypatch.setattr(bounds, "mapf_bounds", refused)
-    monkeypatch.setattr(checker_report, "mapf_bounds", refused)
+    monkeypatch.setattr(checker_report, "strong_bounds", refused)
+    monkeypatch.setattr(checker_report, "cheap_bounds", refused)
     outcome = solve(M5, bounds=LowerBounds(6, 20))
     assert (outcome.horizon, outcome.lower_bound, outcome.check.metrics["sum_of_costs_bound"]) == (6, 6, 20)
 

@@ -4,7 +4,9 @@ floor's distances they are made of.
 Modules, each importing only those below it (an import-linter contract):
 
 - ``makespan``: :func:`makespan_bound`, the one bound that ``check``, ``solve`` and the
-  benchmark reports use, picked by the domain's descriptor (``domain.bound``);
+  benchmark reports use, picked by the domain's descriptor (``domain.bound``); in two
+  strengths with the sum of costs beside it: :func:`strong_bounds` (what ``solve`` computes
+  once) and :func:`cheap_bounds` (what ``check`` shows by default: milliseconds, no numpy);
 - ``trip`` (+ ``trip.lp``): A/B/C when shelves serve several order lines;
 - ``delivery`` (+ ``delivery.lp``): what the A/B/C bounds share (lines, releases), the
   stations' bound and the scheduling relaxation; ``mapf``: M/Md by robot-to-goal matching;
@@ -19,8 +21,9 @@ from __future__ import annotations
 
 from .delivery import assigned_bound, delivery_schedule
 from .floor import INFINITE, Floor
-from .makespan import delivery_bound, makespan_bound
-from .mapf import bottleneck_assignment, goal_cells, mapf_bounds, min_cost_assignment
+from .makespan import cheap_bounds, delivery_bound, makespan_bound, strong_bounds
+from .mapf import bottleneck_assignment, goal_cells, mapf_bounds, min_cost_assignment, nearest_goal_bounds
 
-__all__ = ["INFINITE", "Floor", "assigned_bound", "bottleneck_assignment", "delivery_bound", "delivery_schedule",
-           "goal_cells", "makespan_bound", "mapf_bounds", "min_cost_assignment"]
+__all__ = ["INFINITE", "Floor", "assigned_bound", "bottleneck_assignment", "cheap_bounds", "delivery_bound",
+           "delivery_schedule", "goal_cells", "makespan_bound", "mapf_bounds", "min_cost_assignment",
+           "nearest_goal_bounds", "strong_bounds"]

@@ -20,13 +20,16 @@ from __future__ import annotations
 import heapq
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from pathlib import Path
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from ..domain import Delivery, Domain
 from ..model import DIRECTIONS, Cell, Instance
 from .floor import INFINITE, Floor
+
+if TYPE_CHECKING:
+    import numpy as np
 
 #: the scheduling relaxation: conflicts per horizon (a deterministic budget, smaller for big
 #: programs, whose conflicts cost more: at most SCHEDULE_WORK / (lines x robots x horizon))
@@ -75,8 +78,14 @@ class Deliveries:
 
     ``carriers`` (shelf -> robot, from a task assignment) restricts who may bring a shelf.
     ``stationless`` are the lines still to be delivered whose order names no station of the
-    instance, as ``(order, product)``: no plan delivers them.
+    instance, as ``(order, product)``: no plan delivers them.  ``blocking``: whether a line's
+    release takes into account that a carried shelf cannot pass shelves resting on its way
+    (:meth:`arrival`, a search per shelf); without, a shelf arrives after its lifting and its
+    walking distance (:meth:`carry`, a search per station), which is no later.
     """
+
+    #: whether :meth:`release` goes by :meth:`arrival` (else by :meth:`carry` alone)
+    blocking = True
 
     def __init__(self, instance: Instance, domain: Domain, floor: Floor, carriers: dict[int, int] | None = None):
         self.instance, self.domain, self.floor = instance, domain, floor
@@ -87,21 +96,25 @@ class Deliveries:
         self.stock = instance.shelf_stock()
         self.lines, self.stationless = self._lines()
         self.robots = sorted(instance.robots)
-        ids = sorted(self.shelves)
-        walks = floor.distances([self.shelves[s] for s in ids], [instance.robots[r].at for r in self.robots])
-        self.walk = {s: walks[k] for k, s in enumerate(ids)}  # shelf -> distances from each robot
-        self.lifted = {s: 0 if s in carried else float(walks[k].min(initial=INFINITE)) + 1
-                       for k, s in enumerate(ids)}
+        nearest = floor.steps_from(instance.robots[r].at for r in self.robots)  # the nearest robot's steps
+        #: shelf -> the earliest step it can be off the ground (lifted by the nearest robot)
+        self.lifted = {s: 0 if s in carried else float(nearest.get(cell, INFINITE)) + 1
+                       for s, cell in sorted(self.shelves.items())}
         self._arrivals: dict[int, dict[Cell, float]] = {}
-        self._from_station: dict[Cell, dict[int, float]] = {}
+        self._from_station: dict[Cell, dict[Cell, int]] = {}
+
+    @cached_property
+    def walk(self) -> dict[int, np.ndarray]:
+        """Shelf -> the steps from each robot (in the order of ``robots``) to the shelf's cell."""
+        ids = sorted(self.shelves)
+        walks = self.floor.distances([self.shelves[s] for s in ids], [self.instance.robots[r].at for r in self.robots])
+        return {s: walks[k] for k, s in enumerate(ids)}
 
     def carry(self, shelf: int, station: Cell) -> float:
         """The distance from ``shelf``'s cell to ``station`` (one search per station)."""
         if station not in self._from_station:
-            ids = sorted(self.shelves)
-            row = self.floor.distances([station], [self.shelves[s] for s in ids])[0]
-            self._from_station[station] = dict(zip(ids, row, strict=True))
-        return float(self._from_station[station][shelf])
+            self._from_station[station] = self.floor.steps_from([station])
+        return float(self._from_station[station].get(self.shelves[shelf], INFINITE))
 
     def _lines(self) -> tuple[list[Line], list[tuple[int, int]]]:
         lines, stationless = [], []
@@ -141,7 +154,9 @@ class Deliveries:
         return self._arrivals[shelf].get(station, INFINITE)
 
     def release(self, line: Line) -> float:
-        """The earliest step of the line's first delivery."""
+        """The earliest step of the line's first delivery (see ``blocking``)."""
+        if not self.blocking:
+            return min((self.lifted[s] + self.carry(s, line.station) + 1 for s in line.holders), default=INFINITE)
         return min((self.arrival(s, line.station) + 1 for s in line.holders), default=INFINITE)
 
 
@@ -270,6 +285,7 @@ def _cycle(facts: Deliveries) -> float:
         return INFINITE
     stations = sorted({line.station for line in facts.lines})
     shelves = sorted({s for line in facts.lines for s in line.holders})
+    import numpy as np
     to_storage = facts.floor.distances(stations, storage).min(axis=0)  # nearest station per cell
     via = (storage_to_shelves(facts, storage, shelves) + to_storage[:, np.newaxis]).min(axis=0)
     best = INFINITE

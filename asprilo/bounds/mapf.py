@@ -4,15 +4,21 @@ Every goal cell needs its own robot at the horizon; a robot is no sooner there t
 floor distance says (:class:`~asprilo.bounds.floor.Floor`).  The least possible longest
 distance of a matching (:func:`bottleneck_assignment`) bounds the makespan, the least total
 (:func:`min_cost_assignment`) the sum of costs.  Whatever the distances ignore (other robots)
-only makes them smaller, so both bounds are admissible.
+only makes them smaller, so both bounds are admissible.  :func:`nearest_goal_bounds`, the
+cheap pair that ``check`` shows by default, gives each goal its nearest robot instead of a
+robot of its own: weaker where robots would share their nearest goal, but one breadth-first
+search in plain Python (no numpy, no matching).
 """
 
 from __future__ import annotations
 
-import numpy as np
+from typing import TYPE_CHECKING
 
 from ..model import Cell, Instance
 from .floor import INFINITE, Floor
+
+if TYPE_CHECKING:
+    import numpy as np
 
 #: matchings in Python up to this many goal x robot pairs, SciPy beyond (SciPy is faster
 #: on big problems but takes longer to import than a small one needs)
@@ -28,6 +34,7 @@ def bottleneck_assignment(costs: np.ndarray) -> float:
 
     Rows are goals, columns are robots (at least as many).  ``inf`` if impossible.
     """
+    import numpy as np
     goals, robots = costs.shape
     if goals == 0:
         return 0.0
@@ -48,6 +55,7 @@ def bottleneck_assignment(costs: np.ndarray) -> float:
 
 def _matches_all(allowed: np.ndarray) -> bool:
     """Whether every row can get its own allowed column (an assignment of cost 0 exists)."""
+    import numpy as np
     if allowed.size > _PYTHON_MATCHING:
         from scipy.optimize import linear_sum_assignment  # slow to import: only for big problems
         rows, columns = linear_sum_assignment(~allowed)
@@ -73,6 +81,7 @@ def _augmenting_paths(choices: list[list[int]], columns: int) -> bool:
 
 def min_cost_assignment(costs: np.ndarray) -> float:
     """The least total cost of giving every row (goal) its own column (robot); ``inf`` if none."""
+    import numpy as np
     goals, robots = costs.shape
     if goals == 0:
         return 0.0
@@ -174,11 +183,57 @@ def mapf_bounds(instance: Instance, floor: Floor | None = None, total: bool = Tr
     return makespan, cost
 
 
+#: cell visits (breadth-first, in plain Python) that :func:`nearest_goal_bounds` may spend on
+#: the robots with a labelled goal on a floor with holes; beyond, their Manhattan distances
+#: (no longer than any path) stand in for the walks
+CHEAP_VISITS = 100_000
+
+
+def nearest_goal_bounds(instance: Instance, floor: Floor | None = None) -> tuple[float, float]:
+    """``(makespan bound, sum-of-costs bound)`` of an M/Md instance in milliseconds, without
+    numpy: every goal cell is bounded by the robot nearest to it (:func:`nearest_robot_bounds`,
+    one search from all robots without a labelled goal), every robot with a labelled goal by
+    its own distance to it.  No more than :func:`mapf_bounds`' pair, which matches robots."""
+    floor = floor or Floor(instance.cells)
+    assigned = instance.assigned_cells()
+    taken = set(assigned.values())
+    goals = [cell for cell in goal_cells(instance) if cell not in taken]
+    starts = [robot.at for ident, robot in sorted(instance.robots.items()) if ident not in assigned]
+    makespan = cost = 0.0
+    if goals:
+        if len(starts) < len(goals):
+            return INFINITE, INFINITE
+        nearest = floor.steps_from(starts)
+        reach = [float(nearest.get(cell, INFINITE)) for cell in goals]
+        makespan, cost = max(reach), sum(reach)
+    own = _own_distances(floor, [(instance.robots[r].at, cell) for r, cell in sorted(assigned.items())])
+    return max([makespan, *own]), cost + sum(own)
+
+
+def _own_distances(floor: Floor, pairs: list[tuple[Cell, Cell]]) -> list[float]:
+    """The walking distance of each ``(start, goal)`` pair: Manhattan on a floor that fills its
+    rectangle, else one search per goal within :data:`CHEAP_VISITS` (then Manhattan, which no
+    path undercuts); ``INFINITE`` where a cell is not a node or no path leads."""
+    goals = sorted({goal for _start, goal in pairs})
+    searched = {goal: floor.steps_from([goal]) for goal in goals} \
+        if not floor.manhattan() and len(goals) * len(floor.cells) <= CHEAP_VISITS else {}
+    distances = []
+    for start, goal in pairs:
+        if start not in floor.index or goal not in floor.index:
+            distances.append(INFINITE)
+        elif goal in searched:
+            distances.append(float(searched[goal].get(start, INFINITE)))
+        else:
+            distances.append(float(abs(start[0] - goal[0]) + abs(start[1] - goal[1])))
+    return distances
+
+
 def nearest_robot_bounds(floor: Floor, goals: list[Cell], starts: list[Cell]) -> tuple[float, float]:
     """``(makespan bound, sum-of-costs bound)`` without a matching: every goal needs a robot
     of its own, which is no nearer than the nearest robot; so the largest and the sum of
     these nearest distances are admissible too (weaker than the matchings' when robots
     would have to share their nearest goal)."""
+    import numpy as np
     if not goals:
         return 0.0, 0.0
     if len(starts) < len(goals):

@@ -10,12 +10,14 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-
-import numpy as np
+from typing import TYPE_CHECKING
 
 from ..model import DIRECTIONS
 from .delivery import Deliveries, carry_arrivals, robot_release, storage_to_shelves
 from .floor import INFINITE
+
+if TYPE_CHECKING:
+    import numpy as np
 
 #: the conflicts per horizon (a deterministic budget: "unknown" refutes nothing), the
 #: horizons tried, and the largest program tried: candidate delivery actions per step,
@@ -101,6 +103,7 @@ def _onward(facts: Deliveries, storage: list, resting: set, station) -> np.ndarr
     down, to ``station`` with another shelf: walk to a cell where that shelf rests (leaving C
     and coming back when it is C itself), then carry it there.  A multi-source search whose
     sources are the cells a shelf may rest on, each starting at its distance to the station."""
+    import numpy as np
     cells = facts.floor.cells
     near = facts.floor.distances([station], cells)[0]
     sources = {cell: float(near[k]) for k, cell in enumerate(cells) if cell in resting and math.isfinite(near[k])}

@@ -1,15 +1,16 @@
 """The replay: robot positions from the moves, then shelves, stock and order lines step by
 step, reporting every rule the plan breaks (see :mod:`asprilo.simulate` for how a broken
-rule changes the state)."""
+rule changes the state).
+
+numpy is imported inside the functions that use it: the checker imports this package to
+explain violations, and a valid plan is checked without a replay (and without numpy)."""
 
 from __future__ import annotations
 
 from collections import defaultdict
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from ..domain import Delivery, Domain
 from ..model import Action, Cell, Instance, Plan, Term
@@ -17,6 +18,9 @@ from .actions import Report, effective_actions, robot_of
 from .checks import Start, check_goal, check_instance, pairs_sharing
 from .timeline import CLOSED, Changes, History, Line, Positions, Snapshot, Stock
 from .violations import Finding
+
+if TYPE_CHECKING:
+    import numpy as np
 
 
 def replay(instance: Instance, plan: Plan, domain: Domain) -> tuple[History, list[Finding]]:
@@ -37,6 +41,7 @@ def replay(instance: Instance, plan: Plan, domain: Domain) -> tuple[History, lis
 
 def robot_positions(instance: Instance, effective: dict[int, list[Action]], horizon: int) -> Positions:
     """Where every robot stands after every step, from its effective moves."""
+    import numpy as np
     robot_ids = sorted(instance.robots)
     index: dict[Term, int] = {robot: i for i, robot in enumerate(robot_ids)}
     moves = np.zeros((horizon + 1, len(index), 2), dtype=np.int32)
@@ -61,6 +66,7 @@ class _Codes:
 
     @classmethod
     def of(cls, positions: np.ndarray) -> _Codes:
+        import numpy as np
         low = int(positions.min())
         span = int(positions.max()) - low + 1
         codes = (positions[..., 0].astype(np.int64) - low) * span + (positions[..., 1] - low)
@@ -68,6 +74,7 @@ class _Codes:
 
     def on_floor(self, codes: np.ndarray, nodes: Iterable[Cell]) -> np.ndarray:
         """Whether each of ``codes`` is the cell of a floor node."""
+        import numpy as np
         low, span = self.low, self.span
         floor = [(x - low) * span + (y - low) for x, y in nodes if low <= x < low + span and low <= y < low + span]
         return np.isin(codes, np.array(floor, dtype=np.int64))
@@ -75,6 +82,7 @@ class _Codes:
 
 def check_moves(positions: Positions, nodes: set[Cell], report: Report) -> None:
     """Moves off the floor, two robots on one node and swaps, at every step >= 1."""
+    import numpy as np
     if positions.horizon < 1 or not positions.robot_ids:
         return
     ids = positions.robot_ids
@@ -87,6 +95,7 @@ def check_moves(positions: Positions, nodes: set[Cell], report: Report) -> None:
 
 
 def _same_node(codes: np.ndarray, ids: list[int], report: Report) -> None:
+    import numpy as np
     ordered = np.sort(codes[1:], axis=1)
     shared = ordered[:, 1:] == ordered[:, :-1]
     for step in np.nonzero(shared.any(axis=1))[0] + 1:
@@ -99,6 +108,7 @@ def _same_node(codes: np.ndarray, ids: list[int], report: Report) -> None:
 
 
 def _swaps(codes: _Codes, moved: np.ndarray, ids: list[int], report: Report) -> None:
+    import numpy as np
     table, cells = codes.codes, codes.span * codes.span
     for step in np.nonzero(moved.any(axis=1))[0] + 1:
         movers = np.nonzero(moved[step - 1])[0]

@@ -11,13 +11,14 @@ from __future__ import annotations
 from collections import defaultdict
 from collections.abc import Iterable
 from dataclasses import dataclass, field
-from typing import Any
-
-import numpy as np
+from typing import TYPE_CHECKING, Any
 
 from ..domain import Domain, Goal
 from ..model import Action, Cell, Instance, Plan
 from .violations import Finding, Violation, explain, sort_violations
+
+if TYPE_CHECKING:
+    import numpy as np
 
 Line = tuple[int, int]  # (order, product)
 Stock = tuple[int, int]  # (shelf, product)
