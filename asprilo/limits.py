@@ -4,7 +4,9 @@ Instances, plans and online messages are data: whatever a file holds, reading it
 these bounds before anything is built, and a file beyond one is refused with a message
 that names the limit and how to raise it (``--limit NAME=N`` on every command that reads
 files).  Rules in data are refused unless allowed (``--allow-rules``); then they are
-grounded in a child process under ``rule-seconds`` and ``rule-memory``.
+grounded in a child process under ``rule-seconds`` and ``rule-mb``.  The same options set
+the tools' budgets: YAML files (gen batch files, bench suites), exported pictures and
+animations, and what gen makes.
 """
 
 from __future__ import annotations
@@ -31,7 +33,7 @@ class Limits:
     file_mb: int = 256  # megabytes of one file or message
     rule_seconds: float = 10.0  # grounding time with --allow-rules
     rule_mb: int = 2048  # grounding memory (megabytes) with --allow-rules
-    # the tools' budgets (docs/LIMITS.md): YAML files, exported pictures and animations, gen
+    # the tools' budgets (README, "Reading data"): YAML files, exported pictures and animations, gen
     yaml_kb: int = 1_024  # kilobytes of a YAML file (gen -j batch files, bench suites, grading ladders)
     yaml_nodes: int = 50_000  # values, lists and mappings of a YAML file, each alias counted as what it stands for
     yaml_aliases: int = 1_000  # aliases (*name) in a YAML file

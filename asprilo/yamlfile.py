@@ -180,6 +180,15 @@ def shown(value: Any, most: int = 80) -> str:
     return text if len(text) <= most else text[:most - 3] + "..."
 
 
+def printable(text: str) -> str:
+    """``text`` with every character that is not printable escaped (``\\x1b``, ``\\n``,
+    ``\\u202e``): messages that quote a YAML file's keys and values never echo control
+    characters raw (``"\\e[2J"`` is a valid YAML key)."""
+    if text.isprintable():
+        return text
+    return "".join(char if char.isprintable() else char.encode("unicode_escape").decode("ascii") for char in text)
+
+
 def line_of(node: Any, default: int | None = None) -> int | None:
     """The line where a mapping or list starts (``default`` for a plain value)."""
     return getattr(node, "line", default)

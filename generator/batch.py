@@ -24,7 +24,7 @@ from pathlib import Path
 from typing import Any
 
 from asprilo.errors import InputError
-from asprilo.yamlfile import YamlMapping, line_of, load_yaml, shown
+from asprilo.yamlfile import YamlMapping, line_of, load_yaml, printable, shown
 
 from .config import parse_values
 
@@ -56,7 +56,7 @@ class _Batch:
         self.name = str(path)
 
     def fail(self, message: str, line: int | None) -> InputError:
-        return InputError(message, self.name, line)
+        return InputError(printable(message), self.name, line)  # keys and values may hold any character
 
     def runs(self, document: Any) -> Iterator[Run]:
         if not isinstance(document, YamlMapping):

@@ -92,7 +92,7 @@ COUNTS = ("nodes", "gap_size", "stations", "robots", "shelves", "products", "uni
 
 
 def check_budgets(config: object, limits: Limits | None = None) -> None:
-    """Refuse sizes of a :class:`GeneratorConfig` beyond the budgets (docs/LIMITS.md): floor
+    """Refuse sizes of a :class:`GeneratorConfig` beyond the budgets (README, "Reading data"): floor
     sizes beyond ``coordinate``, a floor of more than ``gen-cells`` cells, counts beyond
     ``gen-objects``."""
     limits = limits or current()

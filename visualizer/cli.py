@@ -17,6 +17,7 @@ Examples:
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import re
 import sys
@@ -102,8 +103,8 @@ def _check_options(args: argparse.Namespace) -> None:
     for option, value, least in (("--frames", args.frames, 1), ("--cell", args.cell, 1), ("--step", args.step, 0)):
         if value is not None and value < least:
             raise InputError(f"{option} must be at least {least}, got {value}")
-    if args.speed <= 0:
-        raise InputError(f"--speed must be positive, got {args.speed:g}")
+    if not 0 < args.speed < math.inf:  # (nan too)
+        raise InputError(f"--speed must be a positive number of steps per second, got {args.speed:g}")
     if args.simulator is not None and args.solver is None:
         raise InputError("--simulator goes with --solver: the simulator's world needs a solver to plan it")
     if args.solver is not None and args.simulator is None and not args.files:

@@ -39,7 +39,7 @@ from . import btool, report
 from .report import FORMATS
 from .results import RESULTS, load_results
 from .runner import Runner, forget_unknown_makespans, ticking
-from .suite import load_suite
+from .suite import MOST_SECONDS, load_suite
 
 SUITE_ORDER = "suite.json"
 
@@ -173,8 +173,9 @@ def _runner(suite, folder: Path, args: argparse.Namespace) -> Runner:
                              str(suite.path))
     if args.jobs < 1:
         raise InputError(f"--jobs must be at least 1, got {args.jobs}")
-    if args.time_limit is not None and args.time_limit <= 0:
-        raise InputError(f"--time-limit must be positive, got {args.time_limit}")
+    if args.time_limit is not None and not 0 < args.time_limit <= MOST_SECONDS:  # (nan too)
+        raise InputError(f"--time-limit must be a positive finite number of seconds, at most {MOST_SECONDS:,} "
+                         f"(a year), got {args.time_limit:g}")
     return Runner(suite, folder, args.jobs, args.time_limit, args.memory_limit)
 
 

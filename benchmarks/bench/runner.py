@@ -40,6 +40,7 @@ from .results import (
     ERROR,
     FAILED,
     INVALID,
+    MEMOUT,
     NO_MAKESPAN,
     OUT_OF_LIMITS,
     SOLVED,
@@ -64,9 +65,14 @@ class SuiteInstance:
     robots: int
 
 
-def new_record(instance: SuiteInstance, spec: RunSpec, horizon: int | None, time_limit: float) -> dict:
-    """The record of a run before it runs (``no-makespan`` when there is no horizon to run at;
-    an anytime run needs none)."""
+#: why a run has no horizon when its makespan search is only known to have found none
+UNKNOWN_MAKESPAN = "its search timed out"
+
+
+def new_record(instance: SuiteInstance, spec: RunSpec, horizon: int | None, time_limit: float,
+               unknown: str = UNKNOWN_MAKESPAN) -> dict:
+    """The record of a run before it runs (``no-makespan`` when there is no horizon to run at,
+    ``unknown`` saying why; an anytime run needs none)."""
     record = {"key": run_key(instance.set, instance.name, spec.label, spec.encoding),
               "set": instance.set, "instance": instance.name, "robots": instance.robots,
               "domain": spec.domain.value, "label": spec.label, "encoding": spec.encoding,
@@ -75,7 +81,7 @@ def new_record(instance: SuiteInstance, spec: RunSpec, horizon: int | None, time
         record["method"] = "anytime"
     elif horizon is None:
         record.update(status=NO_MAKESPAN, time=time_limit,
-                      error="the minimal makespan is unknown (its search timed out)")
+                      error=f"the minimal makespan is unknown ({unknown})")
     return record
 
 
@@ -135,6 +141,13 @@ def plan_verdict(path: Path, domain: str, plan_text: str) -> dict:
     more = f"; and {len(errors) - SAID} more" if len(errors) > SAID else ""
     return {"status": INVALID, "violations": [error.atom for error in errors[:VIOLATIONS]],
             "error": f"the plan breaks the rules: {'; '.join(error.message for error in errors[:SAID])}{more}"}
+
+
+def search_failure(run: LimitedRun) -> str:
+    """Why a makespan search that is no time-out ended without a makespan, in words."""
+    if run.status != DONE:
+        return run.detail or f"its process ended ({run.status})"
+    return str(run.report.get("message") or f"it ended with status {run.report.get('status')!r}")
 
 
 def makespan_status(run: LimitedRun) -> str:
@@ -301,6 +314,10 @@ class Runner:
         self.memory_limit = memory_limit if memory_limit is not None else suite.memory_limit
         self.stream = stream if stream is not None else sys.stderr  # the one of the moment (not of the import)
         self.assignments: dict[str, dict[str, list[str]]] = {}
+        #: (instance, label) -> (status, why) of the makespan searches of this session that found
+        #: none: the runs of a search out of limits are ``no-makespan``, those of a search that
+        #: failed (it could not start, the instance could not be read, ...) are errors
+        self.searches: dict[tuple[str, str], tuple[str, str]] = {}
 
     # --- instances -----------------------------------------------------------------------
 
@@ -349,10 +366,16 @@ class Runner:
                 search = run_limited({"kind": "makespan", "instance": str(instance.path), "domain": domain.value,
                                       "assign": assign}, self.suite.makespan_time_limit, self.memory_limit)
                 status = makespan_status(search)
-                return item, search.report["horizon"] if status == SOLVED else None, status, search.report
+                why = "" if status == SOLVED else search_failure(search)
+                return item, search.report.get("horizon") if status == SOLVED else None, status, search.report, why
 
             try:
-                for (instance, _d, _a, label), minimal, status, report in self._parallel(compute, todo):
+                for (instance, _d, _a, label), minimal, status, report, why in self._parallel(compute, todo):
+                    if status != SOLVED:
+                        self.searches[(instance.name, label)] = (status, why)
+                    if status == ERROR:  # not cached (null says "out of limits"): searched again next time
+                        progress.update(status)
+                        continue
                     known.setdefault(instance.name, {})[label] = minimal
                     write_text(path, json.dumps(known, indent=1, sort_keys=True) + "\n")
                     if report.get("assignment"):
@@ -390,7 +413,12 @@ class Runner:
 
     def _run_one(self, instance: SuiteInstance, spec: RunSpec, makespans: dict) -> dict:
         horizon = makespans.get(instance.name, {}).get(spec.label)
-        record = new_record(instance, spec, horizon, self.time_limit)
+        status, why = self.searches.get((instance.name, spec.label), (TIMEOUT, UNKNOWN_MAKESPAN))
+        unknown = {TIMEOUT: UNKNOWN_MAKESPAN, MEMOUT: "its search ran out of memory"}.get(status, why)
+        record = new_record(instance, spec, horizon, self.time_limit, unknown)
+        if not spec.anytime and horizon is None and status == ERROR:  # it could not run: an error, not a time-out
+            return {**record, "status": ERROR, "time": 0.0,
+                    "error": f"no minimal makespan to run at: its search failed ({why})"}
         if spec.anytime:
             job = {"kind": "anytime", "instance": str(instance.path), "domain": spec.domain.value}
             return complete_anytime(record, instance.path, run_limited(job, self.time_limit, self.memory_limit))

@@ -10,7 +10,7 @@ A suite is a YAML file::
       mine: {files: [enc/mine.lp, enc/goal.lp], constants: {lanes: 2}, options: ["--configuration=crafty"]}
     instances:                # named sets, in report order
       small: {batch: paper-m.yml, select: 1x2x4}   # a gen batch file and the part of its output to use
-      tiny:  {files: ["../examples/encodings-repo/x2_y2*.lp"]}  # or existing files (globs)
+      tiny:  {files: ["../examples/encodings-repo/x2_y2*.lp"]}  # or existing files (patterns)
       quick: {batch: paper-m.yml, select: 1x2x4, first: 5}  # only the first 5 files of each folder
     runs:                     # every combination of the listed values is run on every instance
       - {domain: m, encoding: [plain, split, clingcon, dl, mine], assign: [false, true]}
@@ -30,13 +30,18 @@ domain, or one of ``encodings``.  Everything is checked when the suite is read, 
 first run: an unknown name, a missing file, a file clingo cannot parse, a program for
 clingcon 3, an option clingo refuses, a constant that is no term.
 
-Paths are relative to the suite file.
+Paths are relative to the suite file.  A pattern of ``files`` walks folders (``**``, or a
+wildcard in a folder's name) only below the suite's folder, and ``**`` follows no symbolic
+link; elsewhere only its file name may hold wildcards (``../examples/paper-m/1x2x4/*.lp``
+lists one folder), so that no suite walks the file system (``/**/*.lp`` is refused).  A
+pattern matches regular files only, hidden ones (``.name``) only where it says so, as
+:mod:`glob` does.  Time limits are finite numbers of seconds (at most a year).
 """
 
 from __future__ import annotations
 
-import glob
 import itertools
+import math
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -48,7 +53,7 @@ from asprilo.domain import Domain
 from asprilo.encodings import Encoding, encoding_names
 from asprilo.encodings.own import own_encoding
 from asprilo.errors import InputError
-from asprilo.yamlfile import YamlList, YamlMapping, line_of, load_yaml
+from asprilo.yamlfile import YamlList, YamlMapping, line_of, load_yaml, printable, shown
 
 
 @dataclass(frozen=True)
@@ -150,6 +155,10 @@ METHODS = ("asp", "anytime")
 ENCODING_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]*")
 #: a clingo constant's name
 CONSTANT_NAME = re.compile(r"_*[a-z][A-Za-z0-9_']*")
+#: the most seconds a time limit may be (a year; a waiting thread takes no more than about 292 years)
+MOST_SECONDS = 365 * 24 * 3600
+#: what makes a part of a ``files`` pattern a wildcard (as in :mod:`glob`)
+_WILDCARD = re.compile(r"[*?[]")
 
 
 def _listed(value: Any) -> list:
@@ -163,7 +172,7 @@ class _SuiteFile:
         self.path = path
 
     def fail(self, where: str, message: str, line: int | None) -> InputError:
-        return InputError(f"{where}: {message}", str(self.path), line)
+        return InputError(printable(f"{where}: {message}"), str(self.path), line)  # keys may hold any character
 
     def suite(self, data: Any) -> Suite:
         if not isinstance(data, YamlMapping):
@@ -188,6 +197,9 @@ class _SuiteFile:
                 value = data[key]
                 if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0:
                     raise self.fail(key, "must be a positive number of seconds", data.line_of(key))
+                if not math.isfinite(value) or value > MOST_SECONDS:
+                    raise self.fail(key, f"must be a finite number of seconds, at most {MOST_SECONDS:,} (a year), "
+                                         f"got {shown(value)}", data.line_of(key))
                 setattr(suite, key, float(value))
         if "memory_limit" in data:
             value = data["memory_limit"]
@@ -212,7 +224,13 @@ class _SuiteFile:
         if first is not None and (not isinstance(first, int) or isinstance(first, bool) or first < 1):
             raise self.fail(f"{where}.first", "must be a positive number of files per folder", entry.line_of("first"))
         if "batch" not in entry:
-            return InstanceSet(name, files=tuple(str(f) for f in _listed(entry["files"])), first=first)
+            patterns = tuple(str(f) for f in _listed(entry["files"]))
+            for pattern in patterns:
+                try:
+                    pattern_start(self.path.parent, pattern)
+                except InputError as error:
+                    raise self.fail(f"{where}.files", error.message, entry.line_of("files")) from None
+            return InstanceSet(name, files=patterns, first=first)
         batch = (self.path.parent / str(entry["batch"])).resolve()
         if not batch.is_file():
             raise self.fail(f"{where}.batch", f"no such file {batch}", entry.line_of("batch"))
@@ -373,12 +391,58 @@ def load_suite(path: str | Path) -> Suite:
     return _SuiteFile(path).suite(load_yaml(path))
 
 
+def pattern_start(folder: Path, pattern: str) -> tuple[Path, str]:
+    """Where a ``files`` pattern of a suite in ``folder`` starts (its parts before the first
+    wildcard, relative to ``folder``) and the rest of it (``""``: a file named as it is).  A
+    pattern that would walk folders outside ``folder`` (``/**/*.lp``, ``../*/*.lp``) or go up
+    after a wildcard is an :class:`InputError`: only below the suite's folder may a pattern
+    walk folders; elsewhere only a file name may hold wildcards."""
+    parts = Path(pattern).parts
+    fixed = next((number for number, part in enumerate(parts) if _WILDCARD.search(part)), len(parts))
+    start, rest = folder.joinpath(*parts[:fixed]), parts[fixed:]
+    if not rest:
+        return start, ""
+    if ".." in rest:
+        raise InputError(f"{shown(pattern)}: '..' after a wildcard (a pattern walks only below the suite's folder)")
+    walks = len(rest) > 1 or rest[0] == "**"
+    if walks and not _below(start, folder):
+        raise InputError(f"{shown(pattern)} walks folders outside the suite's folder: only below it may a pattern "
+                         f"walk folders (** or a wildcard in a folder's name); elsewhere only a file name may hold "
+                         f"wildcards")
+    return start, "/".join(rest)
+
+
+def _below(path: Path, folder: Path) -> bool:
+    """Whether ``path`` is ``folder`` or lies below it (links followed)."""
+    try:
+        path.resolve().relative_to(folder.resolve())
+    except (ValueError, OSError, RuntimeError):  # outside; or a link loop
+        return False
+    return True
+
+
 def existing_files(suite: Suite, instance_set: InstanceSet) -> list[Path]:
-    """The files a ``files:`` set names, sorted; a glob that matches nothing is an error."""
+    """The files a ``files:`` set names, sorted; a pattern that matches no regular file is an
+    error.  Patterns walk folders only below the suite's folder (:func:`pattern_start`), and
+    ``**`` follows no symbolic link (as :meth:`pathlib.Path.glob` has it: :func:`glob.glob`
+    follows links back up for ever)."""
     found: list[Path] = []
+    folder = suite.path.parent
     for pattern in instance_set.files:
-        matches = sorted(glob.glob(str(suite.path.parent / pattern), recursive=True))
+        try:
+            start, rest = pattern_start(folder, pattern)
+        except InputError as error:
+            raise InputError(f"instances.{printable(instance_set.name)}.files: {error.message}",
+                             str(suite.path)) from None
+        if not rest:
+            matches = [start] if start.exists() else []
+        else:
+            hidden = rest.startswith(".") or "/." in rest  # the pattern names hidden files or folders
+            matches = sorted((path for path in start.glob(rest) if path.is_file()
+                              and (hidden or not any(part.startswith(".") for part in path.relative_to(start).parts))),
+                             key=str)
         if not matches:
-            raise InputError(f"instances.{instance_set.name}: no file matches {pattern!r}", str(suite.path))
-        found += [Path(m) for m in matches]
+            raise InputError(f"instances.{printable(instance_set.name)}: no file matches {shown(pattern)}",
+                             str(suite.path))
+        found += matches
     return found

@@ -2,6 +2,11 @@
 
 Files are rendered in memory and written atomically (``asprilo.writer.write_bytes``), so
 an interrupted export never leaves half a file.  MP4 needs PyAV (``pip install av``).
+
+Exports stay within the budgets of :mod:`asprilo.limits` (``--limit NAME=N``), checked
+before anything is drawn: ``pixels`` for a picture and for each frame of an animation,
+``frames`` and ``animation-pixels`` (all frames together: a GIF keeps every frame until it
+is encoded) for an animation.
 """
 
 from __future__ import annotations
@@ -18,6 +23,7 @@ from PyQt5.QtCore import QBuffer, QIODevice, QRectF, QSize, Qt
 from PyQt5.QtGui import QFontMetricsF, QImage, QPainter
 
 from asprilo.errors import InputError
+from asprilo.limits import current
 from asprilo.writer import write_bytes
 
 from ..panels.controls import time_text
@@ -37,6 +43,8 @@ DEFAULT_CELL_PX = 48
 PICTURE_CELL_PX = 128
 #: The caption line's height in pixels at most.
 MAX_CAPTION_PX = 48
+#: The longest side of a JPEG picture Qt writes (libjpeg's limit).
+JPEG_SIDE = 65_500
 
 Progress = Callable[[int, int], None]
 
@@ -59,10 +67,16 @@ def default_cell_px(scene: WarehouseScene, largest: int = DEFAULT_CELL_PX) -> in
 
 
 def image_size(scene: WarehouseScene, cell_px: int, caption: bool = False) -> QSize:
+    """The picture's size at ``cell_px`` pixels per cell: at most ``pixels`` pixels (the
+    limit; else :class:`InputError`, before anything is drawn)."""
     rect = scene.picture_rect()
     width = round(rect.width() / CELL * cell_px)
-    height = round(rect.height() / CELL * cell_px)
-    return QSize(width, height + (caption_height(cell_px) if caption else 0))
+    height = round(rect.height() / CELL * cell_px) + (caption_height(cell_px) if caption else 0)
+    limits = current()
+    if width * height > limits.pixels:
+        raise limits.exceeded("pixels", f"a picture of {width:,}x{height:,} pixels ({cell_px:,} per cell; "
+                                        f"a smaller --cell makes it smaller)")
+    return QSize(width, height)
 
 
 def caption_height(cell_px: int) -> int:
@@ -87,6 +101,9 @@ def render(scene: WarehouseScene, cell_px: int, caption: str | None = None) -> Q
     """The scene as an image, ``cell_px`` pixels per cell, with an optional caption line below."""
     size = image_size(scene, cell_px, caption is not None)
     image = QImage(size, QImage.Format_ARGB32_Premultiplied)
+    if image.isNull():  # Qt could not allocate it
+        raise InputError(f"a picture of {size.width():,}x{size.height():,} pixels cannot be made "
+                         f"(not enough memory); give a smaller --cell")
     image.fill(style.BACKGROUND)
     painter = QPainter(image)
     _paint(painter, scene, cell_px, size.width(), size.height(), caption)
@@ -143,9 +160,15 @@ def save_picture(path: str | Path, scene: WarehouseScene, cell_px: int | None = 
 
 
 def _encoded(image: QImage, form: str) -> bytes:
+    """``image`` as a PNG or JPEG file's bytes (never none: :class:`InputError` if Qt cannot)."""
+    if form == "JPEG" and max(image.width(), image.height()) > JPEG_SIDE:
+        raise InputError(f"a JPEG picture is at most {JPEG_SIDE:,} pixels a side, this one would be "
+                         f"{image.width():,}x{image.height():,}: write a .png, or give a smaller --cell")
     buffer = QBuffer()
     buffer.open(QIODevice.WriteOnly)
-    image.save(buffer, form)
+    if not image.save(buffer, form) or not buffer.size():
+        raise InputError(f"a picture of {image.width():,}x{image.height():,} pixels cannot be written as {form}; "
+                         f"give a smaller --cell")
     return bytes(buffer.data())
 
 
@@ -165,6 +188,30 @@ def _svg(scene: WarehouseScene, cell_px: int, size: QSize, caption: str | None =
     return bytes(buffer.data())
 
 
+def animation_frames(horizon: int, frames_per_step: int) -> int:
+    """How many frames :func:`animation_times` gives."""
+    return max(0, horizon) * max(1, frames_per_step) + 1
+
+
+def check_frames(frames: int) -> None:
+    """Refuse an animation of ``frames`` frames beyond the limit ``frames`` (:class:`InputError`)."""
+    limits = current()
+    if frames > limits.frames:
+        raise limits.exceeded("frames", f"an animation of {frames:,} frames")
+
+
+def check_animation(frames: int, size: QSize) -> None:
+    """Refuse an animation of ``frames`` frames of ``size`` beyond the limits ``frames`` and
+    ``animation-pixels`` (:class:`InputError`), before any frame is drawn."""
+    check_frames(frames)
+    limits = current()
+    pixels = frames * size.width() * size.height()
+    if pixels > limits.animation_pixels:
+        raise limits.exceeded("animation_pixels", f"an animation of {frames:,} frames of {size.width():,}x"
+                                                  f"{size.height():,} pixels ({pixels:,} in all; a smaller --cell "
+                                                  f"or fewer --frames make it smaller)")
+
+
 def animation_times(horizon: int, frames_per_step: int) -> list[float]:
     """The times of the frames: every state, with ``frames_per_step - 1`` in-between frames."""
     frames = max(1, frames_per_step)
@@ -182,8 +229,11 @@ def save_animation(path: str | Path, animator: Animator, frames_per_step: int = 
         raise InputError(f"{suffix} is a picture format; animations are .gif or .mp4", str(path))
     if suffix == ".mp4" and importlib.util.find_spec("av") is None:
         raise InputError("MP4 export needs PyAV (pip install av); .gif works without it", str(path))
+    if not 0 < speed < math.inf:
+        raise InputError(f"the speed must be a positive number of steps per second, got {speed:g}")
     scene, horizon = animator.scene, animator.track.horizon
     cell_px = cell_px or default_cell_px(scene)
+    check_animation(animation_frames(horizon, frames_per_step), image_size(scene, cell_px, caption=True))
     times = animation_times(horizon, frames_per_step)
     frame_ms = 1000.0 / (max(speed, 0.01) * max(1, frames_per_step))
     shown = animator.time
