@@ -522,8 +522,19 @@ class Reader:
             kind3, text3, start3, end3 = self.token(after)
             if kind3 == "p" and text3 == ".":
                 return self._fact(Fn(name, args, negative), start, end3, extra)
-            raise self._beyond(start, kind3, text3, start3)
-        raise self._beyond(start, kind2, text2, start2)
+            raise self._missing_period(after, kind3, text3, start3) or self._beyond(start, kind3, text3, start3)
+        raise self._missing_period(end, kind2, text2, start2) or self._beyond(start, kind2, text2, start2)
+
+    def _missing_period(self, end: int, kind: str, text: str, at: int) -> InputError | None:
+        """The error for an atom ending at ``end`` that is followed by the start of the next
+        statement (a name, ``-``, a directive) on a later line, or by the end of the text:
+        the line where the atom ends lacks its ``.`` (clingo's parser says so only where the
+        next statement starts)."""
+        starts = kind in ("i", "h", "e") or (kind == "p" and text == "-")
+        if not starts or (kind != "e" and _LINE_END.search(self.text, end, at) is None):
+            return None
+        found = "EOF" if kind == "e" else f"{_token_name(kind, text)} on line {line_at(self.text, at)}"
+        return self.error(f"a '.' is missing at the end of this line? (syntax error, unexpected {found})", end)
 
     def _plain(self, pos: int) -> tuple[str, Fn, int, int] | None:
         """A fact of plain terms only (names, strings, numbers of up to nine digits,

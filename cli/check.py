@@ -30,8 +30,7 @@ from asprilo.encodings import Attempt, Encoding, Outcome, Phase, SolveStatus, so
 from asprilo.encodings.choice import choose_encoding, is_encoding_file
 from asprilo.encodings.own import program_files
 from asprilo.errors import InputError, InputWarning
-from asprilo.limits import require_plan_fits
-from asprilo.reader import read_instance, read_plan
+from asprilo.reader import read_instance, read_instance_and_plan
 from asprilo.writer import check_output, format_plan, write_text
 
 from .watching import POLL, Stamps, watch
@@ -80,10 +79,21 @@ def run(args: argparse.Namespace) -> int:
     clingo_options = list(getattr(args, "clingo_options", None) or [])
     if not args.watch:
         _refuse_watch_options(args, clingo_options)
-        return checker_cli.run(args)
+        return _check_once(args)
     rerun = _watched(args, clingo_options)
     watch(rerun.paths, rerun, poll=POLL)
     return 130  # watch() ends only by Ctrl-C (KeyboardInterrupt: the command line says 130 too)
+
+
+def _check_once(args: argparse.Namespace) -> int:
+    """``check INSTANCE PLAN``: the checker's command (:func:`asprilo.checker.cli.show`), with
+    the plan read as the viewer reads it (:func:`asprilo.reader.read_instance_and_plan`): a plan
+    made for another instance is one sentence and exit status 2 in both, not a page of
+    violations here and one line there."""
+    if args.plan is None:
+        raise InputError("no plan given (check INSTANCE PLAN)")
+    instance, plan = read_instance_and_plan(args.instance, args.plan, domain=args.domain)
+    return checker_cli.show(instance, plan, args)
 
 
 def _count(text: str) -> int:
@@ -134,6 +144,11 @@ def _watched(args: argparse.Namespace, clingo_options: list[str]) -> Rerun:
                            args.time_limit or WATCH_TIME_LIMIT)
     solver.validate()
     return solver
+
+
+def _warned(caught: list[warnings.WarningMessage]) -> list[str]:
+    """The reader's warnings of a run, as the command line prints them."""
+    return [f"warning: {warning.message}" for warning in caught if issubclass(warning.category, InputWarning)]
 
 
 def _require_files(paths: Sequence[str]) -> None:
@@ -191,20 +206,18 @@ class PlanCheck(Rerun):
 
     def __call__(self, changed: list[Path]) -> None:
         heading = self.heading(changed, "checking")
-        try:
-            instance, plan = read_instance(str(self.instance)), read_plan(str(self.plan))
+        with warnings.catch_warnings(record=True) as caught:  # said below the heading, in order
+            warnings.simplefilter("always", InputWarning)
             try:
-                require_plan_fits(instance, plan)
+                instance, plan = read_instance_and_plan(str(self.instance), str(self.plan), domain=self.domain)
+                report = check(instance, plan, self.domain)
             except InputError as error:
-                raise error.at(str(self.plan)) from None
-            report = check(instance, plan, self.domain)
-        except InputError as error:
-            self.say([heading, f"error: {error}"])
-            return
-        except Exception as error:  # noqa: BLE001 - whatever broke, the student's loop goes on
-            self.say([heading, _unexpected(error)])
-            return
-        self.say([heading, *self.report_lines(report)])
+                self.say([heading, *_warned(caught), f"error: {error}"])
+                return
+            except Exception as error:  # noqa: BLE001 - whatever broke, the student's loop goes on
+                self.say([heading, *_warned(caught), _unexpected(error)])
+                return
+        self.say([heading, *_warned(caught), *self.report_lines(report)])
 
 
 class EncodingSolve(Rerun):

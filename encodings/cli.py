@@ -46,7 +46,8 @@ from typing import TextIO
 from asprilo.arguments import domain_argument, megabytes_argument, seconds_argument
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
-from asprilo.reader import read_instance
+from asprilo.model import Instance
+from asprilo.reader import plan_misfits, read_instance
 from asprilo.writer import check_output, format_action, format_plan, write_text
 
 from .anytime import DEFAULT_SECONDS as ANYTIME_SECONDS
@@ -121,7 +122,7 @@ def run(args: argparse.Namespace) -> int:
         progress.close()
     if outcome.plan is not None and outcome.found and args.output:
         write_text(args.output, format_plan(outcome.plan), inputs)
-    _summary(outcome, encoding, hint=args.method == "asp" and horizon is None)
+    _summary(outcome, encoding, hint=args.method == "asp" and horizon is None, instance=instance)
     if args.json:
         print(json.dumps(report(outcome), indent=2))
     elif outcome.found and not args.output:
@@ -261,9 +262,11 @@ def _stopping_on_interrupt(cancel: threading.Event) -> Iterator[None]:
         signal.signal(signal.SIGINT, previous if previous is not None else signal.SIG_DFL)
 
 
-def _summary(outcome: Outcome, encoding: Encoding | None = None, hint: bool = False) -> None:
+def _summary(outcome: Outcome, encoding: Encoding | None = None, hint: bool = False,
+             instance: Instance | None = None) -> None:
     """The summary on stderr (``hint``: a search forced to method asp that ran out of time
-    points to the default)."""
+    points to the default; ``instance``: a plan of the user's own encoding that does not fit
+    it is said so in one sentence before its violations)."""
     lines = [f"domain {outcome.domain.label}, method {outcome.method}, encoding {outcome.encoding}, "
              f"lower bound {outcome.lower_bound:g}"]
     if encoding is not None and encoding.own and outcome.method == "asp":
@@ -275,12 +278,21 @@ def _summary(outcome: Outcome, encoding: Encoding | None = None, hint: bool = Fa
         state = assignment.origin if assignment.origin != "optimised" else (
             f"{'optimal' if assignment.optimal else 'best found'}, cost {assignment.cost}")
         lines.append(f"assignment ({state}): " + " ".join(assignment.facts))
-    lines += _verdict(outcome)
+    lines += _misfit(outcome, encoding, instance) + _verdict(outcome)
     if hint and outcome.status.value == "limit":
         lines.append("for a plan fast (not proven minimal), leave out --method asp: the default runs the "
                      "anytime planner beside the exact search")
     lines.append(_figures(outcome))
     print("\n".join(lines), file=sys.stderr)
+
+
+def _misfit(outcome: Outcome, encoding: Encoding | None, instance: Instance | None) -> list[str]:
+    """One sentence for an invalid plan of the user's own encoding made for another instance
+    or domain (robots the instance lacks, actions no domain knows, actions of another domain)."""
+    if outcome.found or outcome.plan is None or instance is None or encoding is None or not encoding.own:
+        return []
+    said = plan_misfits(outcome.plan, instance, outcome.domain)
+    return [f"your encoding's plan does not fit the instance: {'; '.join(said)}"] if said else []
 
 
 #: who found the plan the answer holds (method auto), in words

@@ -18,14 +18,18 @@ Exit status: 0 instances written, 1 no instance (unsatisfiable request or time l
 from __future__ import annotations
 
 import argparse
+import warnings
+from collections.abc import Mapping
 from typing import Any
 
 from asprilo import __version__
 from asprilo.arguments import domain_argument
+from asprilo.domain import DEFAULT
+from asprilo.errors import InputError, InputWarning
 
 from .config import parse_values
 from .options import ALWAYS_ON, BY_NAME, OPTIONS, REFUSED, refuse_original
-from .runs import batch_jobs, command_job, run_jobs
+from .runs import Job, batch_jobs, command_job, run_jobs
 
 _TYPES = {"int": int, "float": float, "str": str, "domain": domain_argument}
 
@@ -75,4 +79,32 @@ def run(args: argparse.Namespace) -> int:
     given = {name: value for name, value in vars(args).items() if name in BY_NAME}
     values = parse_values(given)
     jobs = batch_jobs(args.batch, values) if args.batch else [command_job(values)]
-    return 1 if run_jobs(jobs, args.verbose, quiet=args.quiet) else 0
+    if run_jobs(jobs, args.verbose, quiet=args.quiet):
+        return 1
+    _warn_idle(jobs)
+    return 0
+
+
+def _warn_idle(jobs: list[Job]) -> None:
+    """After the instances are made: one warning when what a run made has nothing to do -- no
+    orders (an instance that is solved by doing nothing, and read as domain M), or no robots
+    to fulfil them.  A warehouse to add orders to later (``-T FILE -o N``) is made so on
+    purpose, hence a warning only; runs with a template (-T) take its orders and robots."""
+    idle: list[tuple[Job, str]] = []
+    for job in jobs:
+        config: Mapping[str, Any] = vars(job.config)  # (a dataclass made at run time: fields by name)
+        if config["templates"] or config["template"] is not None:
+            continue
+        domain = config["domain"] or DEFAULT
+        aligned = domain.generation is not None and domain.generation.aligned
+        if not config["orders"] and not (aligned and config["robots"]):
+            idle.append((job, "no orders: the instance has nothing to do (give -o N; "
+                              "or add orders later with -T FILE -o N)"))
+        elif not config["robots"]:
+            idle.append((job, "no robots: nobody can fulfil the orders (give -r N)"))
+    if not idle:
+        return
+    (job, what), more = idle[0], len(idle) - 1
+    if more:
+        what += f" (and {more} more run{'s' * (more != 1)} of the batch)"
+    warnings.warn(InputWarning(str(InputError(what, *job.where))), stacklevel=2)

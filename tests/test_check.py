@@ -197,13 +197,17 @@ def test_check_json(capsys):
     assert report["metrics"]["orders_fulfilled"] == 3
 
 
-def test_plans_for_robots_the_instance_lacks_are_checked_not_rejected(write, capsys):
+def test_a_plan_for_robots_the_instance_lacks_is_refused_in_one_sentence_as_viz_refuses_it(write, capsys):
     instance = write("i.lp", "init(object(node,1),value(at,(1,1))). init(object(node,2),value(at,(2,1))). "
                              "init(object(robot,1),value(at,(1,1))).")
     steps = write("p.lp", "occurs(object(robot,4),action(move,(1,0)),1). occurs(object(robot,1),action(fly,()),2).")
-    code, out, _ = _run(capsys, instance, steps)
-    assert code == 1
-    assert out.splitlines()[:2] == [
+    assert _run(capsys, instance, steps) == (
+        2, "", f"warning: {steps}:1: there is no action 'fly' (the actions: deliver, move, pickup, putdown)\n"
+               f"error: {steps}:1: the plan moves robot 4, but the instance has robot 1 "
+               "(plan and instance do not fit)\n")
+    # the checker itself (the API) still reports both as violations
+    report = check(read_instance(instance), read_plan(steps))
+    assert [error.message for error in report.errors][:2] == [
         "step 1: the plan moves robot 4, but the instance has no robot 4",
         "step 2: robot 1 does 'fly', which is not an action of domain M"]
 

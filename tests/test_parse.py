@@ -412,7 +412,9 @@ def test_known_atoms_of_another_arity_are_warned_with_their_arity():
     with pytest.warns(UserWarning) as caught:
         plan = read_plan(Source("plan.lp", "occurs(object(robot,1),action(move,(1,0)),1).\n"
                                            "occurs(object(robot,1),action(move,(1,0))).\n"))
-    assert [str(w.message) for w in caught] == ["plan.lp:2: ignored: occurs/2 (occurs has 3 arguments)"]
+    assert [str(w.message) for w in caught] == [
+        "plan.lp:2: occurs/2 is ignored: occurs has 3 arguments, occurs(object(robot,R),action(Name,Args),T) "
+        "(a parenthesis in the wrong place?)"]
     assert len(plan.actions) == 1
     symbols = [clingo.Function("init", [clingo.Number(1)]), clingo.parse_term("init(object(node,1),value(at,(1,1)))")]
     from asprilo.reader import instance_from_atoms

@@ -138,7 +138,8 @@ def test_mp4_without_pyav_says_what_to_install(qapp, tmp_path, monkeypatch, caps
     ([OUTCOME, "--export", "{tmp}/x.png", "--step", "30"],
      "error: --step 30 lies beyond the plan, whose last step is 29\n"),
     ([OUTCOME, "--export", "{tmp}/x.gif", "--frames", "0"], "error: --frames must be at least 1, got 0\n"),
-    ([SMALL_A, "{tmp}/bad.lp", "--export", "{tmp}/x.png"], "error: {tmp}/bad.lp:2: syntax error, unexpected EOF\n"),
+    ([SMALL_A, "{tmp}/bad.lp", "--export", "{tmp}/x.png"],
+     "error: {tmp}/bad.lp:1: a '.' is missing at the end of this line? (syntax error, unexpected EOF)\n"),
     ([SMALL_A, "{tmp}/other.lp", "--export", "{tmp}/x.png"],
      "error: {tmp}/other.lp:1: the plan moves robot 9, but the instance has robots 1..3 "
      "(plan and instance do not fit)\n"),
@@ -189,9 +190,11 @@ def test_window_mode_checks_its_options_before_showing(qapp, monkeypatch, capsys
     assert "outcome.txt" in (tmp_path / "asprilo" / "viz.conf").read_text()  # remembered there
 
 
-def test_wrong_outcome_exports_despite_violations(qapp, tmp_path):
+def test_wrong_outcome_exports_despite_violations(qapp, tmp_path, capsys):
     out = tmp_path / "wrong.png"
-    assert viz(WRONG_OUTCOME, "--export", out, "--step", 23, "--cell", 48) == 0
+    assert viz(WRONG_OUTCOME, "--export", out, "--step", 23, "--cell", 48) == 1  # as check: an invalid plan
+    assert capsys.readouterr().err.splitlines()[-1] == (
+        "invalid plan: 3 violations (domain A (detected), horizon 29); check INSTANCE PLAN lists them")
     image = Image.open(out).convert("RGB")
     # robot 1 is flagged at step 23: a red ring around it on (8,1)
     x, y = int((8 - 0.5 + 0.25) * 48), int((1 - 0.5 + 0.25) * 48)

@@ -12,6 +12,11 @@ Examples:
   viz instance.lp plan.lp --export plan.gif --frames 4 --speed 4
   viz instance.lp plan.lp --export strip.png --strip 3-8      (steps 3 to 8 side by side)
   viz --solver 5000 --simulator 5001          (watch asprilo serve solver/simulator live)
+
+A plan is read as check reads it: the same warnings, and a plan for another instance is
+refused in the same sentence (exit status 2).  An export of a plan that breaks rules is
+written, then check's verdict line follows on stderr and the exit status is 1, as check's;
+the window shows the verdict in its status bar (exit status 0 when it closes).
 """
 
 from __future__ import annotations
@@ -137,8 +142,22 @@ def _export(args: argparse.Namespace, scenario) -> int:
     written = render(scenario.instance, scenario.plan, args.export, scenario.domain, args.step,
                      args.frames, args.speed, args.cell, progress, args.caption)
     print(f"wrote {args.export}: {written}", file=sys.stderr)
-    return 0
+    return _verdict(scenario)
 
+
+def _verdict(scenario) -> int:
+    """After an export: a plan that breaks rules is said in ``check``'s verdict line, with its
+    exit status 1 (the picture is written all the same); a valid plan, or none (an instance
+    shown alone), is 0."""
+    if not scenario.plan_sources and not len(scenario.plan):
+        return 0
+    from asprilo.checker import check
+    from asprilo.checker.cli import verdict
+    report = check(scenario.instance, scenario.plan, scenario.domain)
+    if report.valid:
+        return 0
+    print(f"{verdict(report, detected=scenario.domain is None)}; check INSTANCE PLAN lists them", file=sys.stderr)
+    return 1
 
 
 def _export_strip(args: argparse.Namespace, scenario) -> int:
@@ -147,7 +166,7 @@ def _export_strip(args: argparse.Namespace, scenario) -> int:
     written = export_strip(scenario.instance, scenario.plan, args.export, first, last, scenario.domain,
                            args.columns, args.cell)
     print(f"wrote {args.export}: {written}", file=sys.stderr)
-    return 0
+    return _verdict(scenario)
 
 
 def _show(args: argparse.Namespace, scenario) -> int:

@@ -6,7 +6,9 @@ the step shown are marked as the plan plays.  Clicking a fact selects its object
 an action goes to its step.  Edits of the plan's text are read back a moment after the last
 keystroke: if the text is a plan of the instance's robots it replaces the plan shown (one
 undoable step: Ctrl+Z takes it back), the animation and the violations follow; otherwise the
-line at fault is marked and the plan shown stays.
+line at fault is marked and the plan shown stays.  What ``check`` would warn about (an atom
+that is no plan atom, ``occur/3`` or ``occurs/2``; an action no domain knows, ``mvoe``) is
+said below the text with its did-you-mean, the lines marked, and the plan read all the same.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ from PyQt5.QtWidgets import QLabel, QPlainTextEdit, QSplitter, QTextEdit, QVBoxL
 
 from asprilo.errors import InputError
 
-from ..state.atoms import AtomLine, about, instance_lines, lines_about, plan_lines, read_plan_text
+from ..state.atoms import AtomLine, Note, about, instance_lines, lines_about, plan_lines, read_plan_text
 from ..state.document import Change
 from ..state.viewer import ViewerState
 from .tables import CURRENT, PROBLEM
@@ -27,6 +29,7 @@ from .tables import CURRENT, PROBLEM
 #: milliseconds after the last keystroke before an edited plan is read
 READ_DELAY_MS = 400
 SUBJECT = QColor("#ffec99")  # the facts of the object selected
+WARNED = QColor("#ffe8cc")  # lines the reader warned about
 
 
 class _PlanText(QPlainTextEdit):
@@ -73,7 +76,8 @@ class AtomsPane(QWidget):
         self.shown = False  # the pane can be seen (its dock is open and its tab chosen)
         self._by_step: dict[int, list[int]] = {}  # step -> numbers of the plan's lines
         self._own_edit = False  # the plan shown came from this pane's text
-        self._problem_marks: list = []  # the line the reader refused
+        self._problem_marks: list = []  # the line the reader refused, or those it warned about
+        self._notes: list[Note] = []  # what the reader said of the plan text read last
         self._filling = False
         self._timer = QTimer(self)
         self._timer.setSingleShot(True)
@@ -150,6 +154,7 @@ class AtomsPane(QWidget):
         self._set_lines(part, lines)
         if part == "plan":
             self._problem_marks = []
+            self._notes = []
 
     def _set_lines(self, part: str, lines: list[AtomLine]) -> None:
         self.lines[part] = lines
@@ -171,7 +176,9 @@ class AtomsPane(QWidget):
         else:
             count = len(track.violations)
             verdict = f"{count} violation{'s' if count != 1 else ''}" if count else "no violation"
-            self.plan_note.setText(f"{len(track.plan)} actions, horizon {track.horizon}: {verdict}")
+            warned = "".join(f"<br><span style='color:#d9480f'>warning: {escape(note.text)}</span>"
+                             for note in self._notes)
+            self.plan_note.setText(f"{len(track.plan)} actions, horizon {track.horizon}: {verdict}{warned}")
 
     # --- marks: the object selected, the step shown ----------------------------------------------
 
@@ -212,14 +219,17 @@ class AtomsPane(QWidget):
         """Show the plan the text holds, or say what is wrong with it."""
         text = self.plan_box.toPlainText()
         self._set_lines("plan", [about(line) for line in text.split("\n")])
+        scenario = self.state.document.scenario
         try:
-            plan = read_plan_text(text, self.state.document.instance)
+            plan, self._notes = read_plan_text(text, self.state.document.instance,
+                                               scenario.domain if scenario is not None else None)
         except InputError as error:
+            self._notes = []
             self._problem_marks = _marks(self.plan_box, [error.line - 1] if error.line else [], PROBLEM)
             self._show_note(str(error))
             self._mark()
             return
-        self._problem_marks = []
+        self._problem_marks = _marks(self.plan_box, [note.line - 1 for note in self._notes if note.line], WARNED)
         self._own_edit = True
         if not self.state.document.replace_plan(plan, "edit the plan's atoms"):
             self._own_edit = False

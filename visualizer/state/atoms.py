@@ -5,10 +5,13 @@ the plan read back from edited text."""
 from __future__ import annotations
 
 import re
+import warnings
 from dataclasses import dataclass, field
 
+from asprilo.domain import Domain
+from asprilo.errors import InputWarning
 from asprilo.model import Instance, Plan
-from asprilo.reader import read_plan, require_known_robots
+from asprilo.reader import read_plan, require_plan_fits_instance
 from asprilo.sources import Source
 from asprilo.writer import format_instance, format_plan
 
@@ -62,12 +65,36 @@ def plan_lines(plan: Plan) -> list[AtomLine]:
     return [about(line) for line in format_plan(plan).splitlines()]
 
 
-def read_plan_text(text: str, instance: Instance) -> Plan:
-    """The plan that edited text holds; bad text raises ``InputError`` naming the line."""
+@dataclass(frozen=True)
+class Note:
+    """Something the reader said of a plan it read (a warning): the words, as ``check``
+    prints them after ``warning:``, and the line it names (from 1), if any."""
+
+    text: str
+    line: int | None = None
+
+
+_PLACE = re.compile(re.escape(PLAN_SOURCE) + r":(\d+):")
+
+
+def read_plan_text(text: str, instance: Instance, domain: Domain | None = None) -> tuple[Plan, list[Note]]:
+    """The plan that edited text holds and what the reader said of it (``check``'s warnings:
+    an atom that is no plan atom, an action no domain knows, with a did-you-mean); bad text
+    raises ``InputError`` naming the line, as does a plan for robots the instance lacks."""
     source = Source(PLAN_SOURCE, text)
-    plan = read_plan(source)
-    require_known_robots(plan, instance, [source])
-    return plan
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", InputWarning)
+        plan = read_plan(source)
+        require_plan_fits_instance(plan, instance, [source], domain)
+    notes = []
+    for warning in caught:
+        if not issubclass(warning.category, InputWarning):
+            warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
+            continue
+        words = str(warning.message)
+        place = _PLACE.match(words)
+        notes.append(Note(words, int(place.group(1)) if place else None))
+    return plan, notes
 
 
 def lines_about(lines: list[AtomLine], subject: tuple[str, int]) -> list[int]:

@@ -15,7 +15,7 @@ from pathlib import Path
 from asprilo.domain import Domain
 from asprilo.errors import InputError
 from asprilo.model import Instance, Plan
-from asprilo.reader import read_instance, read_plan, require_known_robots
+from asprilo.reader import read_instance, read_plan, require_plan_fits_instance
 from asprilo.sources import Source, SourceLike, as_sources
 
 _INIT = re.compile(r"\binit\s*\(")
@@ -49,13 +49,15 @@ class Scenario:
 def load_scenario(instance: SourceLike | Iterable[SourceLike],
                   plans: SourceLike | Iterable[SourceLike] = (), domain: Domain | None = None) -> Scenario:
     """Read an instance and its plan files; without plan files the plan is the instance
-    sources' own ``occurs/3`` atoms (one file or stdin may hold both)."""
+    sources' own ``occurs/3`` atoms (one file or stdin may hold both).  The plan is read as
+    ``check`` reads it (:func:`asprilo.reader.require_plan_fits_instance`): a plan for another
+    instance is refused in the same sentence."""
     instance_sources = as_sources(instance)
     plan_sources = as_sources(plans)
     the_instance = read_instance(instance_sources)
     plan_origin = plan_sources or instance_sources
     the_plan = read_plan(plan_origin)
-    require_known_robots(the_plan, the_instance, plan_origin)
+    require_plan_fits_instance(the_plan, the_instance, plan_origin, domain)
     return Scenario(the_instance, the_plan, instance_sources, plan_sources, domain)
 
 
@@ -63,7 +65,7 @@ def add_plan(scenario: Scenario, plans: SourceLike | Iterable[SourceLike]) -> Sc
     """The same instance with the plan read from ``plans``."""
     plan_sources = as_sources(plans)
     plan = read_plan(plan_sources)
-    require_known_robots(plan, scenario.instance, plan_sources)
+    require_plan_fits_instance(plan, scenario.instance, plan_sources, scenario.domain)
     return Scenario(scenario.instance, plan, scenario.instance_sources, plan_sources, scenario.domain)
 
 
