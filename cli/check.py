@@ -20,20 +20,20 @@ import time
 import warnings
 from collections.abc import Sequence
 from pathlib import Path
-from typing import TextIO
+from typing import TYPE_CHECKING, TextIO
 
 from asprilo.arguments import seconds_argument
 from asprilo.checker import Report, check
 from asprilo.checker import cli as checker_cli
 from asprilo.domain import Domain, detect_domain
-from asprilo.encodings import Attempt, Encoding, Outcome, Phase, SolveStatus, solve
-from asprilo.encodings.choice import choose_encoding, is_encoding_file
-from asprilo.encodings.own import program_files
 from asprilo.errors import InputError, InputWarning
 from asprilo.reader import read_instance, read_instance_and_plan
 from asprilo.writer import check_output, format_plan, write_text
 
 from .watching import POLL, Stamps, watch
+
+if TYPE_CHECKING:  # the solver is imported where --watch --encoding needs it: a check does without
+    from asprilo.encodings import Attempt, Encoding, Outcome, Phase
 
 #: options asprilo does not know are clingo's (for ``--watch --encoding``; refused otherwise)
 CLINGO_OPTIONS = True
@@ -136,6 +136,8 @@ def _watched(args: argparse.Namespace, clingo_options: list[str]) -> Rerun:
         _refuse_solve_options(args, clingo_options, "--encoding")
         _require_files([args.instance, args.plan])
         return PlanCheck(Path(args.instance), Path(args.plan), args.domain, shown)
+    from asprilo.encodings.choice import is_encoding_file
+    from asprilo.encodings.own import program_files
     encodings = [value for value in args.encoding if is_encoding_file(value)]
     _require_files([args.instance, *encodings])
     check_output(args.plan, [args.instance, *program_files(encodings)])
@@ -238,6 +240,8 @@ class EncodingSolve(Rerun):
         self.err = err if err is not None else sys.stderr
 
     def paths(self) -> list[Path]:
+        from asprilo.encodings.choice import is_encoding_file
+        from asprilo.encodings.own import program_files
         return [self.instance, *program_files([value for value in self.encoding if is_encoding_file(value)])]
 
     def validate(self) -> None:
@@ -253,6 +257,7 @@ class EncodingSolve(Rerun):
                 raise
 
     def choose(self, domain: Domain) -> tuple[Encoding, int | None]:
+        from asprilo.encodings.choice import choose_encoding
         return choose_encoding(self.encoding, self.const, self.options, domain, self.horizon)
 
     def __call__(self, changed: list[Path]) -> None:
@@ -269,6 +274,7 @@ class EncodingSolve(Rerun):
         self.say(lines)
 
     def _lines(self, cancel: threading.Event) -> list[str]:
+        from asprilo.encodings import solve
         instance = read_instance(str(self.instance))
         domain = self.domain or detect_domain(instance)
         encoding, horizon = self.choose(domain)
@@ -357,6 +363,7 @@ class Progress:
 
 def _no_plan(outcome: Outcome, time_limit: float) -> list[str]:
     """Why there is no plan, in a line (and the horizons refuted)."""
+    from asprilo.encodings import SolveStatus
     words = {SolveStatus.NONE: "no plan exists", SolveStatus.LIMIT: f"no plan within the limits ({time_limit:g} s)",
              SolveStatus.CANCELLED: "cancelled", SolveStatus.INVALID: "no valid plan"}.get(outcome.status,
                                                                                        outcome.status.value)

@@ -19,11 +19,10 @@ which forces every goal cell to be covered.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
-
-import numpy as np
 
 from asprilo.bounds import Floor, goal_cells, mapf_bounds
 from asprilo.model import Action, Cell, Instance, Plan
@@ -62,6 +61,7 @@ class TimeExpandedNetwork:
     """The flow network of a floor, start cells and goal cells over ``horizon`` steps."""
 
     def __init__(self, floor: Floor, starts: list[Cell], goals: list[Cell], horizon: int):
+        import numpy as np  # here, not on import: a solve's parent reads the attempts without it
         self.floor, self.starts, self.goals, self.horizon = floor, starts, goals, horizon
         cells = len(floor.cells)
         edges = np.array([(i, j) for i, j in zip(*floor.graph.nonzero(), strict=True) if i < j], dtype=np.int64)
@@ -121,6 +121,7 @@ class TimeExpandedNetwork:
 
     def route(self) -> dict[int, list[Cell]] | None:
         """Each start's cells at steps 0..H, or ``None`` when not every robot gets through."""
+        import numpy as np
         from scipy.sparse.csgraph import maximum_flow
         result = maximum_flow(self.graph, self.source, self.sink)
         if result.flow_value < len(self.starts):
@@ -172,7 +173,7 @@ def flow_plan(instance: Instance, horizon: int | None = None, watch: Watch | Non
     if bound is None:
         bound = mapf_bounds(instance, floor, total=False)[0]
     search = FlowSearch(None, None, False, bound)
-    if any(cell not in floor.index for cell in starts + goals) or not np.isfinite(bound):
+    if any(cell not in floor.index for cell in starts + goals) or not math.isfinite(bound):
         search.minimal = True  # some goal can be reached by no robot: no plan at any horizon
         return search
     first = last = horizon

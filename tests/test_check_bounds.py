@@ -155,6 +155,34 @@ def test_the_python_search_and_the_numpy_search_agree():
         floor.distances([(1, 1), (8, 5)], ordered).min(axis=0).tolist()
 
 
+@pytest.mark.parametrize("path", BUNDLED, ids=lambda path: path.stem)
+def test_the_strong_m_bounds_are_the_same_without_numpy(path, monkeypatch):
+    """Small instances are matched in plain Python (no numpy to import), the others with numpy:
+    the same bounds (here with labelled goals too: robot k bound to goal k, where there are as many)."""
+    instance = read_instance(path)
+    if not instance.orders and not instance.destinations:
+        return
+    variants = [instance]
+    if instance.destinations and len(instance.robots) >= len(instance.destinations):
+        labelled = read_instance(path)
+        labelled.assignment = {r: ("destination", d) for r, d in zip(sorted(labelled.robots),
+                                                                     sorted(labelled.destinations), strict=False)}
+        variants.append(labelled)
+    python = [mapf.mapf_bounds(variant) for variant in variants]
+    monkeypatch.setattr(mapf, "CHEAP_VISITS", -1)  # every search with numpy
+    assert [mapf.mapf_bounds(variant) for variant in variants] == python
+
+
+def test_the_strong_md_bound_of_labelled_robots_on_a_floor_with_holes(monkeypatch):
+    cells = [(x, y) for x in range(1, 4) for y in range(1, 4) if (x, y) != (2, 2)]
+    instance = md(cells, [(1, 2), (1, 1), (3, 3)], [(3, 2), (1, 3), (2, 1)])
+    instance.assignment = {1: ("destination", 1), 3: ("destination", 3)}
+    # robot 1: 4 steps around the hole; robot 3: (3,3) -> (2,1) 3 steps; robot 2: 2 steps
+    assert mapf.mapf_bounds(instance) == (4, 9)
+    monkeypatch.setattr(mapf, "CHEAP_VISITS", -1)
+    assert mapf.mapf_bounds(instance) == (4, 9)
+
+
 def _domains(instance: Instance, every: bool) -> list[Domain]:
     detected = detect_domain(instance)
     if every and instance.orders and instance.stations:

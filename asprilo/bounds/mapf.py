@@ -12,6 +12,7 @@ search in plain Python (no numpy, no matching).
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING
 
 from ..model import Cell, Instance
@@ -27,6 +28,10 @@ _PYTHON_MATCHING = 2_500
 #: a matching that takes cubic time), each goal is bounded by its nearest robot alone: one
 #: search from all robots at once, time and memory linear in the floor
 MATCHED_PAIRS = 1_000_000
+#: cell visits (breadth-first searches in plain Python, one per goal) up to which the bounds
+#: need no numpy; beyond, :func:`nearest_goal_bounds` takes the Manhattan distances of robots
+#: with a labelled goal (no longer than any path), :func:`mapf_bounds` numpy's search
+CHEAP_VISITS = 100_000
 
 
 def bottleneck_assignment(costs: np.ndarray) -> float:
@@ -164,7 +169,9 @@ def mapf_bounds(instance: Instance, floor: Floor | None = None, total: bool = Tr
     (with ``total=False`` the second is not computed: 0).
 
     Robots with a labelled goal (``instance.assignment``) count their own distance to it;
-    the other robots are matched to the remaining goals.
+    the other robots are matched to the remaining goals.  Small instances (up to
+    ``_PYTHON_MATCHING`` pairs, searches within :data:`CHEAP_VISITS`) are matched in plain
+    Python, without numpy; the answer is the same.
     """
     floor = floor or Floor(instance.cells)
     assigned = instance.assigned_cells()
@@ -173,20 +180,57 @@ def mapf_bounds(instance: Instance, floor: Floor | None = None, total: bool = Tr
     starts = [robot.at for ident, robot in sorted(instance.robots.items()) if ident not in assigned]
     if len(goals) * len(starts) > MATCHED_PAIRS:
         makespan, cost = nearest_robot_bounds(floor, goals, starts)
+    elif len(goals) * len(starts) <= _PYTHON_MATCHING and len(goals) * len(floor.cells) <= CHEAP_VISITS:
+        rows = [[float(walked.get(start, INFINITE)) for start in starts]
+                for walked in (floor.steps_from([goal]) for goal in goals)]
+        makespan, cost = _bottleneck(rows, len(starts)), _min_cost(rows, len(starts)) if total else 0.0
     else:
         costs = floor.distances(goals, starts)
         makespan, cost = bottleneck_assignment(costs), min_cost_assignment(costs) if total else 0.0
     if assigned:
         robots = sorted(assigned)
-        own = floor.distances([assigned[r] for r in robots], [instance.robots[r].at for r in robots]).diagonal()
-        makespan, cost = max(makespan, float(own.max())), cost + float(own.sum())
+        pairs = [(instance.robots[r].at, assigned[r]) for r in robots]
+        own = _own_distances(floor, pairs, exact=True)
+        if own is None:
+            own = floor.distances([goal for _, goal in pairs], [start for start, _ in pairs]).diagonal().tolist()
+        makespan, cost = max(makespan, max(own)), cost + sum(own)
     return makespan, cost
 
 
-#: cell visits (breadth-first, in plain Python) that :func:`nearest_goal_bounds` may spend on
-#: the robots with a labelled goal on a floor with holes; beyond, their Manhattan distances
-#: (no longer than any path) stand in for the walks
-CHEAP_VISITS = 100_000
+def _bottleneck(rows: list[list[float]], columns: int) -> float:
+    """:func:`bottleneck_assignment` of the costs ``rows`` (``columns`` each), in plain Python."""
+    if not rows:
+        return 0.0
+    if columns < len(rows):
+        return INFINITE
+    thresholds = sorted({cost for row in rows for cost in row if math.isfinite(cost)})
+
+    def fits(threshold: float) -> bool:
+        return _augmenting_paths([[j for j, cost in enumerate(row) if cost <= threshold] for row in rows], columns)
+
+    if not thresholds or not fits(thresholds[-1]):
+        return INFINITE
+    low, high = 0, len(thresholds) - 1
+    while low < high:
+        middle = (low + high) // 2
+        if fits(thresholds[middle]):
+            high = middle
+        else:
+            low = middle + 1
+    return float(thresholds[low])
+
+
+def _min_cost(rows: list[list[float]], columns: int) -> float:
+    """:func:`min_cost_assignment` of the costs ``rows`` (``columns`` each), in plain Python."""
+    if not rows:
+        return 0.0
+    if columns < len(rows):
+        return INFINITE
+    finite = [cost for row in rows for cost in row if math.isfinite(cost)]
+    penalty = (max(finite) if finite else 0) * (len(rows) + 1) + 1
+    chosen = _hungarian([[cost if math.isfinite(cost) else penalty for cost in row] for row in rows])
+    total = [rows[i][j] for i, j in enumerate(chosen)]
+    return float(sum(total)) if all(math.isfinite(cost) for cost in total) else INFINITE
 
 
 def nearest_goal_bounds(instance: Instance, floor: Floor | None = None) -> tuple[float, float]:
@@ -206,17 +250,23 @@ def nearest_goal_bounds(instance: Instance, floor: Floor | None = None) -> tuple
         nearest = floor.steps_from(starts)
         reach = [float(nearest.get(cell, INFINITE)) for cell in goals]
         makespan, cost = max(reach), sum(reach)
-    own = _own_distances(floor, [(instance.robots[r].at, cell) for r, cell in sorted(assigned.items())])
+    own = _own_distances(floor, [(instance.robots[r].at, cell) for r, cell in sorted(assigned.items())]) or []
     return max([makespan, *own]), cost + sum(own)
 
 
-def _own_distances(floor: Floor, pairs: list[tuple[Cell, Cell]]) -> list[float]:
+def _own_distances(floor: Floor, pairs: list[tuple[Cell, Cell]], exact: bool = False) -> list[float] | None:
     """The walking distance of each ``(start, goal)`` pair: Manhattan on a floor that fills its
-    rectangle, else one search per goal within :data:`CHEAP_VISITS` (then Manhattan, which no
-    path undercuts); ``INFINITE`` where a cell is not a node or no path leads."""
+    rectangle, else one search per goal within :data:`CHEAP_VISITS`; beyond, Manhattan, which
+    no path undercuts (with ``exact``: ``None``, for the caller to search with numpy).
+    ``INFINITE`` where a cell is not a node or no path leads."""
     goals = sorted({goal for _start, goal in pairs})
-    searched = {goal: floor.steps_from([goal]) for goal in goals} \
-        if not floor.manhattan() and len(goals) * len(floor.cells) <= CHEAP_VISITS else {}
+    searched = {}
+    if not floor.manhattan():
+        if len(goals) * len(floor.cells) > CHEAP_VISITS:
+            if exact:
+                return None
+        else:
+            searched = {goal: floor.steps_from([goal]) for goal in goals}
     distances = []
     for start, goal in pairs:
         if start not in floor.index or goal not in floor.index:
