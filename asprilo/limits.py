@@ -31,6 +31,7 @@ class Limits:
     string_chars: int = 100_000  # characters of one string (as written, between its quotes)
     fact_chars: int = 1_000_000  # characters of one fact or #const, constants written out
     file_mb: int = 256  # megabytes of one file or message
+    line_seconds: float = 60.0  # seconds an online message may take to arrive, from its first byte
     rule_seconds: float = 10.0  # grounding time with --allow-rules
     rule_mb: int = 2048  # grounding memory (megabytes) with --allow-rules
     # the tools' budgets (README, "Reading data"): YAML files, exported pictures and animations, gen

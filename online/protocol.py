@@ -21,6 +21,7 @@ from __future__ import annotations
 import contextlib
 import re
 import socket
+import time
 from collections.abc import Iterable
 from dataclasses import dataclass, replace
 
@@ -125,45 +126,103 @@ def shifted(plan: Plan, steps: int) -> list[Action]:
 # --- lines over a socket (servers, scripts and tests) ---------------------------------------------------
 
 class Channel:
-    """A connected socket that reads and writes messages, each read and write with a time
-    limit; a line longer than the ``file-mb`` limit or not UTF-8 is refused."""
+    """A connected socket that reads and writes messages within time budgets.
 
-    def __init__(self, connection: socket.socket, timeout: float | None = TIMEOUT):
+    Silence between lines may last ``timeout`` seconds; a line, once its first byte has come,
+    must arrive whole within the ``line-seconds`` limit (with ``speaks_first``, the first line
+    counts from now: a server's client must say something within it), and each line sent must
+    be taken within it too.  A line longer than the ``file-mb`` limit or not UTF-8 is refused;
+    a line cut off by the other side closing is no message."""
+
+    def __init__(self, connection: socket.socket, timeout: float | None = TIMEOUT, speaks_first: bool = False):
         self.connection = connection
+        self.timeout = timeout
         self.connection.settimeout(timeout)
         self._buffer = bytearray()
+        #: when the line being read began (monotonic seconds); None until its first byte
+        self._began: float | None = time.monotonic() if speaks_first else None
+        self._first = speaks_first  # no line has come yet, and the budget counts from connecting
+        #: the other side closed in the middle of a line (which was ignored)
+        self.cut_off = False
 
     @classmethod
     def connect(cls, host: str, port: int, timeout: float | None = TIMEOUT) -> Channel:
         return cls(socket.create_connection((host, port), timeout=timeout), timeout)
 
-    def send(self, message: Message) -> None:
-        self.connection.sendall(message.text().encode("utf-8"))
+    def send(self, message: Message, timeout: float | None = None) -> None:
+        """Send one line; ``TimeoutError`` when the other side does not take it within the
+        ``line-seconds`` limit (or ``timeout``, or the channel's timeout, if shorter)."""
+        wait = _shortest(self.timeout, current().line_seconds, timeout)
+        self.connection.settimeout(wait)
+        try:
+            self.connection.sendall(message.text().encode("utf-8"))
+        except TimeoutError:
+            raise TimeoutError(f"an answer not taken within {wait:g} s") from None
+        finally:
+            self.connection.settimeout(self.timeout)
 
     def receive(self) -> Message | None:
         """The next message; ``None`` when the other side closed the connection.
         Raises ``TimeoutError`` when nothing comes within the time limit and
-        :class:`InputError` for a line that is too long or not text."""
+        :class:`InputError` for a line that is too long, too slow or not text."""
         line = self._line()
         return None if line is None else parse(decode(line, "<line>"))
 
     def _line(self) -> bytes | None:
         limits = current()
         most = limits.file_mb * 2**20
+        if self._began is None and self._buffer:  # the rest of the last read begins this line
+            self._began = time.monotonic()
         start = 0
         while (end := self._buffer.find(b"\n", start)) < 0:
             if len(self._buffer) > most:
                 raise limits.exceeded("file_mb", f"a line of more than {limits.file_mb:,} MB")
             start = len(self._buffer)
-            chunk = self.connection.recv(1 << 16)
+            chunk = self._receive(current())  # read anew: the budget may change meanwhile
             if not chunk:
-                line, self._buffer = bytes(self._buffer), bytearray()
-                return line or None
+                self.cut_off = bool(self._buffer)
+                self._buffer, self._began = bytearray(), None
+                return None
+            if self._began is None:
+                self._began = time.monotonic()
             self._buffer += chunk
         line = bytes(self._buffer[:end + 1])
         del self._buffer[:end + 1]
+        self._began, self._first = (time.monotonic() if self._buffer else None), False
         return line
+
+    def _receive(self, limits: Limits) -> bytes:
+        """What comes next, waiting at most the channel's timeout and never beyond the line's budget."""
+        wait, budget = self.timeout, limits.line_seconds
+        late = False
+        if self._began is not None:
+            left = self._began + budget - time.monotonic()
+            late = wait is None or left <= wait
+            wait = left if late else wait
+            if left <= 0:
+                raise self._late(limits)
+        self.connection.settimeout(wait)
+        try:
+            return self.connection.recv(1 << 16)
+        except TimeoutError:
+            if late:
+                raise self._late(limits) from None
+            raise TimeoutError(f"nothing received for {wait:g} s") from None
+        finally:
+            self.connection.settimeout(self.timeout)
+
+    def _late(self, limits: Limits) -> InputError:
+        budget = limits.line_seconds
+        if self._first and not self._buffer:
+            return limits.exceeded("line_seconds", f"no line within {budget:g} s of connecting")
+        return limits.exceeded("line_seconds", f"a line not complete within {budget:g} s of its first byte")
 
     def close(self) -> None:
         with contextlib.suppress(OSError):
             self.connection.close()
+
+
+def _shortest(*seconds: float | None) -> float | None:
+    """The shortest of these waits (``None``: no limit)."""
+    given = [s for s in seconds if s is not None]
+    return min(given) if given else None

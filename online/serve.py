@@ -11,9 +11,13 @@ Examples:
 
 Both listen on 127.0.0.1 (loopback) by default and run until interrupted (Ctrl+C), or for
 one session with --once.  Each client is served on its own (up to --clients at once) and
-with a session of its own; a client silent for --idle-timeout seconds is let go.  A line
-that is refused (not UTF-8, too long, not facts, a step outside the plan) is answered
-with an error (``%$error.``) and the connection closes; the server goes on.
+with a session of its own; a client silent for --idle-timeout seconds is let go.  Each line
+must arrive whole within the line-seconds limit from its first byte (a client's first line:
+from connecting), and each answer be taken within it (--limit line-seconds=S, default 60), so
+slow clients hold a place no longer.  A line that is refused (not UTF-8, too long, too slow,
+not facts, a step outside the plan) is answered with an error (``%$error.``) and the
+connection closes; the server goes on.  Messages are data: parsed as facts, never handed to
+clingo as text, so no client makes the server open a file.
 """
 
 from __future__ import annotations
@@ -28,6 +32,7 @@ from collections.abc import Callable
 
 from asprilo.arguments import domain_argument, port_argument, seconds_argument
 from asprilo.errors import InputError
+from asprilo.limits import current, parse_option, using
 
 from .planner import OnlinePlanner, Planner, Schedule, anytime_planner, encodings_planner, parse_arrivals
 from .protocol import DONE, END, RESET, Channel, Message, action_facts, check_facts, error
@@ -35,6 +40,7 @@ from .protocol import DONE, END, RESET, Channel, Message, action_facts, check_fa
 DEFAULT_PORTS = {"solver": 5000, "simulator": 5001}
 CLIENTS = 16  # clients served at once
 IDLE_SECONDS = 3600.0  # a client silent this long is let go
+GOODBYE_SECONDS = 1.0  # the last line to a client (an error) is given up after this long
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -64,9 +70,28 @@ def configure(parser: argparse.ArgumentParser) -> None:
                           help=f"clients served at once (default {CLIENTS}); more are turned away")
         role.add_argument("--idle-timeout", type=float, default=IDLE_SECONDS, metavar="S",
                           help=f"let a client go after S seconds of silence (default {IDLE_SECONDS:g})")
+        role.add_argument("--limit", action="append", default=[], dest="role_limits", type=_limit_argument,
+                          metavar="NAME=N", help="a limit on data, as --limit before the role (repeatable); "
+                                                 "line-seconds=S: each line must arrive whole within S seconds "
+                                                 "of its first byte, a client's first line within S of "
+                                                 "connecting, each answer be taken within S (default 60)")
+
+
+def _limit_argument(text: str) -> str:
+    try:
+        parse_option(text)
+    except InputError as error:
+        raise argparse.ArgumentTypeError(error.message) from None
+    return text
 
 
 def run(args: argparse.Namespace) -> int:
+    """Serve within the limits in force, with those given after the role (``--limit``)."""
+    with using(current().with_options(getattr(args, "role_limits", []))):
+        return _run(args)
+
+
+def _run(args: argparse.Namespace) -> int:
     if args.clients < 1 or not args.idle_timeout > 0:
         raise InputError("--clients and --idle-timeout must be positive")
     if args.role == "solver":
@@ -145,38 +170,57 @@ def serve(listener: socket.socket, session: Callable[[Channel], None], once: boo
 def _serve_one(connection: socket.socket, session: Callable[[Channel], None], idle: float,
                place: threading.BoundedSemaphore) -> None:
     """One client: its session; a refused line is answered with the reason, then the
-    connection closes (after its place is free for the next client)."""
-    channel = Channel(connection, timeout=idle)
+    connection closes (and its place is free for the next client).  Nothing a client
+    sends ends the server: a failure of the session ends the client's connection only."""
+    channel = Channel(connection, timeout=idle, speaks_first=True)
+    log = _log("session")
     try:
         session(channel)
+        if channel.cut_off:
+            log("closed in the middle of a line (the part was ignored)")
     except InputError as refused:
-        _log("session")(f"refused: {refused}")
-        with contextlib.suppress(OSError):
-            channel.send(error(str(refused)))
-    except TimeoutError:
-        _log("session")(f"no word for {idle:g} s: connection closed")
+        log(f"refused: {refused}")
+        _goodbye(channel, str(refused))
+    except TimeoutError as late:
+        log(f"{late}: connection closed")
     except OSError as failure:
-        _log("session")(f"ended: {failure}")
+        log(f"ended: {failure}")
+    except Exception as failure:  # noqa: BLE001 - a bug or no memory: this client only
+        log(f"failed: {type(failure).__name__}: {failure}")
+        _goodbye(channel, f"the server failed on this line ({type(failure).__name__})")
     finally:
         place.release()
         channel.close()
 
 
-def _turn_away(connection: socket.socket, reason: str) -> None:
-    channel = Channel(connection, timeout=1.0)
+def _goodbye(channel: Channel, reason: str) -> None:
+    """The last line to a client: why it is let go (given up if not taken at once)."""
     with contextlib.suppress(OSError):
-        channel.send(error(reason))
+        channel.send(error(reason), timeout=GOODBYE_SECONDS)
+
+
+def _turn_away(connection: socket.socket, reason: str) -> None:
+    channel = Channel(connection, timeout=GOODBYE_SECONDS)
+    _goodbye(channel, reason)
     channel.close()
 
 
 def solver_session(channel: Channel, online: OnlinePlanner) -> None:
-    """Answer every ``%$done(T).`` with the actions of step T+1 (see :class:`OnlinePlanner`)."""
+    """Answer every ``%$done(T).`` with the actions of step T+1 (see :class:`OnlinePlanner`).
+    The facts of a session (since ``%$RESET.``) stay within the ``file-mb`` limit together."""
     online.reset()
+    learned = 0
     while (message := channel.receive()) is not None:
         if message.control == RESET:
             online.reset()
+            learned = 0
             continue
         check_facts(message.facts)
+        learned += len(message.facts)
+        limits = current()
+        if learned > limits.file_mb * 2**20:
+            raise limits.exceeded("file_mb", f"facts of more than {limits.file_mb:,} MB in one session "
+                                             "(since its last reset)")
         online.learn(message.facts)
         if message.control == DONE:
             actions = _while_connected(channel, online, lambda: online.next_actions(message.step))
