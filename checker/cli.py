@@ -21,10 +21,7 @@ import argparse
 import json
 
 from asprilo.arguments import domain_argument
-from asprilo.errors import InputError
-from asprilo.limits import require_plan_fits
 from asprilo.model import Instance, Plan
-from asprilo.reader import read_instance, read_plan
 
 from . import STRENGTHS, Report, Strength, check
 from .report import add_bounds
@@ -40,17 +37,6 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--bound", choices=STRENGTHS, default="cheap",
                         help="the lower bounds shown: cheap (default: milliseconds) or strong (the strongest, "
                              "as solve computes them: up to seconds on A/B/C, shown after the verdict)")
-
-
-def run(args: argparse.Namespace) -> int:
-    if args.plan is None:
-        raise InputError("no plan given (check INSTANCE PLAN)")
-    instance, plan = read_instance(args.instance), read_plan(args.plan)
-    try:
-        require_plan_fits(instance, plan)
-    except InputError as error:
-        raise error.at(args.plan) from None
-    return show(instance, plan, args)
 
 
 def show(instance: Instance, plan: Plan, args: argparse.Namespace) -> int:
