@@ -100,6 +100,20 @@ def _child(connection, function: Callable, args: tuple, memory_mb: int | None,
     connection.send(("result", result))
 
 
+def peak_memory_mb() -> float:
+    """This process's peak resident memory in MB: Linux's VmHWM, the peak of the program
+    running now (``ru_maxrss`` keeps the peak of the process it was forked from, carried
+    across exec: a child of a big parent would seem as big); ``ru_maxrss`` elsewhere."""
+    try:
+        with open("/proc/self/status") as status:
+            for line in status:
+                if line.startswith("VmHWM:"):
+                    return int(line.split()[1]) / 1024
+    except OSError:
+        pass
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+
+
 def _context() -> multiprocessing.context.ForkContext | multiprocessing.context.SpawnContext:
     """``fork`` when this process runs no other thread (fast, nothing to import again)."""
     if threading.active_count() == 1 and "fork" in multiprocessing.get_all_start_methods():

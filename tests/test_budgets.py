@@ -133,13 +133,16 @@ def test_gen_budgets_bound_every_size_and_count():
 
 
 #: a command in a child process under a hard address-space cap (megabytes), which prints its
-#: own peak memory (KB) on standard output when it ends
+#: own peak memory (KB) on standard output when it ends: VmHWM, the peak of this program's
+#: memory (``ru_maxrss`` would keep the peak of the test process it was forked from, which
+#: Linux carries across exec)
 _CAPPED = """
 import resource, sys
 resource.setrlimit(resource.RLIMIT_AS, (int(sys.argv[1]) * 2**20,) * 2)
 from asprilo.cli import main
 code = main(sys.argv[2:])
-print(resource.getrusage(resource.RUSAGE_SELF).ru_maxrss)
+with open("/proc/self/status") as status:
+    print(next(line.split()[1] for line in status if line.startswith("VmHWM:")))
 sys.exit(code)
 """
 

@@ -13,12 +13,9 @@ statistics, the plan, and the process's own peak memory.  Jobs:
 
 from __future__ import annotations
 
-import resource
 import time
 
-
-def _peak_mb() -> float:
-    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+from asprilo.isolation import peak_memory_mb
 
 
 def _encoding(job: dict):
@@ -59,7 +56,7 @@ def run(job: dict, report=None) -> dict:
         "minimal": outcome.minimal_along_assignment if job.get("assign") else outcome.minimal,
         "plan": format_plan(outcome.plan) if outcome.plan is not None else None,
         "stats": outcome.stats,
-        "memory_mb": _peak_mb(),
+        "memory_mb": peak_memory_mb(),
         "message": outcome.message,
         "assignment": outcome.assignment.facts if outcome.assignment is not None else None,
         **({"history": outcome.history, "lower_bound": outcome.lower_bound} if job["kind"] == "anytime" else {}),
