@@ -9,27 +9,36 @@ undoable step: Ctrl+Z takes it back), the animation and the violations follow; o
 line at fault is marked and the plan shown stays.  What ``check`` would warn about (an atom
 that is no plan atom, ``occur/3`` or ``occurs/2``; an action no domain knows, ``mvoe``) is
 said below the text with its did-you-mean, the lines marked, and the plan read all the same.
+What the reader warned about reading the files shown (a plan file with ``occur/3`` in it,
+opened, reloaded or saved in an editor) is said there too, naming the file and its line, until
+another file is read or the plan is edited here (the pane's own warnings then) or replaced.
 """
 
 from __future__ import annotations
 
 from html import escape
 
-from PyQt5.QtCore import QEvent, Qt, QTimer
+from PyQt5.QtCore import QEvent, QSize, Qt, QTimer
 from PyQt5.QtGui import QColor, QFont, QKeySequence, QTextCursor, QTextFormat
-from PyQt5.QtWidgets import QLabel, QPlainTextEdit, QSplitter, QTextEdit, QVBoxLayout, QWidget
+from PyQt5.QtWidgets import QFrame, QLabel, QPlainTextEdit, QScrollArea, QSplitter, QTextEdit, QVBoxLayout, QWidget
 
 from asprilo.errors import InputError
+from asprilo.model import Plan
+from asprilo.sources import Source
 
 from ..state.atoms import AtomLine, Note, about, instance_lines, lines_about, plan_lines, read_plan_text
 from ..state.document import Change
 from ..state.viewer import ViewerState
+from .screen import room
 from .tables import CURRENT, PROBLEM
 
 #: milliseconds after the last keystroke before an edited plan is read
 READ_DELAY_MS = 400
 SUBJECT = QColor("#ffec99")  # the facts of the object selected
 WARNED = QColor("#ffe8cc")  # lines the reader warned about
+#: the lines of text the words below the plan show before they scroll (fewer where the
+#: window would not fit its screen)
+NOTE_LINES = 16
 
 
 class _PlanText(QPlainTextEdit):
@@ -48,6 +57,76 @@ class _PlanText(QPlainTextEdit):
             event.ignore()  # not the text's own undo: the window's shortcut runs
             return True
         return super().event(event)
+
+
+class _Note(QScrollArea):
+    """The words below the plan (the verdict, the reader's warnings), wrapped, as tall as all
+    their lines (at most ``NOTE_LINES``) where the window can grow that much on its screen
+    (the dock takes the room from the panels above it), else as tall as it can and scrolled
+    (a QLabel that wraps asks for too little height in a layout: the last warnings were cut,
+    and a fixed height would make the window taller than a small screen)."""
+
+    def __init__(self, parent: QWidget):
+        super().__init__(parent)
+        self.label = QLabel(self)
+        self.label.setWordWrap(True)
+        self.label.setTextInteractionFlags(Qt.TextInteractionFlag.TextSelectableByMouse)  # a warning can be copied
+        self.setWidget(self.label)
+        self.setWidgetResizable(True)
+        self.setFrameShape(QFrame.NoFrame)
+        self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self._wanted = 0  # the height of all its lines, at most NOTE_LINES
+        self.setFixedHeight(0)  # no words yet
+        self._settling = QTimer(self)  # the least height is found once the layouts settled
+        self._settling.setSingleShot(True)
+        self._settling.setInterval(0)
+        self._settling.timeout.connect(self._settle)
+
+    def text(self) -> str:
+        return self.label.text()
+
+    def setText(self, text: str) -> None:  # noqa: N802 - as QLabel's
+        self.label.setText(text)
+        self._fit()
+
+    def sizeHint(self) -> QSize:  # noqa: N802 - Qt's name
+        return QSize(super().sizeHint().width(), self._wanted)
+
+    def minimumSizeHint(self) -> QSize:  # noqa: N802 - Qt's name
+        return QSize(0, 0)  # its least height is set (_settle)
+
+    def resizeEvent(self, event) -> None:  # noqa: N802 - Qt's name
+        super().resizeEvent(event)
+        self._fit()
+
+    def _fit(self) -> None:
+        bar = self.verticalScrollBar()
+        width = self.width() - (bar.width() if bar is not None and bar.isVisible() else 0)
+        needed = self.label.heightForWidth(max(1, width)) if self.label.text() else 0
+        wanted = min(max(needed, 0), self.label.fontMetrics().lineSpacing() * NOTE_LINES)
+        if wanted != self._wanted:
+            self._wanted = wanted
+            self.setMinimumHeight(min(self.minimumHeight(), wanted))
+            self.setMaximumHeight(wanted)
+            self.updateGeometry()
+            if not self._settling.isActive():
+                self._settling.start()
+
+    def _settle(self) -> None:
+        """Ask for the height wanted, or what the window's screen leaves (the window's least
+        height, its layouts settled, without this one's)."""
+        least = self._wanted
+        window = self.window()
+        if window is not None and window is not self and least:
+            self.setMinimumHeight(0)
+            widget = self.parentWidget()
+            while widget is not None:  # the least sizes up to the window, without this one's
+                layout = widget.layout()
+                if layout is not None:
+                    layout.invalidate()
+                widget = widget.parentWidget()
+            least = max(0, min(least, room(self).height() - window.minimumSizeHint().height()))
+        self.setMinimumHeight(least)
 
 
 def _text_box(read_only: bool, editor: QPlainTextEdit | None = None) -> QPlainTextEdit:
@@ -69,8 +148,7 @@ class AtomsPane(QWidget):
         self.state = state
         self.instance_box = _text_box(True)
         self.plan_box = _text_box(False, _PlanText(self))
-        self.plan_note = QLabel(self)
-        self.plan_note.setWordWrap(True)
+        self.plan_note = _Note(self)
         self.lines: dict[str, list[AtomLine]] = {"instance": [], "plan": []}
         self._stale = {"instance": True, "plan": True}
         self.shown = False  # the pane can be seen (its dock is open and its tab chosen)
@@ -78,6 +156,10 @@ class AtomsPane(QWidget):
         self._own_edit = False  # the plan shown came from this pane's text
         self._problem_marks: list = []  # the line the reader refused, or those it warned about
         self._notes: list[Note] = []  # what the reader said of the plan text read last
+        self._edited = False  # the plan's text was read here since it was last filled in
+        self._file_notes: list[str] = []  # what the reader said of the files shown
+        self._file_plan: Plan | None = None  # the plan those files hold: the notes go with it
+        self._file_sources: list[Source] = []
         self._filling = False
         self._timer = QTimer(self)
         self._timer.setSingleShot(True)
@@ -92,6 +174,7 @@ class AtomsPane(QWidget):
         state.step_changed.connect(lambda _step: self._mark())
         state.selection.changed.connect(self._follow_selection)
         state.locks_changed.connect(self._show_locks)
+        state.document.saved.connect(self._saved)
 
     def _layout(self) -> None:
         splitter = QSplitter(Qt.Vertical, self)
@@ -113,6 +196,10 @@ class AtomsPane(QWidget):
     # --- following the state ------------------------------------------------------------------
 
     def _stale_all(self) -> None:
+        scenario = self.state.document.scenario
+        self._file_notes = list(scenario.read_warnings) if scenario is not None else []
+        self._file_plan = scenario.plan if scenario is not None else None
+        self._file_sources = scenario.instance_sources + scenario.plan_sources if scenario is not None else []
         self._stale = {"instance": True, "plan": True}
         self._own_edit = False
         self._show_locks()
@@ -155,6 +242,7 @@ class AtomsPane(QWidget):
         if part == "plan":
             self._problem_marks = []
             self._notes = []
+            self._edited = False
 
     def _set_lines(self, part: str, lines: list[AtomLine]) -> None:
         self.lines[part] = lines
@@ -176,9 +264,27 @@ class AtomsPane(QWidget):
         else:
             count = len(track.violations)
             verdict = f"{count} violation{'s' if count != 1 else ''}" if count else "no violation"
-            warned = "".join(f"<br><span style='color:#d9480f'>warning: {escape(note.text)}</span>"
-                             for note in self._notes)
+            warned = "".join(f"<br><span style='color:#d9480f'>warning: {escape(text)}</span>"
+                             for text in self.notes)
             self.plan_note.setText(f"{len(track.plan)} actions, horizon {track.horizon}: {verdict}{warned}")
+
+    @property
+    def notes(self) -> list[str]:
+        """The warnings said below the plan: the reader's on the text edited here, or, while the
+        plan shown is the one read from the files, on those files (``FILE:LINE: ...``)."""
+        if self._edited or self.state.document.plan is not self._file_plan:
+            return [note.text for note in self._notes]
+        return self._file_notes
+
+    def _saved(self) -> None:
+        """A file written: what was said of the text read from it before no longer holds."""
+        scenario = self.state.document.scenario
+        now = scenario.instance_sources + scenario.plan_sources if scenario is not None else []
+        gone = [source.name for source in self._file_sources if not any(source is s for s in now)]
+        self._file_notes = [text for text in self._file_notes if not any(text.startswith(f"{name}:")
+                                                                         for name in gone)]
+        if self.shown:
+            self._show_note()
 
     # --- marks: the object selected, the step shown ----------------------------------------------
 
@@ -218,6 +324,7 @@ class AtomsPane(QWidget):
     def _read(self) -> None:
         """Show the plan the text holds, or say what is wrong with it."""
         text = self.plan_box.toPlainText()
+        self._edited = True
         self._set_lines("plan", [about(line) for line in text.split("\n")])
         scenario = self.state.document.scenario
         try:

@@ -21,7 +21,7 @@ from PyQt5.QtCore import QFileSystemWatcher, QObject, QSettings, QTimer
 from PyQt5.QtWidgets import QAction, QFrame, QHBoxLayout, QLabel, QPushButton, QWidget
 
 from ..state import loading
-from ..state.viewer import ViewerState
+from ..state.viewer import WARNINGS_SAID_MS, ViewerState
 from .files import FileActions, read_problem
 
 #: the setting, and how long (milliseconds) the files must stand still before they are read
@@ -201,7 +201,9 @@ class ReloadOnSave(QObject):
             return
         self.state.document.open(fresh, keep_time=True)
         self.files.remember(fresh)
-        self.state.say(f"{_listed(names)} saved: read again")
+        said = loading.warnings_said(fresh)  # (said on opening too: this says both)
+        self.state.say(f"{_listed(names)} saved: read again" + (f"; {said}" if said else ""),
+                       WARNINGS_SAID_MS if said else 5000)
 
     def _reload(self) -> None:
         """The banner's Reload: File > Reload (which asks before unsaved edits go)."""

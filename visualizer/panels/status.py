@@ -3,7 +3,7 @@ step shown (valid plan, or how many rules it breaks)."""
 
 from __future__ import annotations
 
-from PyQt5.QtCore import QEvent, QSize, Qt
+from PyQt5.QtCore import QEvent, QSize, Qt, QTimer
 from PyQt5.QtWidgets import QLabel, QSizePolicy, QStatusBar, QWidget
 
 from ..state.viewer import ViewerState
@@ -91,7 +91,27 @@ class StatusLine:
         state.shown.connect(lambda _keep: self._show_track())
         state.track_changed.connect(lambda _change: self._show_track())
         state.step_changed.connect(self._show_verdict)
-        state.said.connect(bar.showMessage)
+        state.said.connect(self._say)
+        self._again = ("", 0)
+        self._again_timer = QTimer(bar)  # (the bar's: it goes with the window)
+        self._again_timer.setSingleShot(True)
+        self._again_timer.setInterval(0)
+        self._again_timer.timeout.connect(self._say_again)
+
+    def _say(self, text: str, milliseconds: int) -> None:
+        """A passing message; one said before the window shows (the files of the command line
+        read with warnings) is said again when it shows: Qt hides the summary under a message
+        only while it is visible (else both would be drawn on top of each other)."""
+        self.bar.showMessage(text, milliseconds)
+        if not self.bar.isVisible():  # said again once the window shows, if still said
+            self._again = (text, milliseconds)
+            self._again_timer.start()
+
+    def _say_again(self) -> None:
+        text, milliseconds = self._again
+        if text and self.bar.currentMessage() == text:
+            self.bar.clearMessage()  # (Qt does nothing for the message it says already)
+            self.bar.showMessage(text, milliseconds)
 
     def _show_track(self) -> None:
         self._show_summary()

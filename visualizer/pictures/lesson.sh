@@ -6,12 +6,14 @@
 #   lesson-rule.png          Esc, then the violation deliver/orderAmount clicked: its checker rules
 #   lesson-strip-dialog.png  File > Export strip of states… (the dialog, from the File menu)
 #   lesson-strip.png         the strip export itself (viz --export --strip 21-26, 40 px per cell)
+#   lesson-mistake.png       a plan file with three mistakes opened: the reader's warnings, with
+#                            the file's lines, in the Atoms tab (clicked) and the status bar
 # Screenshots are kept small: 256 colours (PNG8).
 #
 # Usage (needs Xvfb, xdotool and ImageMagick; `viz` on the PATH):
 #   visualizer/pictures/lesson.sh [OUT-FOLDER]          (default: visualizer/pictures)
 # Clicks go to places of the first window's layout at 1366x768 (the Violations tab and its
-# first row); a changed layout needs new coordinates below.
+# first row, the Atoms tab); a changed layout needs new coordinates below.
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -70,4 +72,30 @@ xdotool key Escape
 kill "$viz_pid"
 viz_pid=""
 
-viz "$instance" "$plan" --export "$out/lesson-strip.png" --strip 21-26 --cell 40 --columns 3
+# (exit status 1: the plan is invalid, as check says; the picture is written all the same)
+viz "$instance" "$plan" --export "$out/lesson-strip.png" --strip 21-26 --cell 40 --columns 3 || [ $? -eq 1 ]
+
+# a student's plan with three mistakes, written next to the settings and opened by its
+# relative name (the warnings name the file as it was given, as `check` does)
+cat >"$settings/mistakes.lp" <<'PLAN'
+% a plan with mistakes
+occur(object(robot,1),action(move,(1,0)),2).
+occurs(object(robot,1),action(mvoe,(1,0)),3).
+occurs(object(robot,2),action(move,(0,1),4)).
+PLAN
+(cd "$settings" && XDG_CONFIG_HOME="$settings" exec viz "$instance" mistakes.lp 2>/dev/null) &
+viz_pid=$!
+window=""
+for _ in $(seq 100); do
+  window="$(xdotool search --onlyvisible --name 'mistakes.lp — asprilo viz' 2>/dev/null | head -1 || true)"
+  [ -n "$window" ] && break
+  sleep 0.2
+done
+[ -n "$window" ] || { echo "lesson.sh: the viewer's window did not appear" >&2; exit 1; }
+sleep 1
+xdotool windowfocus --sync "$window"
+xdotool mousemove 1171 665 click 1                 # the Atoms tab
+xdotool mousemove 1300 30                           # the mouse where no tooltip shows
+shoot lesson-mistake.png
+kill "$viz_pid"
+viz_pid=""

@@ -8,12 +8,13 @@ from __future__ import annotations
 
 import re
 import sys
-from collections.abc import Iterable
+import warnings
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 from pathlib import Path
 
 from asprilo.domain import Domain
-from asprilo.errors import InputError
+from asprilo.errors import InputError, InputWarning
 from asprilo.model import Instance, Plan
 from asprilo.reader import read_instance, read_plan, require_plan_fits_instance
 from asprilo.sources import Source, SourceLike, as_sources
@@ -32,6 +33,9 @@ class Scenario:
     plan_sources: list[Source] = field(default_factory=list)
     domain: Domain | None = None  # None: detected from instance and plan
     unfinished: bool = False  # the plan still grows (an online session): no goal check yet
+    #: what the reader warned about reading the files (``FILE:LINE: ...``, as ``check`` says
+    #: them after ``warning:``): the window shows them until another file is read
+    read_warnings: list[str] = field(default_factory=list)
 
     @property
     def title(self) -> str:
@@ -54,19 +58,52 @@ def load_scenario(instance: SourceLike | Iterable[SourceLike],
     instance is refused in the same sentence."""
     instance_sources = as_sources(instance)
     plan_sources = as_sources(plans)
-    the_instance = read_instance(instance_sources)
-    plan_origin = plan_sources or instance_sources
-    the_plan = read_plan(plan_origin)
-    require_plan_fits_instance(the_plan, the_instance, plan_origin, domain)
-    return Scenario(the_instance, the_plan, instance_sources, plan_sources, domain)
+
+    def read() -> Scenario:
+        the_instance = read_instance(instance_sources)
+        plan_origin = plan_sources or instance_sources
+        the_plan = read_plan(plan_origin)
+        require_plan_fits_instance(the_plan, the_instance, plan_origin, domain)
+        return Scenario(the_instance, the_plan, instance_sources, plan_sources, domain)
+    return _kept_warnings(read)
 
 
 def add_plan(scenario: Scenario, plans: SourceLike | Iterable[SourceLike]) -> Scenario:
     """The same instance with the plan read from ``plans``."""
     plan_sources = as_sources(plans)
-    plan = read_plan(plan_sources)
-    require_plan_fits_instance(plan, scenario.instance, plan_sources, scenario.domain)
-    return Scenario(scenario.instance, plan, scenario.instance_sources, plan_sources, scenario.domain)
+
+    def read() -> Scenario:
+        plan = read_plan(plan_sources)
+        require_plan_fits_instance(plan, scenario.instance, plan_sources, scenario.domain)
+        return Scenario(scenario.instance, plan, scenario.instance_sources, plan_sources, scenario.domain)
+    return _kept_warnings(read)
+
+
+def _kept_warnings(read: Callable[[], Scenario]) -> Scenario:
+    """``read()``, with the reader's warnings kept in the scenario (for the window) and given
+    on as they came (``viz`` prints them on standard error as ``check`` does)."""
+    kept: list[warnings.WarningMessage] = []
+    try:
+        with warnings.catch_warnings(record=True) as kept:
+            warnings.simplefilter("always", InputWarning)  # a file read again warns again
+            scenario = read()
+    finally:  # before an error too, as before
+        for warning in kept:
+            warnings.warn_explicit(warning.message, warning.category, warning.filename, warning.lineno)
+    scenario.read_warnings = [str(w.message) for w in kept if issubclass(w.category, InputWarning)]
+    return scenario
+
+
+def warnings_said(scenario: Scenario | None) -> str | None:
+    """One line for the status bar when reading the scenario's files gave warnings, e.g.
+    ``3 warnings reading mistakes.lp: see the Atoms pane`` (``None``: none)."""
+    if scenario is None or not scenario.read_warnings:
+        return None
+    said = scenario.read_warnings
+    sources = scenario.instance_sources + scenario.plan_sources
+    named = [Path(s.name).name for s in sources if any(text.startswith(f"{s.name}:") for text in said)]
+    files = ", ".join(dict.fromkeys(named)) or scenario.title
+    return f"{len(said)} warning{'s' if len(said) != 1 else ''} reading {files}: see the Atoms pane"
 
 
 def reload(scenario: Scenario) -> Scenario:

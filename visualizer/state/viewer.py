@@ -14,8 +14,12 @@ from asprilo.simulate import Violation
 
 from .document import Change, Document
 from .edits import TABLES
+from .loading import warnings_said
 from .observe import Signal
 from .track import Track
+
+#: how long the status bar says that reading a file gave warnings (milliseconds)
+WARNINGS_SAID_MS = 15000
 
 
 class Selection:
@@ -77,6 +81,7 @@ class ViewerState:
         self.step = 0
         self.job: str | None = None  # the title of the job that runs
         self.last_error: str | None = None
+        self._warned = False  # the status bar says that reading the files shown gave warnings
         self.shown = Signal()           # (keep_time) a new scenario (track rebuilt, or None)
         self.track_changed = Signal()   # (Change) the same scenario, changed: the track is new
         self.step_changed = Signal()    # (step) the clock reached another step
@@ -104,6 +109,12 @@ class ViewerState:
         self.shown.emit(keep_time)
         self._keep_selection()
         self.locks_changed.emit()
+        said = warnings_said(self.document.scenario)
+        if said is not None:  # the warnings themselves: in the atoms pane
+            self.say(said, WARNINGS_SAID_MS)
+        elif self._warned:  # those of the files shown before no longer hold
+            self.say("", 0)
+        self._warned = said is not None
 
     def _changed(self, change: Change) -> None:
         self.track = self._track()
