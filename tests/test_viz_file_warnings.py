@@ -115,7 +115,7 @@ def test_a_plan_file_opened_is_said_in_the_atoms_pane_and_the_status_bar(window,
     assert window.open_files([str(SMALL_A)], [str(mistakes)])   # as File > Open, Recent files
     assert window.statusBar().currentMessage() == "3 warnings reading mistakes.lp: see the Atoms pane"
     pane = atoms_pane(window, qtbot)
-    assert note_lines(pane) == ["1 actions, horizon 3: 7 violations", *warned(mistakes)]
+    assert note_lines(pane) == ["1 action, horizon 3: 7 violations", *warned(mistakes)]
     note = pane.plan_note                                       # wrapped, all of it in view
     qtbot.waitUntil(lambda: note.height() >= note.label.heightForWidth(note.viewport().width()) > 0, timeout=10_000)
     assert note.height() > 4 * note.label.fontMetrics().lineSpacing() and note.verticalScrollBar().maximum() == 0
@@ -202,7 +202,7 @@ def test_the_plan_edited_in_the_pane_has_the_panes_own_warnings(window, qtbot, m
     assert note_lines(pane)[1:] == warned(mistakes)
     pane.plan_box.setPlainText(pane.plan_box.toPlainText())     # read, the same plan: the pane's own words
     pane.read_now()
-    assert note_lines(pane) == ["1 actions, horizon 3: 7 violations",
+    assert note_lines(pane) == ["1 action, horizon 3: 7 violations",
                                 "warning: <plan atoms>:1: there is no action 'mvoe': did you mean move? "
                                 "(the actions: deliver, move, pickup, putdown)"]
 
@@ -213,4 +213,4 @@ def test_the_plan_saved_from_the_viewer_is_no_longer_warned_about(window, qtbot,
     pane = atoms_pane(window, qtbot)
     window.reload_on_save.action.setChecked(False)
     window.state.document.save_plan(tmp_path / "saved.lp")
-    assert note_lines(pane) == ["1 actions, horizon 3: 7 violations"]
+    assert note_lines(pane) == ["1 action, horizon 3: 7 violations"]

@@ -266,7 +266,8 @@ class AtomsPane(QWidget):
             verdict = f"{count} violation{'s' if count != 1 else ''}" if count else "no violation"
             warned = "".join(f"<br><span style='color:#d9480f'>warning: {escape(text)}</span>"
                              for text in self.notes)
-            self.plan_note.setText(f"{len(track.plan)} actions, horizon {track.horizon}: {verdict}{warned}")
+            actions = f"{len(track.plan)} action{'s' * (len(track.plan) != 1)}"
+            self.plan_note.setText(f"{actions}, horizon {track.horizon}: {verdict}{warned}")
 
     @property
     def notes(self) -> list[str]:

@@ -123,8 +123,8 @@ class StatusLine:
             self.summary.setText("No instance open.")
             return
         counts = scenario.instance.counts()
-        plan = (f"plan: {len(scenario.plan)} actions, horizon {track.horizon}" if len(scenario.plan)
-                else "no plan")
+        actions = len(scenario.plan)
+        plan = f"plan: {actions} action{'s' * (actions != 1)}, horizon {track.horizon}" if actions else "no plan"
         self.summary.setText(
             f"{scenario.title}   ·   domain {track.domain.label}   ·   {counts['x']}×{counts['y']}, "
             f"{counts['robots']} robots, {counts['shelves']} shelves, {counts['orders']} orders   ·   {plan}")
