@@ -26,7 +26,7 @@ class Limits:
 
     coordinate: int = 10_000  # largest |X| and |Y| of any cell, and grid xsize / ysize
     facts: int = 2_000_000  # facts of an instance (grid nodes counted) or a plan, cells of a map
-    robot_steps: int = 2_000_000  # a plan's horizon times the robots of its instance; also the largest |T|
+    robot_steps: int = 1_000_000  # a plan's horizon times the robots of its instance; also the largest |T|
     depth: int = 100  # nesting of terms: f(g(h(1))) has depth 3
     string_chars: int = 100_000  # characters of one string (as written, between its quotes)
     fact_chars: int = 1_000_000  # characters of one fact or #const, constants written out
