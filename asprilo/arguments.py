@@ -52,7 +52,8 @@ def megabytes_argument(text: str) -> int:
     return megabytes
 
 
-def _limit_argument(text: str) -> str:
+def limit_argument(text: str) -> str:
+    """``--limit NAME=N``, checked when the command line is read."""
     try:
         parse_option(text)
     except InputError as error:
@@ -67,7 +68,7 @@ def add_reading_options(parser: argparse.ArgumentParser) -> None:
     group.add_argument("--allow-rules", action="store_true",
                        help="read rules in data files too, grounded under the rule-seconds and rule-mb limits")
     shown = ", ".join(f"{name.replace('_', '-')}={getattr(defaults, name)}" for name in NAMES)
-    group.add_argument("--limit", action="append", default=[], type=_limit_argument, metavar="NAME=N",
+    group.add_argument("--limit", action="append", default=[], type=limit_argument, metavar="NAME=N",
                        help=f"raise (or lower) a limit on data (repeatable); defaults: {shown}")
 
 

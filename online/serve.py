@@ -30,9 +30,9 @@ import sys
 import threading
 from collections.abc import Callable
 
-from asprilo.arguments import domain_argument, port_argument, seconds_argument
+from asprilo.arguments import domain_argument, limit_argument, port_argument, seconds_argument
 from asprilo.errors import InputError
-from asprilo.limits import current, parse_option, using
+from asprilo.limits import current, using
 
 from .planner import OnlinePlanner, Planner, Schedule, anytime_planner, encodings_planner, parse_arrivals
 from .protocol import DONE, END, RESET, Channel, Message, action_facts, check_facts, error
@@ -70,19 +70,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
                           help=f"clients served at once (default {CLIENTS}); more are turned away")
         role.add_argument("--idle-timeout", type=float, default=IDLE_SECONDS, metavar="S",
                           help=f"let a client go after S seconds of silence (default {IDLE_SECONDS:g})")
-        role.add_argument("--limit", action="append", default=[], dest="role_limits", type=_limit_argument,
+        role.add_argument("--limit", action="append", default=[], dest="role_limits", type=limit_argument,
                           metavar="NAME=N", help="a limit on data, as --limit before the role (repeatable); "
                                                  "line-seconds=S: each line must arrive whole within S seconds "
                                                  "of its first byte, a client's first line within S of "
                                                  "connecting, each answer be taken within S (default 60)")
-
-
-def _limit_argument(text: str) -> str:
-    try:
-        parse_option(text)
-    except InputError as error:
-        raise argparse.ArgumentTypeError(error.message) from None
-    return text
 
 
 def run(args: argparse.Namespace) -> int:

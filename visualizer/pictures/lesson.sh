@@ -36,18 +36,23 @@ trap cleanup EXIT
 export DISPLAY="$display"
 for _ in $(seq 50); do xdpyinfo >/dev/null 2>&1 && break; sleep 0.1; done
 
+# wait for the viewer's window titled "$1 — asprilo viz" and focus it
+focus_window() {
+  local window=""
+  for _ in $(seq 100); do
+    window="$(xdotool search --onlyvisible --name "$1 — asprilo viz" 2>/dev/null | head -1 || true)"
+    [ -n "$window" ] && break
+    sleep 0.2
+  done
+  [ -n "$window" ] || { echo "lesson.sh: the viewer's window did not appear" >&2; exit 1; }
+  sleep 1
+  xdotool windowfocus --sync "$window"
+}
+
 # a fresh settings folder: the first window's layout, no recent files
 XDG_CONFIG_HOME="$settings" viz "$instance" "$plan" --step 23 &
 viz_pid=$!
-window=""
-for _ in $(seq 100); do
-  window="$(xdotool search --onlyvisible --name 'wrong_outcome.txt — asprilo viz' 2>/dev/null | head -1 || true)"
-  [ -n "$window" ] && break
-  sleep 0.2
-done
-[ -n "$window" ] || { echo "lesson.sh: the viewer's window did not appear" >&2; exit 1; }
-sleep 1
-xdotool windowfocus --sync "$window"
+focus_window wrong_outcome.txt
 shoot() {
   sleep 1.5
   import -window root "$out/$1"
@@ -85,15 +90,7 @@ occurs(object(robot,2),action(move,(0,1),4)).
 PLAN
 (cd "$settings" && XDG_CONFIG_HOME="$settings" exec viz "$instance" mistakes.lp 2>/dev/null) &
 viz_pid=$!
-window=""
-for _ in $(seq 100); do
-  window="$(xdotool search --onlyvisible --name 'mistakes.lp — asprilo viz' 2>/dev/null | head -1 || true)"
-  [ -n "$window" ] && break
-  sleep 0.2
-done
-[ -n "$window" ] || { echo "lesson.sh: the viewer's window did not appear" >&2; exit 1; }
-sleep 1
-xdotool windowfocus --sync "$window"
+focus_window mistakes.lp
 xdotool mousemove 1171 665 click 1                 # the Atoms tab
 xdotool mousemove 1300 30                           # the mouse where no tooltip shows
 shoot lesson-mistake.png
