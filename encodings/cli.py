@@ -94,20 +94,14 @@ def configure(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     if args.list:
-        for encoding in reference_encodings():
-            theory = f" [{encoding.theory}]" if encoding.theory else ""
-            print(f"{encoding.domain.value:<3} {encoding.name:<13} {encoding.summary}{theory}")
-        return 0
+        return _list_encodings()
     if args.instance is None:
         raise InputError("no instance given (asprilo solve INSTANCE)")
     if args.output == "-":
         args.output = None  # standard output, as without -o
     inputs = [args.instance, *(name for name in args.encoding or () if Path(name).is_file())]
     check_output(args.output, inputs, standard_output="-o -")
-    method = args.method or ("asp" if args.encoding else "auto")
-    time_limit = args.time_limit
-    if time_limit is None:
-        time_limit = ANYTIME_SECONDS if method == "anytime" else DEFAULT_TIME_LIMIT
+    method, time_limit = _method_and_time_limit(args)
     instance = read_instance(args.instance)
     domain = args.domain or detect_domain(instance)
     encoding, horizon = chosen_encoding(args, domain)
@@ -128,6 +122,23 @@ def run(args: argparse.Namespace) -> int:
     elif outcome.found and not args.output:
         sys.stdout.write(format_plan(outcome.plan))
     return 0 if outcome.found else 1
+
+
+def _list_encodings() -> int:
+    """``solve --list``: a line per reference encoding."""
+    for encoding in reference_encodings():
+        theory = f" [{encoding.theory}]" if encoding.theory else ""
+        print(f"{encoding.domain.value:<3} {encoding.name:<13} {encoding.summary}{theory}")
+    return 0
+
+
+def _method_and_time_limit(args: argparse.Namespace) -> tuple[str, float]:
+    """The method (``auto``; ``asp`` with ``--encoding``) and its time limit (the anytime
+    planner's own default when it runs alone)."""
+    method = args.method or ("asp" if args.encoding else "auto")
+    if args.time_limit is not None:
+        return method, args.time_limit
+    return method, ANYTIME_SECONDS if method == "anytime" else DEFAULT_TIME_LIMIT
 
 
 def chosen_encoding(args: argparse.Namespace, domain: Domain) -> tuple[Encoding, int | None]:
