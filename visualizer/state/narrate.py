@@ -60,12 +60,21 @@ def narrate(track: Track, step: int) -> str:
     parts = [_attach(_group_words(track, step, actions), told[key]) for key, actions in shown]
     hidden = [actions for _key, actions in ranked[len(shown):]]
     if hidden:
-        moves = all(len(actions) == 1 and actions[0].name == "move" for actions in hidden)
-        noun = ("move" if moves else "action") + ("" if len(hidden) == 1 else "s")
-        parts.append(f"{len(hidden)} more {noun}")
-    # an action with a clause has commas of its own: the actions are then set apart by semicolons
-    said = "; ".join(parts[:-1]) + "; and " + parts[-1] if any(told.values()) and len(parts) > 1 else _and(parts)
-    return f"step {step}: {said}" + _broken(rest)
+        parts.append(_more(hidden))
+    return f"step {step}: {_joined(parts, clauses=any(told.values()))}" + _broken(rest)
+
+
+def _more(hidden: list[list[Action]]) -> str:
+    """``2 more moves``: the actions not named."""
+    moves = all(len(actions) == 1 and actions[0].name == "move" for actions in hidden)
+    noun = ("move" if moves else "action") + ("" if len(hidden) == 1 else "s")
+    return f"{len(hidden)} more {noun}"
+
+
+def _joined(parts: list[str], clauses: bool) -> str:
+    """The actions' words in a row; an action with a clause has commas of its own, so the
+    actions are then set apart by semicolons."""
+    return "; ".join(parts[:-1]) + "; and " + parts[-1] if clauses and len(parts) > 1 else _and(parts)
 
 
 def verdict(track: Track, unfinished: bool = False) -> str:
