@@ -22,6 +22,16 @@ from asprilo.online.planner import OnlinePlanner, Schedule, encodings_planner  #
 from asprilo.online.serve import listen, serve, simulator_session, solver_session  # noqa: E402
 
 
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The Qt tests (marker ``gui``) first, in a fresh process, the rest after them in their
+    usual order.  Twice in six CI runs of the whole suite a viewer test crashed (SIGSEGV)
+    late in the run, inside Qt while it made a menu or listed actions, at a different place
+    each time, never in a run of the viewer tests alone (or of the whole suite here, under
+    glibc's heap checks): memory spoilt by something earlier in the process is the likely
+    cause, not yet found.  Run first, the viewer tests meet a clean process."""
+    items.sort(key=lambda item: item.get_closest_marker("gui") is None)
+
+
 @pytest.fixture(autouse=True)
 def qt_objects_deleted_between_tests():
     """After each test, the widgets it closed are deleted and its Python garbage collected, here:
