@@ -29,7 +29,7 @@ from .jobs.runner import JobRunner
 from .panels.atoms_pane import AtomsPane
 from .panels.banner import SessionBanner
 from .panels.checker_rule import RuleNote
-from .panels.commands import Table, make_actions, show_shortcuts
+from .panels.commands import Table, make_actions, show_shortcuts, submenu
 from .panels.controls import TransportBar
 from .panels.dialogs import confirm_discard
 from .panels.docks import Panels
@@ -106,7 +106,7 @@ class MainWindow(QMainWindow):
         layout.addWidget(self.banner)
         layout.addWidget(self.view, 1)
         self.setCentralWidget(centre)
-        self.menus = {name: self.menuBar().addMenu(title) for name, title in MENUS}
+        self.menus = {name: submenu(self.menuBar(), title) for name, title in MENUS}
         # the panels and the status line follow a new track before the stage moves the clock
         self.panels = Panels(self.state, self, QMenu("&Panels", self))
         self.status_line = StatusLine(self.state, self.statusBar())
@@ -191,7 +191,7 @@ class MainWindow(QMainWindow):
         file = menus["file"]
         _fill(file, [editor["new"], commands["open"], commands["open_plan"], commands["reload"],
                      self.reload_on_save.action])
-        self.files.install_recent(file.addMenu("Recent &files"))
+        self.files.install_recent(submenu(file, "Recent &files"))
         _fill(file, [None, editor["save"], editor["save_as"], editor["save_template"], editor["save_plan"], None,
                      commands["export_picture"], commands["export_animation"], commands["export_strip"], None,
                      commands["quit"]])

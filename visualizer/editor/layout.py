@@ -20,7 +20,7 @@ from PyQt5.QtWidgets import QDockWidget, QFileDialog, QMainWindow, QMenu
 from asprilo.errors import InputError
 from asprilo.model import Cell, Instance, Robot
 
-from ..panels.commands import Table, make_actions
+from ..panels.commands import Table, make_actions, submenu
 from ..panels.dialogs import SizeDialog, StockDialog, confirm_discard
 from ..panels.docks import Panels
 from ..panels.files import remember_folder, start_folder
@@ -85,7 +85,7 @@ class Editor(QObject):
         edit.addAction(self.commands["undo"])
         edit.addAction(self.commands["redo"])
         edit.addSeparator()
-        tools = edit.addMenu("Edit &tool")
+        tools = submenu(edit, "Edit &tool")
         for action in self.palette.group.actions():
             tools.addAction(action)
         edit.addAction(self.commands["resize"])

@@ -52,7 +52,7 @@ from asprilo.errors import InputError
 from asprilo.reader import value_of
 from asprilo.simulate import Violation
 
-from ..panels.commands import Table, make_actions
+from ..panels.commands import Table, make_actions, menu_entry, submenu
 from ..panels.dialogs import GenerateDialog
 from ..panels.status import ElidedLabel
 from ..scene.player import Player
@@ -197,7 +197,8 @@ class JobRunner(QObject):
         self.recent_menu: QMenu | None = None
         self.methods = QActionGroup(self)
         for method, text in SOLVE_METHODS.items():
-            action = self.methods.addAction(text)
+            action = QAction(text, self)
+            self.methods.addAction(action)
             action.setCheckable(True)
             action.setData(method)
             action.triggered.connect(lambda _checked=False, m=method: self.settings.setValue("tools/method", m))
@@ -209,10 +210,10 @@ class JobRunner(QObject):
         menu.addAction(self.commands["generate"])
         menu.addSeparator()
         menu.addAction(self.commands["solve"])
-        methods = menu.addMenu("Solve &method")
+        methods = submenu(menu, "Solve &method")
         methods.addActions(self.methods.actions())
         methods.aboutToShow.connect(self._show_method)
-        self.encoding_menu = menu.addMenu("Solve &with encoding")
+        self.encoding_menu = submenu(menu, "Solve &with encoding")
         self.encoding_menu.aboutToShow.connect(self._fill_encodings)
         menu.addAction(self.commands["solve_file"])
         recent = QMenu("&Recent encoding files", menu)
@@ -236,7 +237,7 @@ class JobRunner(QObject):
         chosen = str(self.settings.value("tools/encoding", "plain"))
         names = encoding_names(self.state.document.domain) if self.state.document.scenario is not None else ["plain"]
         for name in names:
-            action = self.encoding_menu.addAction(name)
+            action = menu_entry(self.encoding_menu, name)
             action.setCheckable(True)
             action.setChecked(name == chosen)
             self.encodings.addAction(action)

@@ -9,7 +9,17 @@ from itertools import zip_longest
 
 from PyQt5.QtCore import Qt
 from PyQt5.QtGui import QKeySequence
-from PyQt5.QtWidgets import QAction, QDialog, QDialogButtonBox, QLabel, QMainWindow, QVBoxLayout, QWidget
+from PyQt5.QtWidgets import (
+    QAction,
+    QDialog,
+    QDialogButtonBox,
+    QLabel,
+    QMainWindow,
+    QMenu,
+    QMenuBar,
+    QVBoxLayout,
+    QWidget,
+)
 
 from .screen import fit_dialog, scrolling
 
@@ -28,6 +38,23 @@ def make_actions(owner: QWidget, table: Table, slots: dict[str, Callable[[], obj
         owner.addAction(action)
         actions[name] = action
     return actions
+
+
+def submenu(parent: QMenu | QMenuBar, title: str) -> QMenu:
+    """A menu in ``parent`` made here, not by ``parent.addMenu(title)``: Qt deletes the menus
+    it makes without telling Python, and the wrapper Python keeps may then be handed out for
+    a new menu at the same address (a crash); a menu made here tells its wrapper."""
+    menu = QMenu(title, parent)
+    parent.addMenu(menu)
+    return menu
+
+
+def menu_entry(menu: QMenu, text: str) -> QAction:
+    """An entry of ``menu`` made here, for the reason :func:`submenu` gives (entries of menus
+    filled again each time they open are deleted by ``clear()``)."""
+    action = QAction(text, menu)
+    menu.addAction(action)
+    return action
 
 
 def plain(text: str) -> str:

@@ -20,6 +20,7 @@ from asprilo.errors import InputError
 from ..state import loading
 from ..state.loading import Scenario
 from ..state.viewer import ViewerState
+from .commands import menu_entry
 from .dialogs import confirm_discard
 
 RECENT_LIMIT = 10
@@ -150,8 +151,8 @@ class FileActions(QObject):
         menu.clear()
         for entry in self.recent():
             names = [Path(p).name for p in entry["instance"] + entry["plans"]]
-            action = menu.addAction(" + ".join(names))
+            action = menu_entry(menu, " + ".join(names))
             action.setToolTip("\n".join(entry["instance"] + entry["plans"]))
             action.triggered.connect(lambda _c=False, e=entry: self.open_files(e["instance"], e["plans"]))
         if not menu.actions():
-            menu.addAction("(none yet)").setEnabled(False)
+            menu_entry(menu, "(none yet)").setEnabled(False)
