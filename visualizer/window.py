@@ -15,7 +15,9 @@ from PyQt5.QtWidgets import (
     QInputDialog,
     QMainWindow,
     QMenu,
+    QMenuBar,
     QMessageBox,
+    QStatusBar,
     QToolBar,
     QVBoxLayout,
     QWidget,
@@ -106,6 +108,9 @@ class MainWindow(QMainWindow):
         layout.addWidget(self.banner)
         layout.addWidget(self.view, 1)
         self.setCentralWidget(centre)
+        # the bars made here, not by Qt on first use: see panels/commands.submenu
+        self.setMenuBar(QMenuBar(self))
+        self.setStatusBar(QStatusBar(self))
         self.menus = {name: submenu(self.menuBar(), title) for name, title in MENUS}
         # the panels and the status line follow a new track before the stage moves the clock
         self.panels = Panels(self.state, self, QMenu("&Panels", self))
