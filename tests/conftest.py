@@ -24,11 +24,10 @@ from asprilo.online.serve import listen, serve, simulator_session, solver_sessio
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     """The Qt tests (marker ``gui``) first, in a fresh process, the rest after them in their
-    usual order.  Twice in six CI runs of the whole suite a viewer test crashed (SIGSEGV)
-    late in the run, inside Qt while it made a menu or listed actions, at a different place
-    each time, never in a run of the viewer tests alone (or of the whole suite here, under
-    glibc's heap checks): memory spoilt by something earlier in the process is the likely
-    cause, not yet found.  Run first, the viewer tests meet a clean process."""
+    usual order.  Three times in eight CI runs of the whole suite a viewer test crashed
+    (SIGSEGV) inside Qt while it made a menu or listed actions, never in a run here; the
+    likely cause, wrappers of menus Qt made and deleted, is gone (panels/commands.submenu),
+    and the viewer tests meet a clean process all the same."""
     items.sort(key=lambda item: item.get_closest_marker("gui") is None)
 
 
