@@ -261,7 +261,8 @@ def test_it_plans_from_a_state_in_the_middle_of_a_plan(steps):
     from asprilo.simulate import simulate
 
     instance = read_instance(PAPER / "1x2x4/x11_y6_n66_r8_s16_ps1_pr16_u16_o8_N001.lp")
-    first = plan_anytime(instance, Domain.B, time_limit=2)
+    found = threading.Event()  # the first plan, whatever the machine's speed
+    first = plan_anytime(instance, Domain.B, time_limit=60, cancel=found, on_improvement=lambda _: found.set())
     done = Plan([action for action in first.plan.actions if action.step <= steps])
     now = world_at(instance, simulate(instance, done, Domain.B).state(steps))
     assert any(robot.carries is not None for robot in now.robots.values())

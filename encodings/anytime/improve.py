@@ -29,7 +29,7 @@ from asprilo.domain import Job
 from asprilo.model import Cell
 
 from .reservations import Reservations, Track
-from .router import LEVELS, Router
+from .router import Router
 from .work import Work
 
 KINDS = ("alone", "crowd", "tail", "random", "swap", "order")
@@ -37,8 +37,6 @@ KINDS = ("alone", "crowd", "tail", "random", "swap", "order")
 GROUP = 8
 #: how many steps before a robot's finish a ``tail`` neighbourhood starts
 TAIL = 30
-#: routing in a neighbourhood gives up sooner than for a first plan: it can be undone
-LNS_LEVELS = LEVELS[:3]
 #: seconds a ``swap`` may spend re-assigning
 SWAP_SECONDS = 0.5
 
@@ -193,7 +191,7 @@ class Improver:
         if start > 0:
             tasks = tasks[sum(1 for step in old.done if step <= start):]
             begin = old.at(start)
-        found = self.router.route(robot, tasks, begin, start, LNS_LEVELS, self.work.parking())
+        found = self.router.route(robot, tasks, begin, start, quick=True, avoid=self.work.parking())
         if found is None:
             return False
         cells, done = found

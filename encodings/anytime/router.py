@@ -1,9 +1,12 @@
-"""Route one robot's errand around the fixed tracks of the others, with ``route.lp``.
+"""Route one robot's errand around the fixed tracks of the others.
 
-Python prepares a small search space, clingo searches it: for every leg of the errand (the
+Python prepares a small search space (:class:`~.space.Space`): for every leg of the errand (the
 way to one task) a corridor of cells along a shortest route, each cell with the steps at
 which the robot can be there if it is at most ``slack`` steps late; plus the reservations
-of the other robots inside the corridors.  When no route fits, the corridors widen and
+of the other robots inside the corridors.  One of two engines searches it: the Python search
+of :mod:`.timed_search` (the default: no solver to start for each of thousands of calls) or
+the logic program ``route.lp`` (the same search, written for clingo's grounder; both find
+the same earliest arrival).  When no route fits, the corridors widen and
 the slack grows (:data:`LEVELS`) before the errand is given up.
 """
 
@@ -22,7 +25,9 @@ from asprilo.model import Cell
 
 from .errands import Task
 from .grid import Grid, cells_of, widen
-from .reservations import FOREVER, Reservations
+from .reservations import Reservations
+from .space import Space
+from .timed_search import search
 
 PROGRAM = Path(__file__).resolve().parent / "route.lp"
 
@@ -37,7 +42,13 @@ class Level:
     detour: int = 0
 
 
-LEVELS = (Level(1, 6), Level(2, 20), Level(4, 60), Level(None, 150, 12), Level(None, 400, 10**6))
+#: the levels per engine, and how many of them a repair of the large-neighbourhood search tries
+#: (it can be undone, so it gives up sooner).  Grounding costs what the windows hold, so
+#: ``route.lp`` starts narrow; the Python search visits little more than one route when one
+#: fits, but all of the windows when none does, so it starts wide and widens in fewer levels.
+LEVELS = {"asp": (Level(1, 6), Level(2, 20), Level(4, 60), Level(None, 150, 12), Level(None, 400, 10**6)),
+          "python": (Level(3, 30), Level(None, 60, 12), Level(None, 400, 10**6))}
+QUICK = {"asp": 3, "python": 2}
 #: a level whose corridors hold more (cell, step) pairs than this is not tried
 MAX_SLOTS = 300_000
 #: how many steps longer a way may get by keeping off the cells where others park
@@ -52,6 +63,7 @@ class Leg:
     start: Cell
     earliest: int        # the step the robot could set out at, were nothing in its way
     length: int          # steps of a shortest way
+    deadline: int        # the last step at which the task may be reached (``slack`` steps late)
     windows: dict[Cell, tuple[int, int]]
 
 
@@ -59,18 +71,22 @@ class Router:
     """Routes errands on one floor against one reservation table; ``stopped()`` true ends
     the widening of a search early (no route then)."""
 
-    def __init__(self, grid: Grid, reservations: Reservations, stopped: Callable[[], bool] = lambda: False):
-        self.grid, self.reservations, self.stopped = grid, reservations, stopped
+    def __init__(self, grid: Grid, reservations: Reservations, stopped: Callable[[], bool] = lambda: False,
+                 engine: str = "python"):
+        if engine not in ENGINES:
+            raise ValueError(f"unknown routing engine {engine!r} (known: {', '.join(ENGINES)})")
+        self.grid, self.reservations, self.stopped, self.engine = grid, reservations, stopped, engine
 
-    def route(self, robot: int, tasks: list[Task], begin: Cell, step: int = 0,
-              levels: tuple[Level, ...] = LEVELS, avoid: frozenset[Cell] = frozenset()
-              ) -> tuple[list[Cell], dict[int, Task]] | None:
+    def route(self, robot: int, tasks: list[Task], begin: Cell, step: int = 0, quick: bool = False,
+              avoid: frozenset[Cell] = frozenset()) -> tuple[list[Cell], dict[int, Task]] | None:
         """The cells of ``robot`` after steps ``step`` .. parked and the tasks it does at
-        which step, on the first level that has a route; ``None`` when none has.  The
+        which step, on the first level that has a route; ``None`` when none has (``quick``:
+        after fewer levels).  The
         corridors keep off the cells of ``avoid`` (where others will park) unless that
         makes a way more than :data:`DETOUR` steps longer."""
         passable = [self._passable(robot, tasks, number) for number in range(len(tasks))]
-        for level in levels:
+        levels = LEVELS[self.engine]
+        for level in levels[:QUICK[self.engine]] if quick else levels:
             if self.stopped():
                 return None
             legs = self._legs(tasks, begin, step, passable, level, avoid)
@@ -135,7 +151,7 @@ class Router:
                 first, last = earliest + int(from_start[x, y]), earliest + length + level.slack - int(to_task[x, y])
                 if first <= last:
                     windows[(x, y)] = (first, last)
-            legs.append(Leg(task, start, earliest, length, windows))
+            legs.append(Leg(task, start, earliest, length, earliest + length + level.slack, windows))
             end = min(task.cells, key=lambda cell: from_start[cell])
             start, earliest = end, earliest + length + 1
         return legs
@@ -147,82 +163,28 @@ class Router:
         route = self.grid.mask(self.grid.path(start, to_task))
         return widen(route, level.radius) & allowed & (from_start < INFINITE) & (to_task < INFINITE)
 
-    # --- the facts and the solver --------------------------------------------------------------
-
-    def _facts(self, robot: int, legs: list[Leg], begin: Cell, step: int) -> str:
-        out = [f"begin({_c(begin)},{step}).", f"last({len(legs)})."]
-        spans: dict[Cell, list[int]] = {}
-        for number, leg in enumerate(legs, 1):
-            out.append(f"acts({number})." if leg.task.name != "park" else "")
-            if leg.task.carrying:
-                out.append(f"carrying({number}).")
-            for cell, (first, last) in leg.windows.items():
-                out.append(f"window({number},{_c(cell)},{first},{last}).")
-                span = spans.setdefault(cell, [first, last])
-                span[0], span[1] = min(span[0], first), max(span[1], last)
-            out += self._task_cells(robot, number, leg)
-        out += self._others(robot, spans)
-        out += self._shelves(robot, legs)
-        return "\n".join(out)
-
-    def _task_cells(self, robot: int, number: int, leg: Leg) -> list[str]:
-        out = []
-        table = self.reservations
-        for cell in leg.task.cells:
-            if leg.task.name == "putdown" and leg.task.shelf is not None and cell != table.homes.get(leg.task.shelf):
-                out.append(f"task({number},{_c(cell)}).")
-                settle = table.last_loaded_visit(cell, robot) + 1
-                if settle > 0:
-                    out.append(f"settle({number},{min(settle, FOREVER)}).")
-            elif leg.task.name != "park":
-                out.append(f"task({number},{_c(cell)}).")
-            elif self.reservations.stay(cell, robot) is None:
-                out.append(f"task({number},{_c(cell)}).")
-                last = self.reservations.last_visit(cell, robot)
-                if last >= 0:
-                    out.append(f"free_from({_c(cell)},{last + 1}).")
-        return out
-
-    def _others(self, robot: int, spans: dict[Cell, list[int]]) -> list[str]:
-        """The other robots inside the corridors: where they are, stay and move."""
-        out = []
-        table = self.reservations
-        for cell, (first, last) in spans.items():
-            out += [f"busy({_c(cell)},{t})." for t in table.busy(cell, first, last, robot)]
-            since = table.stay(cell, robot)
-            if since is not None and since <= last:
-                out.append(f"stays({_c(cell)},{since}).")
-            out += [f"crossing({_c(source)},{_c(cell)},{t})."
-                    for source, t in table.crossings(cell, first, last + 1, robot) if source in spans]
-        return out
-
-    def _shelves(self, robot: int, legs: list[Leg]) -> list[str]:
-        """The shelves of other robots that rest in a carrying leg's corridor part of the time."""
-        own = {leg.task.shelf for leg in legs if leg.task.shelf is not None}
-        moving = self.reservations.moving_shelves(own)
-        cells = {cell for leg in legs if leg.task.carrying for cell in leg.windows}
-        out = []
-        for shelf, cell in moving.items():
-            if cell in cells:
-                out += [f"rests({_c(cell)},{first},{min(last, FOREVER)})."
-                        for first, last in self.reservations.resting(shelf)]
-        for cell, since in self.reservations.placed(own).values():  # put down away from their cells
-            if cell in cells:
-                out.append(f"rests({_c(cell)},{since},{FOREVER}).")
-        return out
+    # --- the search -------------------------------------------------------------------------
 
     def _solve(self, robot: int, legs: list[Leg], begin: Cell, step: int
                ) -> tuple[list[Cell], dict[int, Task]] | None:
-        # a Control of its own, not the driver's (asprilo.solver says why: hundreds of tiny calls)
-        control = clingo.Control(["--warn=none"])
-        control.load(str(PROGRAM))
-        control.add("base", [], self._facts(robot, legs, begin, step))
-        control.ground([("base", [])])
-        symbols: list[clingo.Symbol] = []
-        result = control.solve(on_model=lambda model: symbols.extend(model.symbols(shown=True)))
-        if not result.satisfiable or not any(s.name == "arrival" for s in symbols):
-            return None
-        return _route(symbols, [leg.task for leg in legs], step)
+        space = Space.gather(robot, self.reservations, [leg.task for leg in legs], [leg.windows for leg in legs],
+                             begin, step)
+        space.estimate([leg.deadline for leg in legs], [leg.length for leg in legs])
+        return ENGINES[self.engine](space)
+
+
+def asp_search(space: Space) -> tuple[list[Cell], dict[int, Task]] | None:
+    """``route.lp`` on ``space``: the route with the earliest arrival, or ``None``."""
+    # a Control of its own, not the driver's (asprilo.solver says why: hundreds of tiny calls)
+    control = clingo.Control(["--warn=none"])
+    control.load(str(PROGRAM))
+    control.add("base", [], space.facts())
+    control.ground([("base", [])])
+    symbols: list[clingo.Symbol] = []
+    result = control.solve(on_model=lambda model: symbols.extend(model.symbols(shown=True)))
+    if not result.satisfiable or not any(s.name == "arrival" for s in symbols):
+        return None
+    return _route(symbols, space.tasks, space.step)
 
 
 def _too_late(legs: list[Leg], table: Reservations, robot: int) -> bool:
@@ -236,8 +198,8 @@ def _too_late(legs: list[Leg], table: Reservations, robot: int) -> bool:
     return False
 
 
-def _c(cell: Cell) -> str:
-    return f"({cell[0]},{cell[1]})"
+#: the routing engines: the Python search (:mod:`.timed_search`) and the logic program ``route.lp``
+ENGINES = {"python": search, "asp": asp_search}
 
 
 def _route(symbols: list[clingo.Symbol], tasks: list[Task], step: int) -> tuple[list[Cell], dict[int, Task]]:

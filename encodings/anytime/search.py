@@ -27,11 +27,10 @@ from asprilo.checker import Report, check
 from asprilo.domain import Domain
 from asprilo.model import Instance, Plan
 
-from ..solving.bounds import AwaitedBounds, LowerBounds
+from ..solving.bounds import AwaitedBounds, LowerBounds, bounds_beside
 from ..solving.status import IMPROVED, Attempt, SolveStatus
 from ..solving.watch import Watch
 from . import DEFAULT_SECONDS
-from .bound import makespan_bound, sum_of_costs_bound
 from .grid import Grid
 from .improve import Improver
 from .plans import plan_of
@@ -182,15 +181,18 @@ def _clock() -> float:
 def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = DEFAULT_SECONDS,
                  cancel: threading.Event | None = None,
                  on_improvement: Callable[[Improvement], None] | None = None, seed: int = 0, *,
-                 watch: Watch | None = None, bounds: LowerBounds | None = None) -> AnytimeResult:
+                 watch: Watch | None = None, bounds: LowerBounds | None = None, router: str = "python"
+                 ) -> AnytimeResult:
     """A checked plan for ``instance`` as soon as possible, then better ones (makespan first,
     then sum of costs) until ``time_limit`` seconds have passed, ``cancel`` is set, or a
     plan meets the lower bound.  ``on_improvement`` hears of every plan reported.
 
     ``watch``: the stop-watch of a solve that runs the planner (its time limit and cancel
-    replace ``time_limit`` and ``cancel``); ``bounds``: the lower bounds, when known (or
+    replace ``time_limit`` and ``cancel``); ``bounds``: the lower bounds, when known (else
+    computed here, or beside the search for a large instance: ``bounds_beside``; or
     :class:`~asprilo.encodings.solving.bounds.AwaitedBounds`, when another process computes
-    them: the planner starts at once and takes them when they come).
+    them: the planner starts at once and takes them when they come); ``router``: the routing
+    engine, ``python`` or ``asp`` (``route.lp``; the same routes, slower).
     """
     limit = DEFAULT_SECONDS if time_limit is None else time_limit
     own = watch is None
@@ -198,18 +200,21 @@ def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = 
         watch = Watch(limit, cancel, clock=_clock)
     elif watch.deadline is not None:
         limit = watch.remaining()
+    helper = None
     try:
         floor = Floor(instance.cells)
         if bounds is None:
-            bounds = LowerBounds(makespan_bound(instance, domain, floor), sum_of_costs_bound(instance, domain))
+            bounds, helper = bounds_beside(instance, domain, floor)
         run = _Run(instance, domain, watch, bounds, on_improvement)
-        return _plan(run, floor, limit, seed)
+        return _plan(run, floor, limit, seed, router)
     finally:
+        if helper is not None:
+            helper.wait(0)
         if own:
             watch.close()
 
 
-def _plan(run: _Run, floor: Floor, limit: float, seed: int) -> AnytimeResult:
+def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> AnytimeResult:
     """The steps of :func:`plan_anytime`: assignment, first plan, improvements."""
     instance, domain, out_of_time, result = run.instance, run.domain, run.watch.out_of_time, run.result
     if not math.isfinite(result.bound):
@@ -223,7 +228,7 @@ def _plan(run: _Run, floor: Floor, limit: float, seed: int) -> AnytimeResult:
         result.message = "no assignment of the work to the robots within the time limit"
         return result
     table = Reservations(instance, work.homes)
-    router = Router(grid, table, out_of_time)
+    router = Router(grid, table, out_of_time, engine)
     tracks = first_tracks(work, router, table, out_of_time, seed)
     result.stats["first_plan_seconds"] = round(run.watch.elapsed(), 3)
     if tracks is None:
