@@ -24,7 +24,7 @@ from functools import partial
 
 from asprilo.bounds import Floor
 from asprilo.checker import Report, check
-from asprilo.domain import Domain
+from asprilo.domain import Domain, Job
 from asprilo.model import Instance, Plan
 
 from ..solving.bounds import AwaitedBounds, LowerBounds, bounds_beside
@@ -32,7 +32,8 @@ from ..solving.status import IMPROVED, Attempt, SolveStatus
 from ..solving.watch import Watch
 from . import DEFAULT_SECONDS
 from .grid import Grid
-from .improve import Improver
+from .improve import Improver, score
+from .pibt import pibt_tracks
 from .plans import plan_of
 from .prioritized import first_tracks
 from .reservations import Reservations, Track
@@ -41,6 +42,8 @@ from .work import ASSIGN_CAP, ASSIGN_SHARE, Work
 
 #: the least time between two checks, and how many check durations to wait between two
 CHECK_GAP, CHECK_FACTOR = 0.5, 3.0
+#: the share of the time limit prioritized planning may take for a better first plan than PIBT's
+PRIORITIZED_SHARE = 0.25
 #: how many of the last neighbourhoods' durations say how long the next one may take
 RECENT_STEPS = 10
 
@@ -229,13 +232,12 @@ def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> Anyt
         return result
     table = Reservations(instance, work.homes)
     router = Router(grid, table, out_of_time, engine)
-    tracks = first_tracks(work, router, table, out_of_time, seed)
-    result.stats["first_plan_seconds"] = round(run.watch.elapsed(), 3)
+    tracks = _first_plan(run, floor, router, table, limit, seed)
     if tracks is None:
         result.status = run.stopped()
         result.message = "no first plan within the time limit"
         return result
-    if not run.offer(tracks, force=True):
+    if result.status is not SolveStatus.FOUND and not run.offer(tracks, force=True):
         result.status = SolveStatus.INVALID
         return result
     _improve(run, Improver(work, router, table, seed), table)
@@ -244,6 +246,35 @@ def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> Anyt
     if result.status is not SolveStatus.FOUND:
         result.status = run.stopped(result.status)
     return result
+
+
+def _first_plan(run: _Run, floor: Floor, router: Router, table: Reservations, limit: float, seed: int
+                ) -> dict[int, Track] | None:
+    """The first tracks, held in ``table``: by prioritized planning; for robots with goals
+    (M, Md), first by PIBT (all robots at once, fast on a crowded floor), reported at once,
+    then by prioritized planning within :data:`PRIORITIZED_SHARE` of the time, kept if better."""
+    work, watch = run.work, run.watch
+    fast = None
+    if work.domain.work is Job.GOALS:
+        starts = {robot: spot.at for robot, spot in run.instance.robots.items()}
+        fast = pibt_tracks(floor, starts, work.goals, watch.out_of_time, seed)
+        if fast is not None:
+            run.result.stats["first_plan_seconds"] = round(watch.elapsed(), 3)
+            if not run.offer(fast, force=True):
+                fast = None
+                run.result.status = SolveStatus.LIMIT
+    stopped = watch.out_of_time
+    if fast is not None:
+        until = watch.elapsed() + PRIORITIZED_SHARE * limit
+        stopped = lambda: watch.out_of_time() or watch.elapsed() > until  # noqa: E731
+    tracks = first_tracks(work, router, table, stopped, seed)
+    if fast is None:
+        run.result.stats["first_plan_seconds"] = round(watch.elapsed(), 3)
+        return tracks
+    if tracks is None or score(tracks) >= score(fast) or not run.offer(tracks, force=True):
+        _go_back(table, fast)
+        return fast
+    return tracks
 
 
 def _improve(run: _Run, improver: Improver, table: Reservations) -> None:
@@ -266,8 +297,7 @@ def _improve(run: _Run, improver: Improver, table: Reservations) -> None:
 
 
 def _go_back(table: Reservations, tracks: dict[int, Track]) -> None:
-    """Put the last plan that passed the check back into the table."""
-    for robot in list(table.tracks):
-        table.remove(robot)
+    """Put the tracks of a plan that passed the check back into the table, alone."""
+    table.reset(still=False)
     for track in tracks.values():
         table.add(track)

@@ -1,0 +1,60 @@
+"""PIBT's first plans for M and Md (encodings/anytime/pibt.py): tracks that keep the rules,
+checked here apart from the planner, and no tracks where no plan exists."""
+
+from __future__ import annotations
+
+from asprilo.bounds import Floor
+from asprilo.encodings.anytime.pibt import pibt_tracks
+
+
+def _keeps_the_rules(tracks, starts, goals) -> None:
+    """One cell per robot per step, moves to neighbours, no swaps, all at their goals at the end."""
+    steps = max(track.parked for track in tracks.values())
+    for robot, track in tracks.items():
+        assert track.cells[0] == starts[robot] and track.cells[-1] == goals.get(robot, starts[robot])
+    for step in range(1, steps + 1):
+        before = {robot: track.at(step - 1) for robot, track in tracks.items()}
+        now = {robot: track.at(step) for robot, track in tracks.items()}
+        assert len(set(now.values())) == len(now)
+        for robot in now:
+            (x, y), (u, v) = before[robot], now[robot]
+            assert abs(x - u) + abs(y - v) <= 1
+            assert not any(now[robot] == before[other] and now[other] == before[robot]
+                           for other in now if other != robot)
+
+
+def test_two_robots_pass_each_other_on_a_ring():
+    # a 3x2 block: the robots swap the ends of row 1; both cannot go straight (they would
+    # swap cells), so by hand one of them goes round by row 2: 2 steps more, makespan >= 4
+    floor = Floor([(x, y) for x in (1, 2, 3) for y in (1, 2)])
+    starts, goals = {1: (1, 1), 2: (3, 1)}, {1: (3, 1), 2: (1, 1)}
+    tracks = pibt_tracks(floor, starts, goals, lambda: False)
+    assert tracks is not None
+    _keeps_the_rules(tracks, starts, goals)
+    assert max(track.finish for track in tracks.values()) >= 4
+
+
+def test_it_gives_up_where_robots_would_have_to_take_turns_in_a_dead_end():
+    # a corridor (1,1)..(4,1) with a pocket (2,2): a plan exists (one robot waits in the
+    # pocket), but PIBT's robots push each other back and forth (PIBT is complete only on
+    # floors without dead ends); the planner then falls back on prioritized planning
+    floor = Floor([(1, 1), (2, 1), (3, 1), (4, 1), (2, 2)])
+    assert pibt_tracks(floor, {1: (1, 1), 2: (4, 1)}, {1: (4, 1), 2: (1, 1)}, lambda: False) is None
+
+
+def test_a_robot_without_a_goal_steps_aside_and_comes_back():
+    floor = Floor([(1, 1), (2, 1), (3, 1), (2, 2)])
+    starts, goals = {1: (1, 1), 2: (2, 1)}, {1: (3, 1)}
+    tracks = pibt_tracks(floor, starts, goals, lambda: False)
+    _keeps_the_rules(tracks, starts, goals)
+    assert tracks[2].cells[-1] == (2, 1) and len(set(tracks[2].cells)) == 2
+
+
+def test_no_tracks_where_the_robots_cannot_pass_each_other():
+    floor = Floor([(1, 1), (2, 1), (3, 1)])
+    assert pibt_tracks(floor, {1: (1, 1), 2: (3, 1)}, {1: (3, 1), 2: (1, 1)}, lambda: False) is None
+
+
+def test_no_tracks_when_a_goal_cannot_be_reached():
+    floor = Floor([(1, 1), (2, 1), (5, 5)])
+    assert pibt_tracks(floor, {1: (1, 1)}, {1: (5, 5)}, lambda: False) is None
