@@ -232,7 +232,7 @@ def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> Anyt
         return result
     table = Reservations(instance, work.homes)
     router = Router(grid, table, out_of_time, engine)
-    tracks = _first_plan(run, floor, router, table, limit, seed)
+    tracks = _first_plan(run, work, floor, router, table, limit, seed)
     if tracks is None:
         result.status = run.stopped()
         result.message = "no first plan within the time limit"
@@ -248,12 +248,12 @@ def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> Anyt
     return result
 
 
-def _first_plan(run: _Run, floor: Floor, router: Router, table: Reservations, limit: float, seed: int
+def _first_plan(run: _Run, work: Work, floor: Floor, router: Router, table: Reservations, limit: float, seed: int
                 ) -> dict[int, Track] | None:
     """The first tracks, held in ``table``: by prioritized planning; for robots with goals
     (M, Md), first by PIBT (all robots at once, fast on a crowded floor), reported at once,
     then by prioritized planning within :data:`PRIORITIZED_SHARE` of the time, kept if better."""
-    work, watch = run.work, run.watch
+    watch = run.watch
     fast = None
     if work.domain.work is Job.GOALS:
         starts = {robot: spot.at for robot, spot in run.instance.robots.items()}
@@ -262,11 +262,11 @@ def _first_plan(run: _Run, floor: Floor, router: Router, table: Reservations, li
             run.result.stats["first_plan_seconds"] = round(watch.elapsed(), 3)
             if not run.offer(fast, force=True):
                 fast = None
-                run.result.status = SolveStatus.LIMIT
-    stopped = watch.out_of_time
-    if fast is not None:
-        until = watch.elapsed() + PRIORITIZED_SHARE * limit
-        stopped = lambda: watch.out_of_time() or watch.elapsed() > until  # noqa: E731
+    until = math.inf if fast is None else watch.elapsed() + PRIORITIZED_SHARE * limit
+
+    def stopped() -> bool:
+        return watch.out_of_time() or watch.elapsed() > until
+
     tracks = first_tracks(work, router, table, stopped, seed)
     if fast is None:
         run.result.stats["first_plan_seconds"] = round(watch.elapsed(), 3)

@@ -1,13 +1,12 @@
-"""The Python routing engine: ``route.lp``'s search, step by step in Python.
+"""The Python routing engine: ``route.lp``'s search, in Python.
 
 It answers the same question as the logic program on the same :class:`~.space.Space`: the
 earliest step at which the robot can be parked, and a route that gets it there.  Like the
 grounder, it searches the states "on cell C at step T, on the way to task K" of the
-time-expanded floor inside the windows, keeping for each state the one it came from; but
-it goes best first (A*), so it seldom visits more than the states near one good route,
-and it starts no solver for each call: on a crowded
-floor the first plan needs thousands of calls (``tests/test_timed_search.py`` checks that
-both engines find the same arrival).
+time-expanded floor inside the windows, keeping for each state the one it came from; but it
+goes best first (A*), so it seldom visits more than the states near one good route, and it
+starts no solver for each call: on a crowded floor the first plan needs thousands of calls
+(``tests/test_timed_search.py`` checks that both engines find the same arrival).
 """
 
 from __future__ import annotations
