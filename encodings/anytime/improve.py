@@ -37,6 +37,10 @@ KINDS = ("alone", "crowd", "tail", "random", "swap", "order")
 GROUP = 8
 #: how many steps before a robot's finish a ``tail`` neighbourhood starts
 TAIL = 30
+#: how often a neighbourhood forms around a robot that finishes last rather than one that
+#: lost many steps: in M/Md most of the sum of costs is lost by robots that finish early (on
+#: 200 MovingAI agents, sum of costs after 30 s 6,143 instead of 6,297 at 0.7)
+LAST_SHARE = {Job.TRIPS: 0.7, Job.GOALS: 0.3}
 #: seconds a ``swap`` may spend re-assigning
 SWAP_SECONDS = 0.5
 
@@ -54,6 +58,7 @@ class Improver:
         self.work, self.router, self.table = work, router, reservations
         self.random = random.Random(seed)
         self.weights = dict.fromkeys(KINDS, 1.0)
+        self.last_share = LAST_SHARE[work.domain.work]
         if work.domain.work is Job.GOALS:
             self.weights["alone"] = 0.2
             self.weights["order"] = 0.0  # a robot of M/Md has one goal
@@ -81,12 +86,12 @@ class Improver:
 
     def _late_robot(self) -> int:
         """A robot that finishes last (while the makespan can still drop), else one of the
-        robots that lose most steps against their estimate."""
+        robots that lose most steps against their estimate (:data:`LAST_SHARE`: how often)."""
         tracks = self.table.tracks
         workers = self.work.workers() or list(tracks)
         makespan = max(tracks[r].finish for r in workers)
         last = [r for r in workers if tracks[r].finish == makespan]
-        if self.random.random() < 0.7:
+        if self.random.random() < self.last_share:
             return self.random.choice(last)
         delays = sorted(workers, key=lambda r: self.work.estimate(r) - tracks[r].finish)
         return self.random.choice(delays[:max(1, len(delays) // 5)])

@@ -33,7 +33,7 @@ from ..solving.watch import Watch
 from . import DEFAULT_SECONDS
 from .grid import Grid
 from .improve import Improver, score
-from .pibt import pibt_tracks
+from .lacam import lacam_tracks
 from .plans import plan_of
 from .prioritized import first_tracks
 from .reservations import Reservations, Track
@@ -42,7 +42,7 @@ from .work import ASSIGN_CAP, ASSIGN_SHARE, Work
 
 #: the least time between two checks, and how many check durations to wait between two
 CHECK_GAP, CHECK_FACTOR = 0.5, 3.0
-#: the share of the time limit prioritized planning may take for a better first plan than PIBT's
+#: the share of the time limit prioritized planning may take for a better first plan than LaCAM's
 PRIORITIZED_SHARE = 0.25
 #: how many of the last neighbourhoods' durations say how long the next one may take
 RECENT_STEPS = 10
@@ -251,13 +251,13 @@ def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> Anyt
 def _first_plan(run: _Run, work: Work, floor: Floor, router: Router, table: Reservations, limit: float, seed: int
                 ) -> dict[int, Track] | None:
     """The first tracks, held in ``table``: by prioritized planning; for robots with goals
-    (M, Md), first by PIBT (all robots at once, fast on a crowded floor), reported at once,
+    (M, Md), first by LaCAM (all robots at once, fast on a crowded floor), reported at once,
     then by prioritized planning within :data:`PRIORITIZED_SHARE` of the time, kept if better."""
     watch = run.watch
     fast = None
     if work.domain.work is Job.GOALS:
         starts = {robot: spot.at for robot, spot in run.instance.robots.items()}
-        fast = pibt_tracks(floor, starts, work.goals, watch.out_of_time, seed)
+        fast = lacam_tracks(floor, starts, work.goals, watch.out_of_time, seed)
         if fast is not None:
             run.result.stats["first_plan_seconds"] = round(watch.elapsed(), 3)
             if not run.offer(fast, force=True):

@@ -1,10 +1,12 @@
-"""PIBT's first plans for M and Md (encodings/anytime/pibt.py): tracks that keep the rules,
-checked here apart from the planner, and no tracks where no plan exists."""
+"""LaCAM's first plans for M and Md (encodings/anytime/lacam.py over the PIBT steps of
+pibt.py): tracks that keep the rules, checked here apart from the planner, plans where robots
+must take turns in a dead end, and no tracks where no plan exists."""
 
 from __future__ import annotations
 
 from asprilo.bounds import Floor
-from asprilo.encodings.anytime.pibt import pibt_tracks
+from asprilo.encodings.anytime.lacam import lacam_tracks
+from asprilo.encodings.anytime.pibt import Pibt
 
 
 def _keeps_the_rules(tracks, starts, goals) -> None:
@@ -28,33 +30,37 @@ def test_two_robots_pass_each_other_on_a_ring():
     # swap cells), so by hand one of them goes round by row 2: 2 steps more, makespan >= 4
     floor = Floor([(x, y) for x in (1, 2, 3) for y in (1, 2)])
     starts, goals = {1: (1, 1), 2: (3, 1)}, {1: (3, 1), 2: (1, 1)}
-    tracks = pibt_tracks(floor, starts, goals, lambda: False)
-    assert tracks is not None
+    tracks = lacam_tracks(floor, starts, goals, lambda: False)
     _keeps_the_rules(tracks, starts, goals)
     assert max(track.finish for track in tracks.values()) >= 4
 
 
-def test_it_gives_up_where_robots_would_have_to_take_turns_in_a_dead_end():
-    # a corridor (1,1)..(4,1) with a pocket (2,2): a plan exists (one robot waits in the
-    # pocket), but PIBT's robots push each other back and forth (PIBT is complete only on
-    # floors without dead ends); the planner then falls back on prioritized planning
+def test_robots_take_turns_in_a_dead_end():
+    # a corridor (1,1)..(4,1) with a pocket (2,2): one robot must wait in the pocket while the
+    # other passes; plain PIBT steps push the two back and forth for ever (checked first)
     floor = Floor([(1, 1), (2, 1), (3, 1), (4, 1), (2, 2)])
-    assert pibt_tracks(floor, {1: (1, 1), 2: (4, 1)}, {1: (4, 1), 2: (1, 1)}, lambda: False) is None
+    starts, goals = {1: (1, 1), 2: (4, 1)}, {1: (4, 1), 2: (1, 1)}
+    pibt, at = Pibt(floor, goals), dict(starts)
+    for _ in range(50):
+        at = pibt.step(at, [1, 2], {})
+    assert at != goals
+    tracks = lacam_tracks(floor, starts, goals, lambda: False)
+    _keeps_the_rules(tracks, starts, goals)
 
 
 def test_a_robot_without_a_goal_steps_aside_and_comes_back():
     floor = Floor([(1, 1), (2, 1), (3, 1), (2, 2)])
     starts, goals = {1: (1, 1), 2: (2, 1)}, {1: (3, 1)}
-    tracks = pibt_tracks(floor, starts, goals, lambda: False)
+    tracks = lacam_tracks(floor, starts, goals, lambda: False)
     _keeps_the_rules(tracks, starts, goals)
     assert tracks[2].cells[-1] == (2, 1) and len(set(tracks[2].cells)) == 2
 
 
 def test_no_tracks_where_the_robots_cannot_pass_each_other():
     floor = Floor([(1, 1), (2, 1), (3, 1)])
-    assert pibt_tracks(floor, {1: (1, 1), 2: (3, 1)}, {1: (3, 1), 2: (1, 1)}, lambda: False) is None
+    assert lacam_tracks(floor, {1: (1, 1), 2: (3, 1)}, {1: (3, 1), 2: (1, 1)}, lambda: False) is None
 
 
 def test_no_tracks_when_a_goal_cannot_be_reached():
     floor = Floor([(1, 1), (2, 1), (5, 5)])
-    assert pibt_tracks(floor, {1: (1, 1)}, {1: (5, 5)}, lambda: False) is None
+    assert lacam_tracks(floor, {1: (1, 1)}, {1: (5, 5)}, lambda: False) is None
