@@ -42,10 +42,12 @@ SCALE = (10, 30, 100, 300, 1000)
 
 def floor_options(robots: int, side: int | None = None) -> dict:
     """Generator options of an A instance for ``robots``: a square floor of about 50 cells per
-    robot (or ``side``), 5 shelves and products per robot, a station per 10 robots."""
+    robot (or ``side``), 5 shelves and products per robot, a station per 10 robots; the
+    structured layout (highways, robots below the storage) where the robots fit below it."""
     side = side or round(math.sqrt(50 * robots))
-    return {"-x": side, "-y": side, "-X": 5, "-Y": 2, "-H": True, "-p": max(1, robots // 10), "-s": 5 * robots,
-            "-r": robots, "-P": 5 * robots, "-u": 15 * robots, "-o": max(1, robots // 2)}
+    layout = {"-X": 5, "-Y": 2, "-H": True} if robots <= 2 * side else {}
+    return {"-x": side, "-y": side, **layout, "-p": max(1, robots // 10), "-s": 5 * robots, "-r": robots,
+            "-P": 5 * robots, "-u": 15 * robots, "-o": max(1, robots // 2)}
 
 
 def run_one(job: dict) -> dict:

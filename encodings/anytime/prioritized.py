@@ -50,13 +50,17 @@ def route_in_turn(order: list[int], work: Work, router: Router, reservations: Re
             reservations.add(Track(robot, *found))
             continue
         bumps[robot] += 1
-        blockers = [r for r in router.in_the_way(robot, work.errand(robot, set()), start) if r in reservations.tracks
-                    and reservations.tracks[r].parked > 0][:BUMPED]
-        if bumps[robot] > BUMPS or not blockers:
+        tasks = work.errand(robot, set())
+        in_the_way = [r for r in router.in_the_way(robot, tasks, start) if r in reservations.tracks]
+        blockers = [r for r in in_the_way if reservations.tracks[r].parked > 0][:BUMPED]
+        standing = work.make_room([r for r in in_the_way if reservations.tracks[r].parked == 0][:BUMPED],
+                                  router.way(robot, tasks, start))
+        if bumps[robot] > BUMPS or not blockers + standing:
             return robot
-        for other in blockers:
+        for other in blockers + standing:
             reservations.remove(other)
-        queue.extendleft(reversed([robot, *blockers]))  # it goes first now, they right after it
+        # robots without work standing in the way make room first, then it goes, then the bumped
+        queue.extendleft(reversed([*standing, robot, *blockers]))
     return None
 
 
@@ -67,15 +71,13 @@ def first_tracks(work: Work, router: Router, reservations: Reservations, stopped
     Robots with work go longest errand first (they decide the makespan); the third attempt
     tries shortest first (robots crowding at a station then come and go in turn)."""
     robots = sorted(reservations.instance.robots)
-    movers = work.movers()
-    idle = [r for r in robots if r not in set(work.workers()) and r not in movers]
     depth = depths(reservations.instance)
     on_the_way = {r for r in robots if reservations.instance.robots[r].at in work.needed_cells()}
 
     def ordered(longest_first: bool) -> list[int]:
         # shallow robots first, and of those first the ones standing where others must go
         sign = -1 if longest_first else 1
-        return movers + sorted(work.workers(), key=lambda r: (depth[r] > 1, r not in on_the_way, depth[r],
+        return work.movers() + sorted(work.workers(), key=lambda r: (depth[r] > 1, r not in on_the_way, depth[r],
                                                                sign * work.estimate(r), r))
 
     order = ordered(True)
@@ -85,12 +87,13 @@ def first_tracks(work: Work, router: Router, reservations: Reservations, stopped
         reservations.reset(still=attempt == 0)  # after a failure, robots not routed yet may be passed
         for robot in robots:
             reservations.hold(robot)
-        for robot in idle:
+        for robot in set(robots) - set(work.workers()) - set(work.movers()):  # idle: they stay where they are
             reservations.add(Track(robot, [reservations.instance.robots[robot].at]))
         failed = route_in_turn(order, work, router, reservations, stopped)
         if failed is None:
             return dict(reservations.tracks)
         attempt += 1
+        order = [robot for robot in work.movers() if robot not in order] + order  # movers made on the way
         if attempt == 2:
             order = ordered(False)
             continue

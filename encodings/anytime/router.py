@@ -99,16 +99,18 @@ class Router:
                 return found
         return None
 
+    def way(self, robot: int, tasks: list[Task], begin: Cell) -> set[Cell]:
+        """The cells on or next to a shortest way through ``tasks`` (empty: there is none)."""
+        passable = [self._passable(robot, tasks, number) for number in range(len(tasks))]
+        legs = self._legs(tasks, begin, 0, passable, Level(1, 0), frozenset())
+        return set() if legs is None else {cell for leg in legs for cell in leg.windows}
+
     def in_the_way(self, robot: int, tasks: list[Task], begin: Cell) -> list[int]:
         """Other robots on or next to a shortest way through ``tasks``: those parked there
         first, then those that come to the robot's start while it is still there, then
         those passing the way most often."""
-        passable = [self._passable(robot, tasks, number) for number in range(len(tasks))]
-        legs = self._legs(tasks, begin, 0, passable, Level(1, 0), frozenset())
-        if legs is None:
-            return []
         table, met = self.reservations, Counter[int]()
-        for cell in {cell for leg in legs for cell in leg.windows}:
+        for cell in self.way(robot, tasks, begin):
             for other in table.stays.get(cell, {}):
                 met[other] += 1000
             for step, other in table.visits.get(cell, {}).items():

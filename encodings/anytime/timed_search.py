@@ -31,6 +31,9 @@ def search(space: Space) -> tuple[list[Cell], dict[int, Task]] | None:
     is the earliest one); of two as good, the one at the earlier step first, as the grounder
     goes (routes that keep close to their shortest way early leave room for others)."""
     rooms = [_rooms(space, number) for number in range(1, space.last + 1)]
+    if not any(max(rooms[-1][cell][0], space.free_from.get(cell, 0)) <= rooms[-1][cell][1]
+               for cell in space.task_cells[-1] if cell in rooms[-1]):
+        return None  # no parking cell is free within the window: no need to search
     begin: State = (1, space.begin, space.step)
     came_from: dict[State, State | None] = {begin: None}
     queue = [(space.step + rooms[0][space.begin][3], space.step, begin)]

@@ -47,6 +47,8 @@ class Work:
         self._parking: dict[Cell, tuple[Cell, ...]] = {}
         self._parking_cells: frozenset[Cell] | None = None
         self._movers: list[int] | None = None
+        #: the ways of robots that robots without work once blocked (:meth:`make_room`)
+        self.kept_clear: set[Cell] = set()
         #: shelf -> the spare cell it is put down on after its trip (chosen with its errand)
         self.claims: dict[int, Cell] = {}
         storage = instance.storage_cells
@@ -217,17 +219,26 @@ class Work:
         """Cells robots with work must be able to use: goals, shelves to fetch, stations and
         the cells next to them (the ways in and out)."""
         if self.domain.work is Job.GOALS:
-            return set(self.goals.values())
+            return set(self.goals.values()) | self.kept_clear
         stations = {cell for robot in self.trips for cell in self.stations_of(robot)}
         cells = stations | {(x + dx, y + dy) for x, y in stations for dx, dy in DIRECTIONS}
         cells |= {self.homes[trip.shelf] for ts in self.trips.values() for trip in ts}
-        return cells & self.instance.cells
+        return (cells | self.kept_clear) & self.instance.cells
 
     def movers(self) -> list[int]:
         """Robots without work that have to make room (see :mod:`.room`), in routing order."""
         if self._movers is None:
             self._movers = movers(self.instance, set(self.workers()), self.needed_cells())
         return self._movers
+
+    def make_room(self, robots: list[int], way: set[Cell]) -> list[int]:
+        """Send ``robots`` without work that stand still on or next to another robot's ``way``
+        to park off it (they become movers; the way is needed from now on); the ones that
+        were not movers yet."""
+        new = [robot for robot in robots if robot not in self.movers() and robot not in set(self.workers())]
+        self.kept_clear |= way
+        self._movers = self.movers() + new
+        return new
 
     def _make_room(self, robot: int) -> list[Task]:
         """A robot without work: stay, or, standing in the way, park nearby."""
