@@ -2,7 +2,8 @@
 
 Robots not routed yet stand still on their start cells, so the robots routed before them
 go around them.  A robot that finds no route takes the routed robots in its way out again
-(they are routed once more right after it).  When that does not help, planning starts over
+(they are routed once more right after it), and robots without work standing on its way
+are sent to park off it first.  When that does not help, planning starts over
 with that robot first (and robots not routed yet in the way only at step 0: they have to
 get out of the way when their turn comes), after a few restarts in a shuffled order.  Both the first plan and the
 repairs of the large-neighbourhood search (:mod:`.improve`) plan this way.
@@ -78,7 +79,7 @@ def first_tracks(work: Work, router: Router, reservations: Reservations, stopped
         # shallow robots first, and of those first the ones standing where others must go
         sign = -1 if longest_first else 1
         return work.movers() + sorted(work.workers(), key=lambda r: (depth[r] > 1, r not in on_the_way, depth[r],
-                                                               sign * work.estimate(r), r))
+                                                                      sign * work.estimate(r), r))
 
     order = ordered(True)
     shuffler = random.Random(seed)
