@@ -64,3 +64,20 @@ def test_no_tracks_where_the_robots_cannot_pass_each_other():
 def test_no_tracks_when_a_goal_cannot_be_reached():
     floor = Floor([(1, 1), (2, 1), (5, 5)])
     assert lacam_tracks(floor, {1: (1, 1)}, {1: (5, 5)}, lambda: False) is None
+
+
+def test_the_planner_falls_back_on_prioritized_planning_when_lacam_finds_nothing(monkeypatch):
+    from test_anytime import PAPER, _assert_sound
+
+    from asprilo.domain import Domain
+    from asprilo.encodings.anytime import plan_anytime
+    from asprilo.encodings.anytime import search as anytime_search
+    from asprilo.interop.convert import m_to_md
+    from asprilo.reader import read_instance
+
+    asked = []
+    monkeypatch.setattr(anytime_search, "lacam_tracks", lambda *args: asked.append(args) or None)
+    instance = m_to_md(read_instance(PAPER / "1x2x4/x11_y6_n66_r8_s16_ps1_pr16_u16_o8_N001.lp"))
+    result = plan_anytime(instance, Domain.MD, time_limit=3)
+    assert len(asked) == 1 and result.status == "found"
+    _assert_sound(result, instance, Domain.MD)
