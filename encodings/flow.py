@@ -57,82 +57,73 @@ class FlowSearch:
     status: SolveStatus = SolveStatus.NONE
 
 
+#: networks up to this many nodes x robots get their maximum flow from the plain-Python
+#: search below (no numpy, no scipy: importing scipy takes longer than the whole flow of a
+#: small instance); larger ones from scipy's
+PYTHON_FLOW = 200_000
+
+
 class TimeExpandedNetwork:
-    """The flow network of a floor, start cells and goal cells over ``horizon`` steps."""
+    """The flow network of a floor, start cells and goal cells over ``horizon`` steps: arc
+    ``k`` goes from ``tails[k]`` to ``heads[k]`` with capacity ``capacities[k]``."""
 
     def __init__(self, floor: Floor, starts: list[Cell], goals: list[Cell], horizon: int):
-        import numpy as np  # here, not on import: a solve's parent reads the attempts without it
         self.floor, self.starts, self.goals, self.horizon = floor, starts, goals, horizon
+        index = floor.index
         cells = len(floor.cells)
-        edges = np.array([(i, j) for i, j in zip(*floor.graph.nonzero(), strict=True) if i < j], dtype=np.int64)
-        edges = edges.reshape(-1, 2)
+        pairs = ((index[(x, y)], index[(x + dx, y + dy)]) for x, y in floor.cells
+                 for dx, dy in ((1, 0), (0, 1)) if (x + dx, y + dy) in index)
+        edges = sorted((min(pair), max(pair)) for pair in pairs)
         self.layer = 2 * cells + 2 * len(edges)  # in-nodes, out-nodes, gadget a, gadget b
-        layers = horizon + 1
-        self.source = layers * self.layer
+        self.source = (horizon + 1) * self.layer
         self.sink, self.idle = self.source + 1, self.source + 2
         self.size = self.source + 3
-
-        vertex = np.arange(cells)
-        tails, heads, capacities = [], [], []
-
-        def arcs(tail, head, capacity=1):
-            tails.append(np.asarray(tail).ravel())
-            heads.append(np.asarray(head).ravel())
-            capacities.append(np.broadcast_to(capacity, np.asarray(tail).ravel().shape))
-
-        steps = np.arange(layers)[:, None] * self.layer
-        arcs(steps + self.inlet(vertex), steps + self.outlet(vertex))  # one robot per cell and step
-        moves = steps[:-1]
-        after = moves + self.layer
-        arcs(moves + self.outlet(vertex), after + self.inlet(vertex))  # wait
-        if len(edges):
-            a = 2 * cells + np.arange(len(edges))
-            b = a + len(edges)
-            u, v = edges[:, 0], edges[:, 1]
-            arcs(moves + self.outlet(u), moves + a)
-            arcs(moves + self.outlet(v), moves + a)
-            arcs(moves + a, moves + b)  # the edge carries one robot per step, in either direction
-            arcs(moves + b, after + self.inlet(u))
-            arcs(moves + b, after + self.inlet(v))
-        index = floor.index
-        start_nodes = [self.inlet(index[cell]) for cell in starts]
-        arcs([self.source] * len(start_nodes), start_nodes)
+        tails: list[int] = []
+        heads: list[int] = []
+        for step in range(horizon + 1):
+            now = step * self.layer
+            tails += range(now + self.inlet(0), now + self.inlet(cells))  # one robot per cell and step
+            heads += range(now + self.outlet(0), now + self.outlet(cells))
+            if step == horizon:
+                break
+            after = now + self.layer
+            tails += range(now + self.outlet(0), now + self.outlet(cells))  # wait
+            heads += range(after + self.inlet(0), after + self.inlet(cells))
+            for number, (u, v) in enumerate(edges):
+                a, b = now + 2 * cells + number, now + 2 * cells + len(edges) + number
+                # the edge carries one robot per step, in either direction
+                tails += (now + self.outlet(u), now + self.outlet(v), a, b, b)
+                heads += (a, a, b, after + self.inlet(u), after + self.inlet(v))
+        tails += [self.source] * len(starts)
+        heads += [self.inlet(index[cell]) for cell in starts]
         last = horizon * self.layer
-        goal_set = {index[cell] for cell in goals}
-        arcs([last + self.outlet(g) for g in sorted(goal_set)], [self.sink] * len(goal_set))
+        goal_set = sorted({index[cell] for cell in goals})
+        tails += [last + self.outlet(g) for g in goal_set]
+        heads += [self.sink] * len(goal_set)
+        capacities = [1] * len(tails)
         surplus = len(starts) - len(goal_set)
         if surplus > 0:
-            others = [v for v in range(cells) if v not in goal_set]
-            arcs([last + self.outlet(v) for v in others], [self.idle] * len(others))
-            arcs([self.idle], [self.sink], surplus)
-        tail, head = np.concatenate(tails), np.concatenate(heads)
-        capacity = np.concatenate(capacities).astype(np.int32)
-        self.arcs = len(tail)
-        from scipy.sparse import csr_matrix  # slow to import: only when max-flow runs
-        self.graph = csr_matrix((capacity, (tail, head)), shape=(self.size, self.size))
+            others = [v for v in range(cells) if v not in set(goal_set)]
+            tails += [last + self.outlet(v) for v in others] + [self.idle]
+            heads += [self.idle] * len(others) + [self.sink]
+            capacities += [1] * len(others) + [surplus]
+        self.tails, self.heads, self.capacities = tails, heads, capacities
+        self.arcs = len(tails)
 
-    def inlet(self, vertex):
+    def inlet(self, vertex: int) -> int:
         """The node where robots enter a cell (in layer 0; add ``t * layer`` for step t)."""
         return vertex
 
-    def outlet(self, vertex):
+    def outlet(self, vertex: int) -> int:
         """The node where robots leave a cell."""
         return vertex + len(self.floor.cells)
 
     def route(self) -> dict[int, list[Cell]] | None:
         """Each start's cells at steps 0..H, or ``None`` when not every robot gets through."""
-        import numpy as np
-        from scipy.sparse.csgraph import maximum_flow
-        result = maximum_flow(self.graph, self.source, self.sink)
-        if result.flow_value < len(self.starts):
+        small = self.size * len(self.starts) <= PYTHON_FLOW
+        successor = self._python_flow() if small else self._scipy_flow()
+        if successor is None:
             return None
-        flow = result.flow.tocsr()
-        flow.eliminate_zeros()
-        successor: dict[int, int] = {}
-        rows = np.repeat(np.arange(self.size), np.diff(flow.indptr))
-        for tail, head, amount in zip(rows, flow.indices, flow.data, strict=True):
-            if amount > 0 and tail not in (self.source, self.idle):
-                successor[int(tail)] = int(head)
         cells = len(self.floor.cells)
         paths = {}
         for number, start in enumerate(self.starts):
@@ -144,6 +135,58 @@ class TimeExpandedNetwork:
                 node = successor[node]
             paths[number] = path
         return paths
+
+    def _scipy_flow(self) -> dict[int, int] | None:
+        """Node -> the node its unit of flow goes on to (scipy's maximum flow), or ``None``
+        when the flow is smaller than the robots."""
+        import numpy as np
+        from scipy.sparse import csr_matrix
+        from scipy.sparse.csgraph import maximum_flow
+        graph = csr_matrix((np.array(self.capacities, dtype=np.int32),
+                            (np.array(self.tails, dtype=np.int64), np.array(self.heads, dtype=np.int64))),
+                           shape=(self.size, self.size))
+        result = maximum_flow(graph, self.source, self.sink)
+        if result.flow_value < len(self.starts):
+            return None
+        flow = result.flow.tocsr()
+        flow.eliminate_zeros()
+        rows = np.repeat(np.arange(self.size), np.diff(flow.indptr))
+        return {int(t): int(h) for t, h, amount in zip(rows, flow.indices, flow.data, strict=True)
+                if amount > 0 and t not in (self.source, self.idle)}
+
+    def _python_flow(self) -> dict[int, int] | None:
+        """The same from augmenting paths found breadth-first (Edmonds and Karp), one robot's
+        unit at a time: arc ``2k`` of the residual network is arc ``k``, ``2k + 1`` its reverse."""
+        heads, room = [], []
+        leaving: list[list[int]] = [[] for _ in range(self.size)]
+        for tail, head, capacity in zip(self.tails, self.heads, self.capacities, strict=True):
+            leaving[tail].append(len(heads))
+            heads.append(head)
+            room.append(capacity)
+            leaving[head].append(len(heads))
+            heads.append(tail)
+            room.append(0)
+        for _robot in self.starts:
+            reached = {self.source: -1}
+            frontier = [self.source]
+            while frontier and self.sink not in reached:
+                following = []
+                for node in frontier:
+                    for arc in leaving[node]:
+                        if room[arc] and heads[arc] not in reached:
+                            reached[heads[arc]] = arc
+                            following.append(heads[arc])
+                frontier = following
+            if self.sink not in reached:
+                return None
+            node = self.sink
+            while node != self.source:
+                arc = reached[node]
+                room[arc] -= 1
+                room[arc ^ 1] += 1
+                node = heads[arc ^ 1]
+        return {tail: head for number, (tail, head) in enumerate(zip(self.tails, self.heads, strict=True))
+                if room[2 * number + 1] > 0 and tail not in (self.source, self.idle)}
 
 
 def plan_of_paths(robots: list[int], paths: dict[int, list[Cell]]) -> Plan:

@@ -38,6 +38,19 @@ def test_paper_instances_at_their_minimal_makespan(name, makespan):
     instance = read_instance(EXAMPLES / "paper-m" / name)
     search = flow_plan(instance)
     assert (search.horizon, search.plan.horizon, search.minimal) == (makespan, makespan, True)
+
+
+@pytest.mark.parametrize("engine", ["python", "scipy"])
+@pytest.mark.parametrize("name, makespan", [(name, makespan) for name, makespan in PAPER_M.items()
+                                            if not name.startswith("4x5x8")])
+def test_both_maximum_flows_find_the_minimal_makespan(monkeypatch, engine, name, makespan):
+    from asprilo.encodings import flow
+
+    monkeypatch.setattr(flow, "PYTHON_FLOW", 10**12 if engine == "python" else 0)
+    instance = read_instance(EXAMPLES / "paper-m" / name)
+    search = flow_plan(instance)
+    assert (search.horizon, search.minimal) == (makespan, True)
+    assert check(instance, search.plan, Domain.M).valid
     assert [(a.horizon, a.feasible) for a in search.attempts] == [(makespan, True)]
     assert check(instance, search.plan, Domain.M).valid
 
