@@ -157,7 +157,8 @@ class TimeExpandedNetwork:
     def _python_flow(self) -> dict[int, int] | None:
         """The same from augmenting paths found breadth-first (Edmonds and Karp), one robot's
         unit at a time: arc ``2k`` of the residual network is arc ``k``, ``2k + 1`` its reverse."""
-        heads, room = [], []
+        heads: list[int] = []
+        room: list[int] = []
         leaving: list[list[int]] = [[] for _ in range(self.size)]
         for tail, head, capacity in zip(self.tails, self.heads, self.capacities, strict=True):
             leaving[tail].append(len(heads))
