@@ -1,13 +1,13 @@
 """Route one robot's errand around the fixed tracks of the others.
 
-Python prepares a small search space (:class:`~.space.Space`): for every leg of the errand (the
-way to one task) a corridor of cells along a shortest route, each cell with the steps at
-which the robot can be there if it is at most ``slack`` steps late; plus the reservations
+Python prepares a small search space (:class:`~.space.Space`): for every leg of the errand
+(the way to one task) a corridor of cells along a shortest route, each cell with the steps
+at which the robot can be there if it is at most ``slack`` steps late; plus the reservations
 of the other robots inside the corridors.  One of two engines searches it: the Python search
 of :mod:`.timed_search` (the default: no solver to start for each of thousands of calls) or
 the logic program ``route.lp`` (the same search, written for clingo's grounder; both find
-the same earliest arrival).  When no route fits, the corridors widen and
-the slack grows (:data:`LEVELS`) before the errand is given up.
+the same earliest arrival).  When no route fits, the corridors widen and the slack grows
+(:data:`LEVELS`) before the errand is given up.
 """
 
 from __future__ import annotations
@@ -81,9 +81,8 @@ class Router:
               avoid: frozenset[Cell] = frozenset()) -> tuple[list[Cell], dict[int, Task]] | None:
         """The cells of ``robot`` after steps ``step`` .. parked and the tasks it does at
         which step, on the first level that has a route; ``None`` when none has (``quick``:
-        after fewer levels).  The
-        corridors keep off the cells of ``avoid`` (where others will park) unless that
-        makes a way more than :data:`DETOUR` steps longer."""
+        after fewer levels).  The corridors keep off the cells of ``avoid`` (where others
+        will park) unless that makes a way more than :data:`DETOUR` steps longer."""
         passable = [self._passable(robot, tasks, number) for number in range(len(tasks))]
         levels = LEVELS[self.engine]
         for level in levels[:QUICK[self.engine]] if quick else levels:
