@@ -29,7 +29,7 @@ from asprilo.sources import Source
 from ..state.atoms import AtomLine, Note, about, instance_lines, lines_about, plan_lines, read_plan_text
 from ..state.document import Change
 from ..state.viewer import ViewerState
-from .screen import room
+from .screen import own_scroll_bar, room
 from .tables import CURRENT, PROBLEM
 
 #: milliseconds after the last keystroke before an edited plan is read
@@ -75,6 +75,7 @@ class _Note(QScrollArea):
         self.setWidgetResizable(True)
         self.setFrameShape(QFrame.NoFrame)
         self.setHorizontalScrollBarPolicy(Qt.ScrollBarPolicy.ScrollBarAlwaysOff)
+        self.bar = own_scroll_bar(self)
         self._wanted = 0  # the height of all its lines, at most NOTE_LINES
         self.setFixedHeight(0)  # no words yet
         self._settling = QTimer(self)  # the least height is found once the layouts settled
@@ -100,8 +101,7 @@ class _Note(QScrollArea):
         self._fit()
 
     def _fit(self) -> None:
-        bar = self.verticalScrollBar()
-        width = self.width() - (bar.width() if bar is not None and bar.isVisible() else 0)
+        width = self.width() - (self.bar.width() if self.bar.isVisible() else 0)
         needed = self.label.heightForWidth(max(1, width)) if self.label.text() else 0
         wanted = min(max(needed, 0), self.label.fontMetrics().lineSpacing() * NOTE_LINES)
         if wanted != self._wanted:
@@ -131,6 +131,7 @@ class _Note(QScrollArea):
 
 def _text_box(read_only: bool, editor: QPlainTextEdit | None = None) -> QPlainTextEdit:
     box = editor or QPlainTextEdit()
+    own_scroll_bar(box)  # _scroll_to asks for it
     box.setReadOnly(read_only)
     box.setLineWrapMode(QPlainTextEdit.NoWrap)
     font = QFont("DejaVu Sans Mono")

@@ -7,8 +7,8 @@ bar of 20 pixels).  Dialogs taller than that room scroll.
 
 from __future__ import annotations
 
-from PyQt5.QtCore import QMargins, QRect, QSize
-from PyQt5.QtWidgets import QApplication, QScrollArea, QWidget
+from PyQt5.QtCore import QMargins, QRect, QSize, Qt
+from PyQt5.QtWidgets import QAbstractScrollArea, QApplication, QScrollArea, QScrollBar, QWidget
 
 #: room left around a window for the window manager's frame (a title bar of 20 pixels)
 FRAME = QMargins(0, 20, 0, 0)
@@ -55,15 +55,28 @@ def scrolling(body: QWidget, parent: QWidget | None = None) -> QScrollArea:
     return area
 
 
+def own_scroll_bar(area: QAbstractScrollArea) -> QScrollBar:
+    """A vertical scroll bar for ``area`` made here, for the reason ``commands.submenu`` gives
+    for menus: Qt deletes the bar it made without telling Python, and a wrapper Python kept
+    may be handed out again for another object at the same address (CI crashed once asking
+    a note's bar for its width while a new window was laid out); a bar made here tells its
+    wrapper (``area.verticalScrollBar()`` then hands out the same)."""
+    bar = QScrollBar(Qt.Orientation.Vertical, area)
+    area.setVerticalScrollBar(bar)
+    return bar
+
+
 class _WholeScrollArea(QScrollArea):
     """A scroll area whose size hint is its contents' whole size (Qt's stops at 36 lines)."""
+
+    def __init__(self, *args) -> None:
+        super().__init__(*args)
+        self.bar = own_scroll_bar(self)
 
     def sizeHint(self) -> QSize:
         inner = self.widget()
         if inner is None:
             return super().sizeHint()
         frame = 2 * self.frameWidth()
-        scroll = self.verticalScrollBar()
-        bar = scroll.sizeHint().width() if scroll is not None else 0
         hint = inner.sizeHint()
-        return QSize(hint.width() + frame + bar, hint.height() + frame)
+        return QSize(hint.width() + frame + self.bar.sizeHint().width(), hint.height() + frame)
