@@ -8,7 +8,7 @@ import sys
 
 import pytest
 from helpers import SMALL_A
-from helpers.online import ORDER_2, TINY, WAIT, tiny
+from helpers.online import ORDER_2, TINY, WAIT, served, tiny
 
 from asprilo import encodings
 from asprilo.checker import check
@@ -186,39 +186,25 @@ def test_an_order_injected_at_step_3_is_delivered(servers):
 
 
 def test_serve_solver_plans_with_the_anytime_method():
-    process = subprocess.Popen([sys.executable, "-m", "asprilo.cli", "serve", "solver", "--method", "anytime",
-                                "--time-limit", "5", "--port", "0", "--once"],
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        port = int(process.stdout.readline().rsplit(":", 1)[1])
-        channel = Channel.connect("127.0.0.1", port, timeout=WAIT)
+    with served("solver", "--method", "anytime", "--time-limit", "5") as server:
+        channel = Channel.connect("127.0.0.1", server.port, timeout=WAIT)
         channel.send(reset())
         channel.send(Message(Schedule(tiny(), {2: 3}).world(), DONE, 0))
         assert read_actions(channel.receive().facts) == [Action(1, 1, "move", (1, 0))]
         channel.close()
-        assert process.wait(WAIT) == 0
-    finally:
-        process.kill()
-        _out, errors = process.communicate()
-    assert "solver: step 0: planned 4 actions for steps 1..4" in errors
+        assert server.process.wait(WAIT) == 0
+    assert "solver: step 0: planned 4 actions for steps 1..4" in server.errors
 
 
 def test_serve_command_prints_its_port_and_rejects_bad_input(tmp_path):
-    process = subprocess.Popen([sys.executable, "-m", "asprilo.cli", "serve", "solver", "--port", "0", "--once"],
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        line = process.stdout.readline()
-        assert line.startswith("asprilo serve solver: listening on 127.0.0.1:")
-        port = int(line.rsplit(":", 1)[1])
-        channel = Channel.connect("127.0.0.1", port, timeout=WAIT)
+    with served("solver") as server:
+        assert server.first_line.startswith("asprilo serve solver: listening on 127.0.0.1:")
+        channel = Channel.connect("127.0.0.1", server.port, timeout=WAIT)
         channel.send(reset())
         channel.send(done(0))
         assert channel.receive() == Message("")  # nothing known, nothing to do
         channel.close()
-        assert process.wait(WAIT) == 0
-    finally:
-        process.kill()
-        process.communicate()
+        assert server.process.wait(WAIT) == 0
     instance = tmp_path / "tiny.lp"
     instance.write_text(TINY)
     for args, message in ((["simulator", str(instance), "--at", "3:9"],

@@ -15,14 +15,12 @@ import os
 import select
 import socket
 import struct
-import subprocess
-import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
 
 import pytest
-from helpers.online import TINY, tiny
+from helpers.online import TINY, served, tiny
 
 from asprilo.limits import Limits, current, parse_option, set_current, using
 from asprilo.model import Action, Plan
@@ -425,16 +423,9 @@ def test_a_session_that_fails_ends_its_client_only():
 # --- the command line ---------------------------------------------------------------------------------------
 
 def test_serve_takes_the_line_budget_from_the_command_line():
-    process = subprocess.Popen([sys.executable, "-m", "asprilo.cli", "serve", "solver", "--port", "0", "--once",
-                                "--limit", "line-seconds=0.5"],
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        port = int(process.stdout.readline().rsplit(":", 1)[1])
-        channel = _connect(port)  # and never a word
+    with served("solver", "--limit", "line-seconds=0.5") as server:
+        channel = _connect(server.port)  # and never a word
         assert channel.receive() == _late("0.5", "no line within {} s of connecting")
         channel.close()
-        assert process.wait(GUARD) == 0
-    finally:
-        process.kill()
-        _out, errors = process.communicate()
-    assert "session: refused: no line within 0.5 s of connecting, beyond the limit line-seconds=0.5" in errors
+        assert server.process.wait(GUARD) == 0
+    assert "session: refused: no line within 0.5 s of connecting, beyond the limit line-seconds=0.5" in server.errors

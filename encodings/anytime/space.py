@@ -66,10 +66,6 @@ class Space:
         (:meth:`estimate` was called): the way to the task, and then the rest of the errand."""
         return self.deadlines[number - 1] - self.windows[number - 1][cell][1] + self.tails[number - 1]
 
-    def slots(self) -> int:
-        """How many (cell, step) pairs the windows hold."""
-        return sum(last - first + 1 for window in self.windows for first, last in window.values())
-
     @classmethod
     def gather(cls, robot: int, table: Reservations, tasks: list[Task], windows: list[dict[Cell, tuple[int, int]]],
                begin: Cell, step: int) -> Space:

@@ -235,7 +235,8 @@ class Work:
         """Send ``robots`` without work that stand still on or next to another robot's ``way``
         to park off it (they become movers; the way is needed from now on); the ones that
         were not movers yet."""
-        new = [robot for robot in robots if robot not in self.movers() and robot not in set(self.workers())]
+        busy = set(self.movers()) | set(self.workers())
+        new = [robot for robot in robots if robot not in busy]
         self.kept_clear |= way
         self._movers = self.movers() + new
         return new

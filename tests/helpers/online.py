@@ -2,6 +2,12 @@
 
 from __future__ import annotations
 
+import contextlib
+import subprocess
+import sys
+from collections.abc import Iterator
+from dataclasses import dataclass
+
 from asprilo.model import Instance
 from asprilo.reader import read_instance
 from asprilo.sources import Source
@@ -29,3 +35,29 @@ WAIT = 30.0  # seconds any network wait may take at most
 
 def tiny() -> Instance:
     return read_instance(Source("tiny.lp", TINY))
+
+
+@dataclass
+class Served:
+    """A server started by :func:`served`: the line it printed first, its port, its process,
+    and (after the ``with`` block) what it wrote on standard error."""
+
+    process: subprocess.Popen
+    first_line: str = ""
+    port: int = 0
+    errors: str = ""
+
+
+@contextlib.contextmanager
+def served(*args: str) -> Iterator[Served]:
+    """``asprilo serve ARGS --port 0 --once`` in a process of its own, until the block ends."""
+    process = subprocess.Popen([sys.executable, "-m", "asprilo.cli", "serve", *args, "--port", "0", "--once"],
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    server = Served(process)
+    try:
+        server.first_line = process.stdout.readline()
+        server.port = int(server.first_line.rsplit(":", 1)[1])
+        yield server
+    finally:
+        process.kill()
+        _out, server.errors = process.communicate()
