@@ -40,7 +40,7 @@ def test_robots_take_turns_in_a_dead_end():
     # other passes; plain PIBT steps push the two back and forth for ever (checked first)
     floor = Floor([(1, 1), (2, 1), (3, 1), (4, 1), (2, 2)])
     starts, goals = {1: (1, 1), 2: (4, 1)}, {1: (4, 1), 2: (1, 1)}
-    pibt, at = Pibt(floor, goals), dict(starts)
+    pibt, at = Pibt(floor, goals, swap=False), dict(starts)
     for _ in range(50):
         at = pibt.step(at, [1, 2], {})
     assert at != goals
@@ -48,12 +48,29 @@ def test_robots_take_turns_in_a_dead_end():
     _keeps_the_rules(tracks, starts, goals)
 
 
+def test_the_swap_move_backs_away_and_pulls_the_other_robot_to_the_branch():
+    # the same corridor: robot 1 on (2,1) wants (3,1), where robot 2 stands, which wants to
+    # come back past it; ahead lies the dead end (4,1), behind the branch (2,1) with two ways
+    # on: so robot 1 backs away from its goal, to (1,1) or (2,2), and pulls robot 2 after it
+    floor = Floor([(1, 1), (2, 1), (3, 1), (4, 1), (2, 2)])
+    goals = {1: (4, 1), 2: (1, 1)}
+    for seed in range(10):
+        pibt = Pibt(floor, goals, seed)
+        after = pibt.step({1: (2, 1), 2: (3, 1)}, [1, 2], {})
+        assert after[2] == (2, 1) and after[1] in {(1, 1), (2, 2)}
+        at = after
+        for _ in range(30):
+            at = pibt.step(at, [1, 2], {})
+        assert at == goals
+
+
 def test_a_robot_without_a_goal_steps_aside_and_comes_back():
     floor = Floor([(1, 1), (2, 1), (3, 1), (2, 2)])
     starts, goals = {1: (1, 1), 2: (2, 1)}, {1: (3, 1)}
     tracks = lacam_tracks(floor, starts, goals, lambda: False)
     _keeps_the_rules(tracks, starts, goals)
-    assert tracks[2].cells[-1] == (2, 1) and len(set(tracks[2].cells)) == 2
+    # robot 1 can only reach (3,1) through (2,1): robot 2 must leave it, and come back
+    assert tracks[2].cells[-1] == (2, 1) and len(set(tracks[2].cells)) >= 2
 
 
 def test_no_tracks_where_the_robots_cannot_pass_each_other():
