@@ -100,3 +100,21 @@ def test_time_limit_and_cancellation_stop_the_search():
     cancel.set()
     with Watch(cancel=cancel) as watch:
         assert flow_plan(WALLED, watch=watch).status is SolveStatus.CANCELLED
+
+
+@pytest.mark.parametrize("name, memory_limit, in_child", [
+    ("1x2x4/x11_y6_n66_r11_s16_ps1_pr16_u16_o11_N001.lp", None, False),  # 11 x 66 = 726 robot-cells
+    ("1x2x4/x11_y6_n66_r11_s16_ps1_pr16_u16_o11_N001.lp", 2000, True),  # a memory limit asks for a child
+    ("2x3x5/x19_y9_n171_r15_s60_ps3_pr60_u60_o15_N001.lp", None, True),  # 15 x 171 = 2,565 > 2,000
+])
+def test_a_quick_flow_runs_in_this_process_even_when_isolation_is_asked(monkeypatch, name, memory_limit, in_child):
+    from asprilo.encodings.solving import solve
+    from asprilo.isolation import run_isolated
+
+    children = []
+    monkeypatch.setattr("asprilo.isolation.run_isolated",
+                        lambda *args, **options: children.append(args) or run_isolated(*args, **options))
+    outcome = solve(EXAMPLES / "paper-m" / name, Domain.M, method="flow", isolate=True, memory_limit=memory_limit,
+                    time_limit=60)
+    assert (outcome.status, outcome.horizon, outcome.minimal) == (SolveStatus.FOUND, PAPER_M[name], True)
+    assert len(children) == in_child

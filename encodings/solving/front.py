@@ -17,7 +17,6 @@ from typing import TYPE_CHECKING
 
 from asprilo.checker import check
 from asprilo.domain import Domain, detect_domain
-from asprilo.isolation import Isolated, run_isolated
 from asprilo.model import Instance
 from asprilo.reader import read_instance
 from asprilo.solver import Statistics
@@ -33,6 +32,8 @@ from .watch import Listeners, Watch
 
 if TYPE_CHECKING:
     from typing_extensions import Unpack
+
+    from asprilo.isolation import Isolated
 
 #: how much longer than its time limit a child process may take before it is killed (seconds)
 _CHILD_GRACE = 0.5
@@ -88,11 +89,12 @@ def request_for(instance: Instance | str | Path, domain: Domain | str | None = N
 def solve_request(request: SolveRequest, listeners: Listeners | None = None,
                   cancel: threading.Event | None = None) -> Outcome:
     """Run ``request`` with its method, here or (``isolate``) in a child process (a method
-    that runs its own child processes, ``auto``, always runs here)."""
+    that runs its own child processes, ``auto``, and a quick run always run here)."""
     request = resolve(request)
     method = method_for(request)
     listeners = listeners or Listeners()
-    if request.isolate and not method.isolates_itself:
+    quick = request.memory_limit is None and method.quick(request)
+    if request.isolate and not method.isolates_itself and not quick:
         return _solve_isolated(request, method, listeners, cancel)
     return solve_here(request, method, listeners, cancel)
 
@@ -128,6 +130,8 @@ def check_plan(request: SolveRequest, outcome: Outcome) -> None:
 
 def _solve_isolated(request: SolveRequest, method: Method, listeners: Listeners,
                     cancel: threading.Event | None) -> Outcome:
+    from asprilo.isolation import run_isolated  # only here: starting child processes costs imports
+
     time_limit = request.time_limit
     child = run_isolated(solve_in_child, (request,),
                          time_limit=None if time_limit is None else time_limit + _CHILD_GRACE,

@@ -35,6 +35,11 @@ class Method(ABC):
         (by default it serves every request)."""
         return None
 
+    def quick(self, request: SolveRequest) -> bool:
+        """Whether ``request`` is so small that this method answers it before a child process
+        would have started: then it runs here even with ``isolate`` (no memory limit asked)."""
+        return False
+
     def time_limit(self, request: SolveRequest) -> float | None:
         """The seconds it may take (``None``: no limit)."""
         return request.time_limit

@@ -23,16 +23,14 @@ largest horizon.
 from __future__ import annotations
 
 import contextlib
-import multiprocessing
 import threading
 import time
 from collections.abc import Callable
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from asprilo.bounds import INFINITE
 from asprilo.domain import Bound, Job
-from asprilo.isolation import Child, Isolated, start_isolated
 
 from ...registry import Encoding, find_encoding
 from ..bounds import AwaitedBounds, LowerBounds
@@ -42,6 +40,9 @@ from ..request import SolveRequest
 from ..status import IMPROVED, Attempt, Phase, SolveStatus, Totals
 from ..watch import Watch
 from .exact import UNREACHABLE
+
+if TYPE_CHECKING:
+    from asprilo.isolation import Child, Isolated
 
 #: the method's name, and the names of its two parts
 AUTO, EXACT, ANYTIME = "auto", "asp", "anytime"
@@ -127,6 +128,10 @@ class Portfolio:
         """Start both children (before the threads that wait for them: a process that ran no
         other thread then forks both instead of starting fresh interpreters), with their
         time limits."""
+        import multiprocessing  # here, not at the top: a quick method (flow) starts faster without it
+
+        from asprilo.isolation import start_isolated
+
         request, inbox = self.request, None
         if self.bounds is None:
             inbox, self.outbox = multiprocessing.Pipe(duplex=False)

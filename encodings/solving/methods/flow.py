@@ -12,6 +12,10 @@ from ..request import SolveRequest
 from ..status import SolveStatus
 from ..watch import Watch
 
+#: robots x cells up to which a max-flow run is quick (the paper's small M instance: 726; its
+#: plan takes a few milliseconds, a child process about 15)
+QUICK_ROBOT_CELLS = 2_000
+
 
 class MaxFlow(Method):
     """The minimal makespan of anonymous robots as maximum flow over time (``--method flow``)."""
@@ -24,6 +28,9 @@ class MaxFlow(Method):
         if request.instance.assignment:
             raise InputError("the instance assigns goals to robots; the flow method solves anonymous "
                              "goals only (use --method asp)")
+
+    def quick(self, request: SolveRequest) -> bool:
+        return len(request.instance.robots) * len(request.instance.cells) <= QUICK_ROBOT_CELLS
 
     def run(self, request: SolveRequest, watch: Watch) -> Outcome:
         from ...flow import flow_plan  # numpy and the network: only when max-flow runs
