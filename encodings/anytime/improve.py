@@ -62,6 +62,8 @@ class Improver:
         if work.domain.work is Job.GOALS:
             self.weights["alone"] = 0.2
             self.weights["order"] = 0.0  # a robot of M/Md has one goal
+        if not work.reassignable():
+            self.weights["swap"] = 0.0
         self.tried = dict.fromkeys(KINDS, 0)
         self.won = dict.fromkeys(KINDS, 0)
 

@@ -1,71 +1,126 @@
 """The Python routing engine: ``route.lp``'s search, in Python.
 
 It answers the same question as the logic program on the same :class:`~.space.Space`: the
-earliest step at which the robot can be parked, and a route that gets it there.  Like the
-grounder, it searches the states "on cell C at step T, on the way to task K" of the
-time-expanded floor inside the windows, keeping for each state the one it came from; but it
-goes best first (A*), so it seldom visits more than the states near one good route, and it
-starts no solver for each call: on a crowded floor the first plan needs thousands of calls
-(``tests/test_timed_search.py`` checks that both engines find the same arrival).
+earliest step at which the robot can be parked, and a route that gets it there.  The logic
+program grounds every state "on cell C at step T, on the way to task K" inside the windows.
+This search goes best first (A*) and, instead of single steps, over *safe intervals* (Phillips
+and Likhachev's SIPP, written here from the paper's idea): the steps a cell is free for the
+robot fall into runs between the steps it is not (another robot there, a shelf in the way of a
+loaded robot), and a robot that reaches a run may wait there until the run ends.  So a state
+is "on cell C in run R, on the way to task K", reached as early as possible; waiting needs no
+states of its own, and a route that must wait long visits no more states than one that need
+not (``tests/test_timed_search.py`` checks that both engines find the same arrival).
 """
 
 from __future__ import annotations
 
 import heapq
+from bisect import bisect_right
 
 from asprilo.model import Cell
 
 from .errands import Task
 from .space import Space
 
-#: a state of the search: (task number, cell, step)
+#: a state of the search: (task number, cell, run number); task number 0: parked
 State = tuple[int, Cell, int]
+#: the runs of steps a cell is free on the way to one task, and the steps still to go from it
+Room = tuple[list[tuple[int, int]], list[int], int]
 
 
 def search(space: Space) -> tuple[list[Cell], dict[int, Task]] | None:
     """The route of ``space``'s robot with the earliest arrival: its cells after steps
     ``space.step`` .. arrival and the tasks done at their steps; ``None`` when none fits.
 
-    Needs :meth:`Space.estimate`: the states are visited best first, by their step plus the
-    steps still to go (A*; the estimate never overshoots, so the first parked state taken
-    is the earliest one); of two as good, the one at the earlier step first, as the grounder
-    goes (routes that keep close to their shortest way early leave room for others)."""
+    Needs :meth:`Space.estimate`: the states are visited best first, by their first step plus
+    the steps still to go (A*; the estimate never overshoots, so the first parked state taken
+    is the earliest one)."""
     rooms = [_rooms(space, number) for number in range(1, space.last + 1)]
-    if not any(max(rooms[-1][cell][0], space.free_from.get(cell, 0)) <= rooms[-1][cell][1]
-               for cell in space.task_cells[-1] if cell in rooms[-1]):
+    parking = [(cell, rooms[-1][cell]) for cell in space.task_cells[-1] if cell in rooms[-1]]
+    if not any(runs and runs[-1][1] >= space.free_from.get(cell, 0) for cell, (runs, _, _) in parking):
         return None  # no parking cell is free within the window: no need to search
-    begin: State = (1, space.begin, space.step)
+    begin: State = (1, space.begin, _start_run(rooms[0][space.begin], space.step))
+    to_go = rooms[0][space.begin][2]
+    arrival = {begin: space.step}
     came_from: dict[State, State | None] = {begin: None}
-    queue = [(space.step + rooms[0][space.begin][3], space.step, begin)]
-    crossings, last = space.crossings, space.last
+    queue = [(space.step + to_go, space.step, begin)]
     while queue:
-        _estimate, _later, state = heapq.heappop(queue)
-        number, cell, step = state
-        if number == last and cell in space.task_cells[-1] and step >= space.free_from.get(cell, step):
-            return _trace(space, came_from, state)
-        after, room = step + 1, rooms[number - 1]
-        x, y = cell
-        for target in ((x + 1, y), (x - 1, y), (x, y + 1), (x, y - 1), cell):
-            free = room.get(target)
-            if free is not None and free[0] <= after <= free[1] and after not in free[2] \
-                    and (target, cell, after) not in crossings and (number, target, after) not in came_from:
-                came_from[(number, target, after)] = state
-                heapq.heappush(queue, (after + free[3], after, (number, target, after)))
-        if number < last and cell in space.task_cells[number - 1] and space.acts(number) \
-                and after >= space.settle.get(number, after):
-            free = rooms[number].get(cell)
-            following = (number + 1, cell, after)
-            if free is not None and free[0] <= after <= free[1] and after not in free[2] and following not in came_from:
-                came_from[following] = state
-                heapq.heappush(queue, (after + free[3], after, following))
+        _estimate, step, state = heapq.heappop(queue)
+        if step > arrival[state]:
+            continue  # reached earlier since
+        if state[0] == 0:
+            return _trace(space, came_from, arrival, state)
+        for following, there in _successors(space, rooms, state, step):
+            if there < arrival.get(following, there + 1):  # reached earlier than known
+                number, cell, _ = following
+                arrival[following], came_from[following] = there, state
+                heapq.heappush(queue, (there + (rooms[number - 1][cell][2] if number else 0), there, following))
     return None
 
 
-def _rooms(space: Space, number: int) -> dict[Cell, tuple[int, int, frozenset[int], int]]:
-    """Cell -> ``(first, last, closed, to_go)`` on the way to task ``number``: the steps the
-    robot may be there (``last`` cut where another robot stays for good), the steps in
-    between at which it may not (another robot there, or a shelf in the way of a robot
-    carrying one), and the steps at least still to go from there."""
+def _successors(space: Space, rooms: list[dict[Cell, Room]], state: State, step: int):
+    """The states reachable from ``state`` (reached at ``step``), each with the earliest
+    step it is reached at: parked there, on a neighbour, or on to the next task."""
+    number, cell, run = state
+    last = rooms[number - 1][cell][0][run][1]
+    if number == space.last and cell in space.task_cells[-1]:
+        parked = max(step, space.free_from.get(cell, step))
+        if parked <= last:
+            yield (0, cell, run), parked
+    for target, there, target_run in _moves(space, rooms[number - 1], cell, step, last):
+        yield (number, target, target_run), there
+    if number < space.last and cell in space.task_cells[number - 1] and space.acts(number):
+        following = rooms[number].get(cell)
+        earliest = max(step + 1, space.settle.get(number, 0))
+        for index, (begins, ends) in enumerate(following[0] if following else ()):
+            done = max(earliest, begins)
+            if done <= min(last + 1, ends):
+                yield (number + 1, cell, index), done
+                break
+
+
+def _moves(space: Space, room: dict[Cell, Room], cell: Cell, step: int, last: int):
+    """The moves from ``cell`` (reached at ``step``, free until ``last``) to a neighbour:
+    ``(neighbour, earliest step there, its run)`` for every run of the neighbour it can reach
+    in time, without swapping cells with a robot coming the other way."""
+    x, y = cell
+    for target in ((x + 1, y), (x - 1, y), (x, y + 1), (x, y - 1)):
+        free = room.get(target)
+        if free is None:
+            continue
+        runs, starts, _ = free
+        index = max(0, bisect_right(starts, step + 1) - 1)
+        while index < len(runs) and runs[index][0] <= last + 1:
+            begins, ends = runs[index]
+            for there in range(max(step + 1, begins), min(last + 1, ends) + 1):
+                if (target, cell, there) not in space.crossings:
+                    yield target, there, index
+                    break
+            index += 1
+
+
+def _start_run(room: Room, step: int) -> int:
+    """The number of the run of the start cell that holds the first ``step``.  Where none
+    does (the start lies outside the window then), a run is made for it: the robot may stay
+    only if the next step is free."""
+    runs, starts, _ = room
+    index = bisect_right(starts, step) - 1
+    if index >= 0 and runs[index][1] >= step:
+        return index
+    index += 1
+    if index < len(runs) and runs[index][0] == step + 1:
+        runs[index], starts[index] = (step, runs[index][1]), step
+    else:
+        runs.insert(index, (step, step))
+        starts.insert(index, step)
+    return index
+
+
+def _rooms(space: Space, number: int) -> dict[Cell, Room]:
+    """Cell -> ``(runs, their first steps, to_go)`` on the way to task ``number``: the runs
+    of steps the robot may be there (inside its window, cut where another robot stays for
+    good, between the steps another robot is there or, for a robot carrying a shelf, another
+    shelf rests there), and the steps at least still to go from there."""
     carrying = space.carrying(number)
     rooms = {}
     for cell, (first, last) in space.windows[number - 1].items():
@@ -74,19 +129,32 @@ def _rooms(space: Space, number: int) -> dict[Cell, tuple[int, int, frozenset[in
         if carrying:
             for since, until in space.rests.get(cell, ()):
                 closed.update(range(max(first, since), min(last, until) + 1))
-        rooms[cell] = (first, last, frozenset(closed), space.to_go(number, cell))
+        runs, begins = [], first
+        for shut in sorted(step for step in closed if first <= step <= last):
+            if shut > begins:
+                runs.append((begins, shut - 1))
+            begins = shut + 1
+        if begins <= last:
+            runs.append((begins, last))
+        rooms[cell] = (runs, [begins for begins, _ in runs], space.to_go(number, cell))
     return rooms
 
 
-def _trace(space: Space, came_from: dict[State, State | None], last: State) -> tuple[list[Cell], dict[int, Task]]:
-    """The route back from the parked state ``last`` to the start."""
-    states: list[State] = []
-    state: State | None = last
+def _trace(space: Space, came_from: dict[State, State | None], arrival: dict[State, int], parked: State
+           ) -> tuple[list[Cell], dict[int, Task]]:
+    """The route back from the parked state to the start: the robot waits on each cell until
+    it leaves it."""
+    visits: list[tuple[State, int]] = []  # (state, first step there), the parked state last
+    state: State | None = parked
     while state is not None:
-        states.append(state)
+        visits.append((state, arrival[state]))
         state = came_from[state]
-    states.reverse()
-    cells = [cell for _number, cell, _step in states]
-    done = {step: space.tasks[states[index - 1][0] - 1]
-            for index, (number, _cell, step) in enumerate(states) if index and number != states[index - 1][0]}
+    visits.reverse()
+    cells: list[Cell] = []
+    done: dict[int, Task] = {}
+    for (state, step), (following, next_step) in zip(visits, visits[1:], strict=False):
+        cells += [state[1]] * (next_step - step)
+        if following[0] == state[0] + 1:
+            done[next_step] = space.tasks[state[0] - 1]
+    cells.append(parked[1])
     return cells, done

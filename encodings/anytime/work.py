@@ -100,6 +100,11 @@ class Work:
 
     # --- re-assigning a neighbourhood --------------------------------------------------------------
 
+    def reassignable(self) -> bool:
+        """Whether the work can go to other robots at all (not so where every robot of M/Md
+        has its own goal)."""
+        return self.domain.work is Job.TRIPS or len(self.instance.assigned_cells()) < len(self.instance.robots)
+
     def reassign(self, freed: set[int], budget: float, moved: int | None = None) -> bool:
         """Assign the work of the ``freed`` robots among them anew (others keep theirs;
         ``moved``: a shelf that must go to another robot than its own now); whether the
