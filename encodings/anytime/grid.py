@@ -8,6 +8,7 @@ a cell that cannot be reached is :data:`~asprilo.bounds.INFINITE` away.
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from collections.abc import Iterable
 
 import numpy as np
@@ -15,14 +16,20 @@ import numpy as np
 from asprilo.bounds import Floor
 from asprilo.model import DIRECTIONS, Cell
 
+#: the bytes of distance arrays a grid keeps for reuse (the router asks for the same ones
+#: again and again: from a robot's start, to its goal, over the same passable cells)
+CACHE_BYTES = 64_000_000
+
 
 class Grid:
     """The floor (the engine's graph) as arrays: which cells exist (``floor``, a boolean array),
-    and distances over them (or over a subset of them)."""
+    and distances over them (or over a subset of them), the latest ones kept for reuse."""
 
     def __init__(self, engine: Floor):
         self.engine = engine
         self.floor = engine.plane()
+        self._distances: OrderedDict[tuple, np.ndarray] = OrderedDict()
+        self._keep = max(16, CACHE_BYTES // (self.floor.size * 16))
 
     def mask(self, cells: Iterable[Cell] = ()) -> np.ndarray:
         """A boolean array of the floor's shape, true on ``cells``."""
@@ -33,8 +40,19 @@ class Grid:
 
     def distances(self, sources: Iterable[Cell], passable: np.ndarray | None = None) -> np.ndarray:
         """Steps from the nearest source to every cell, moving over ``passable`` cells only
-        (default: the floor); sources count as passable; ``INFINITE`` where no path leads."""
-        return self.engine.plane_distances(sources, passable)
+        (default: the floor); sources count as passable; ``INFINITE`` where no path leads.
+        The array is shared with later calls with the same question: it cannot be written."""
+        key = (frozenset(sources), None if passable is None else passable.tobytes())
+        found = self._distances.get(key)
+        if found is not None:
+            self._distances.move_to_end(key)
+            return found
+        found = self.engine.plane_distances(key[0], passable)
+        found.flags.writeable = False
+        self._distances[key] = found
+        if len(self._distances) > self._keep:
+            self._distances.popitem(last=False)
+        return found
 
     def table(self, sources: list[Cell], targets: list[Cell]) -> np.ndarray:
         """``len(sources) x len(targets)`` walking distances over the whole floor (``INFINITE``: none)."""
