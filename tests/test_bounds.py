@@ -234,3 +234,17 @@ def test_the_python_and_the_scipy_matchings_agree(monkeypatch):
     assert by_python[-1] == (math.inf, math.inf)
     # by hand: goal 0 <- robot 1 (1), goal 1 <- robot 0 (2): 3, better than 1 + 5 or 4 + 2
     assert min_cost_assignment(np.array([[4.0, 1.0], [2.0, 5.0]])) == 3
+
+
+def test_the_carrying_distances_are_the_same_searched_per_station_or_all_at_once(monkeypatch):
+    from asprilo.bounds import delivery
+
+    instance = read_instance(EXAMPLES / "paper-m/4x5x8/x46_y15_n690_r23_s320_ps10_pr320_u320_o23_N001.lp")
+    floor = Floor(instance.cells)
+    one_by_one = Deliveries(instance, Domain.A, floor)
+    monkeypatch.setattr(delivery, "NUMPY_SEARCH", 0)
+    all_at_once = Deliveries(instance, Domain.A, floor)
+    pairs = [(shelf, station.at) for shelf in instance.shelves for station in instance.stations.values()]
+    assert len(pairs) == 320 * 10
+    # two searches written apart: breadth first in Python per station, numpy's for all at once
+    assert [all_at_once.carry(*pair) for pair in pairs] == [one_by_one.carry(*pair) for pair in pairs]

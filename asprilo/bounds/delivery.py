@@ -62,6 +62,12 @@ def carry_arrivals(cells: set[Cell], starts: dict[Cell, float], free_at: dict[Ce
     return best
 
 
+#: cells x stations from which :meth:`Deliveries.carry` searches all stations at once with
+#: numpy (on 200x200 with 100 stations: 0.14 s instead of 4.5 s); below, importing numpy
+#: would cost more than it saves
+NUMPY_SEARCH = 1_000_000
+
+
 @dataclass(frozen=True)
 class Line:
     """An order line still to be delivered: its station cell and the shelves holding its product."""
@@ -111,9 +117,16 @@ class Deliveries:
         return {s: walks[k] for k, s in enumerate(ids)}
 
     def carry(self, shelf: int, station: Cell) -> float:
-        """The distance from ``shelf``'s cell to ``station`` (one search per station)."""
+        """The distance from ``shelf``'s cell to ``station`` (one search per station; on a
+        large floor with many stations, one search for all of them, with numpy)."""
         if station not in self._from_station:
-            self._from_station[station] = self.floor.steps_from([station])
+            stations = sorted({line.station for line in self.lines} | {station})
+            if len(self.instance.cells) * len(stations) < NUMPY_SEARCH:
+                self._from_station[station] = self.floor.steps_from([station])
+            else:
+                cells = sorted(set(self.shelves.values()))
+                for at, row in zip(stations, self.floor.distances(stations, cells).tolist(), strict=True):
+                    self._from_station[at] = dict(zip(cells, row, strict=True))
         return float(self._from_station[station].get(self.shelves[shelf], INFINITE))
 
     def _lines(self) -> tuple[list[Line], list[tuple[int, int]]]:
