@@ -30,6 +30,10 @@ NEAREST = 12
 #: the robots' work is summed in the shelf assignment only where (steps counted) x (robot-shelf
 #: pairs offered) stays below this: the sums ground per step
 WORK_SIZE = 200_000
+#: shelves x robots from which the solver starts from a greedy assignment (on 200x200 with
+#: 1,000 robots, its first answers within the first assignment's seconds gave up to 7
+#: shelves to one robot while 700 robots stayed idle)
+HINT_SIZE = 500_000
 
 
 @dataclass
@@ -46,8 +50,9 @@ class Choice:
 class Assigner:
     """One grounded assignment program and the facts it was grounded from."""
 
-    def __init__(self, program: str, facts: list[str], constants: dict[str, str] | None = None):
-        self.solver = Solver(options=["--opt-strategy=bb,hier", "--warn=none"], constants=constants)
+    def __init__(self, program: str, facts: list[str], constants: dict[str, str] | None = None,
+                 options: Iterable[str] = ()):
+        self.solver = Solver(options=["--opt-strategy=bb,hier", "--warn=none", *options], constants=constants)
         self.solver.load(HERE / program)
         self.solver.add("\n".join(facts))
         self.solver.ground()
@@ -142,7 +147,52 @@ def shelf_problem(instance: Instance, grid: Grid, domain: Domain, homes: dict[in
                              for (_, p), q in lines.items() if domain.counts_units)
     facts += _workloads(instance, options, haul, cap) if several else []
     facts.append(f"cap({cap}).")
-    return ShelfProblem(lines, Assigner("assign_shelves.lp", facts, {"delivery": domain.delivery.value}), haul)
+    hinted = len(shelves) * len(instance.robots) >= HINT_SIZE
+    if hinted:
+        orders = {o.id: o.station for o in instance.orders.values()}
+        facts += _greedy(lines, {s: stock[s] for s in shelves}, haul, orders, options, cap, domain.counts_units)
+    assigner = Assigner("assign_shelves.lp", facts, {"delivery": domain.delivery.value},
+                        ["--heuristic=Domain"] if hinted else [])
+    return ShelfProblem(lines, assigner, haul)
+
+
+def _greedy(lines: dict[tuple[int, int], int], stock: dict[int, dict[int, int | None]],
+            haul: dict[tuple[int, int], int], orders: dict[int, int | None], options: list[tuple[int, int, int]],
+            cap: int, counts_units: bool) -> list[str]:
+    """A greedy assignment as ``hint_give/4`` and ``hint_carry/2`` facts: every line served by
+    the shelves holding its product nearest to its station (in A as many as its units need,
+    none giving more than it has left), each shelf used carried by the nearest robot offered
+    that has fewer than ``cap`` shelves yet (or the least busy one)."""
+    left = {(s, p): (u or 1) if counts_units else 1 for s, held in stock.items() for p, u in held.items()}
+    holders: dict[int, list[int]] = {}
+    for shelf, held in stock.items():
+        for product in held:
+            holders.setdefault(product, []).append(shelf)
+    hints, used = [], []
+    for (order, product), units in sorted(lines.items()):
+        station = orders.get(order)
+        for shelf in sorted(holders.get(product, ()), key=lambda s: haul.get((s, station), INFINITE)):
+            if units <= 0:
+                break
+            given = min(units, left[(shelf, product)]) if counts_units else 1
+            if given <= 0:
+                continue
+            left[(shelf, product)] -= given
+            units -= given
+            hints.append(f"hint_give({shelf},{order},{product},{given}).")
+            used.append(shelf)
+    carriers: dict[int, list[tuple[int, int]]] = {}
+    for robot, shelf, steps in options:
+        carriers.setdefault(shelf, []).append((steps, robot))
+    load: dict[int, int] = {}
+    for shelf in dict.fromkeys(used):
+        offered = sorted(carriers.get(shelf, ()))
+        if offered:
+            room = [robot for _, robot in offered if load.get(robot, 0) < cap]
+            robot = room[0] if room else min((robot for _, robot in offered), key=load.__getitem__)
+            load[robot] = load.get(robot, 0) + 1
+            hints.append(f"hint_carry({robot},{shelf}).")
+    return hints
 
 
 def _workloads(instance: Instance, options: list[tuple[int, int, int]], haul: dict[tuple[int, int], int],

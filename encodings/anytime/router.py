@@ -52,8 +52,13 @@ class Level:
 LEVELS = {"asp": (Level(1, 6), Level(2, 20), Level(4, 60), Level(None, 150, 12), Level(None, 400, 10**6)),
           "python": (Level(None, 30, 8), Level(None, 60, 16), Level(None, 400, 10**6))}
 QUICK = {"asp": 3, "python": 2}
-#: a level whose corridors hold more (cell, step) pairs than this is not tried
-MAX_SLOTS = 300_000
+#: the most (cell, step) pairs the windows of one routing call may hold: the logic program
+#: grounds them all, the Python search keeps each cell's runs of free steps.  A level with
+#: every cell on a way at most so much longer holds more on a long way across an open floor
+#: (the ways fill the rectangle between its ends): it is tried as a corridor of radius
+#: ``NARROW`` around one shortest way then.
+MAX_SLOTS = {"asp": 300_000, "python": 3_000_000}
+NARROW = 3
 #: how many steps longer a way may get by keeping off the cells where others park
 DETOUR = 0
 
@@ -92,9 +97,11 @@ class Router:
             if self.stopped():
                 return None
             legs = self._legs(tasks, begin, step, passable, level, avoid)
+            if legs is not None and level.radius is None and _slots(legs) > MAX_SLOTS[self.engine]:
+                legs = self._legs(tasks, begin, step, passable, Level(NARROW, level.slack), avoid)
             if legs is None or _too_late(legs, self.reservations, robot):
                 return None  # some task cannot be reached (in time) at all
-            if sum(last - first + 1 for leg in legs for first, last in leg.windows.values()) > MAX_SLOTS:
+            if _slots(legs) > MAX_SLOTS[self.engine]:
                 return None
             found = self._solve(robot, legs, begin, step)
             if found is not None:
@@ -189,6 +196,11 @@ def asp_search(space: Space) -> tuple[list[Cell], dict[int, Task]] | None:
     if not result.satisfiable or not any(s.name == "arrival" for s in symbols):
         return None
     return _route(symbols, space.tasks, space.step)
+
+
+def _slots(legs: list[Leg]) -> int:
+    """The (cell, step) pairs the legs' windows hold."""
+    return sum(last - first + 1 for leg in legs for first, last in leg.windows.values())
 
 
 def _too_late(legs: list[Leg], table: Reservations, robot: int) -> bool:
