@@ -128,3 +128,29 @@ def test_kept_choices_hold_when_a_neighbourhood_is_assigned_again():
     assert _optimum(assigner).of("aim") == [(1, 0), (2, 1)]
     forced = assigner.solve(keep=[clingo.parse_term("aim(1,1)")], budget=10)
     assert forced.of("aim") == [(1, 1), (2, 0)]
+
+
+def test_the_greedy_start_serves_lines_from_the_nearest_shelves_and_gives_each_robot_its_cap():
+    from asprilo.encodings.anytime.assignment import _greedy
+
+    # A: 3 units of product 10 at station 4; shelves by hauling steps: 3 (2 steps, holds 1),
+    # 1 (5 steps, holds 2), 2 (9 steps, holds 5): 3 gives 1, 1 gives 2, and 2 is not needed.
+    # Robot 8 is nearest to both shelves used; with a cap of 1 shelf, shelf 1 goes to robot 9
+    stock = {1: {10: 2}, 2: {10: 5}, 3: {10: 1}}
+    haul = {(1, 4): 5, (2, 4): 9, (3, 4): 2}
+    options = [(7, 3, 4), (8, 3, 1), (8, 1, 2), (9, 1, 6)]
+    assert _greedy({(1, 10): 3}, stock, haul, {1: 4}, options, 1, True) == [
+        "hint_give(3,1,10,1).", "hint_give(1,1,10,2).", "hint_carry(8,3).", "hint_carry(9,1)."]
+    # B: one shelf per line, the nearest
+    assert _greedy({(1, 10): 1}, stock, haul, {1: 4}, options, 1, False) == [
+        "hint_give(3,1,10,1).", "hint_carry(8,3)."]
+
+
+def test_a_greedy_start_changes_where_the_search_begins_not_the_optimum():
+    # the facts of the nearest-shelf test, with hints for the worse shelf and robot
+    facts = ["line(1,1,1).", "order(1,1).", "holds(1,1,1).", "holds(2,1,1).", "haul(1,1,5).", "haul(2,1,2).",
+             "option(1,1,1).", "option(1,2,6).", "option(2,2,1).", "option(2,1,7).", "cap(1).",
+             "hint_give(1,1,1,1).", "hint_carry(2,1)."]
+    choice = _optimum(Assigner("assign_shelves.lp", facts, {"domain": "b"}, ["--heuristic=Domain"]))
+    assert choice.of("give") == [(2, 1, 1, 1)]
+    assert choice.of("carry") == [(2, 2)]

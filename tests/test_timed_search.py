@@ -120,3 +120,30 @@ def test_both_engines_agree_on_a_paper_instance(compared, domain):
     _assert_sound(plan_anytime(instance, domain, time_limit=3), instance, domain)
     assert len(compared) >= 10
     assert [python for python, _asp in compared] == [asp for _python, asp in compared]
+
+
+def test_a_long_way_across_an_open_floor_is_routed_in_a_corridor_when_the_wide_level_is_too_big(monkeypatch):
+    # a 40x40 floor without walls, from one corner to the other: every cell lies on a
+    # shortest way, so the first level's windows cover the whole floor (1,600 cells); with
+    # room for 30,000 (cell, step) pairs only a corridor of radius 3 around one way fits
+    # (at most 7 cells across 79 cells of the way, each a window of at most 31 steps:
+    # about 17,000); on a free floor the robot parks after 78 steps (39 + 39, by hand)
+    from helpers.worlds import md
+
+    from asprilo.bounds import Floor
+    from asprilo.encodings.anytime.errands import goal_errand
+    from asprilo.encodings.anytime.grid import Grid
+    from asprilo.encodings.anytime.reservations import Reservations
+    from asprilo.encodings.anytime.router import Router
+
+    instance = md([(x, y) for x in range(1, 41) for y in range(1, 41)], [(1, 1)], [(40, 40)])
+    router = Router(Grid(Floor(instance.cells)), Reservations(instance, {}))
+    sizes = []
+    monkeypatch.setitem(router_module.ENGINES, "python", lambda space: sizes.append(len(space.windows[0])) or
+                        search(space))
+    monkeypatch.setitem(router_module.MAX_SLOTS, "python", 30_000)
+    cells, _done = router.route(1, goal_errand((40, 40)), (1, 1))
+    assert len(cells) - 1 == 78 and cells[-1] == (40, 40)
+    assert len(sizes) == 1 and sizes[0] < 7 * 79
+    monkeypatch.setitem(router_module.MAX_SLOTS, "python", 1_000)  # not even the corridor fits
+    assert router.route(1, goal_errand((40, 40)), (1, 1)) is None and len(sizes) == 1
