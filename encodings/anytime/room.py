@@ -12,11 +12,13 @@ from __future__ import annotations
 
 from collections import deque
 
+import numpy as np
+
 from asprilo.bounds import INFINITE
 from asprilo.model import DIRECTIONS, Cell, Instance
 
 from .errands import Task
-from .grid import Grid, cells_of
+from .grid import Grid
 
 #: cells offered to a robot that has to make room
 ROOM_CELLS = 6
@@ -62,16 +64,19 @@ def movers(instance: Instance, workers: set[int], needed: set[Cell]) -> list[int
     return sorted(result, key=lambda r: (depth[r], r))
 
 
-def room_task(instance: Instance, grid: Grid, robot: int, needed: set[Cell], shelf_cells: set[Cell]) -> Task:
-    """Parking on one of the nearest free cells (no robot starts there, nobody needs it,
-    no station), storage cells first; a robot with a shelf keeps off other shelves."""
+def room_task(instance: Instance, grid: Grid, robot: int, taken: np.ndarray, highways: np.ndarray,
+              shelf_cells: np.ndarray) -> Task:
+    """Parking on one of the nearest free cells (no robot starts there, nobody needs it, no
+    station: ``taken``), storage cells first (not ``highways``); a robot with a shelf keeps
+    off the other shelves (``shelf_cells``).  The masks are boolean arrays of the grid."""
     start = instance.robots[robot].at
     carried = instance.robots[robot].carries
-    passable = grid.floor & ~grid.mask(shelf_cells) if carried is not None else grid.floor
+    passable = grid.floor & ~shelf_cells if carried is not None else grid.floor
     distance = grid.distances([start], passable)
-    taken = {r.at for r in instance.robots.values()} | needed | {s.at for s in instance.stations.values()}
-    highways = set(instance.highways.values())
-    free = sorted((c in highways, int(distance[c]), c) for c in cells_of(passable & (distance < INFINITE))
-                  if c not in taken)
-    cells = tuple(c for *_, c in free[:ROOM_CELLS])
-    return Task("park", cells or (start,), carried is not None, carried)
+    free = passable & (distance < INFINITE) & ~taken
+    cells: list[Cell] = []
+    for kind in (free & ~highways, free & highways):
+        xs, ys = np.nonzero(kind)
+        nearest = np.lexsort((ys, xs, distance[xs, ys]))[:ROOM_CELLS - len(cells)]
+        cells += [(int(xs[k]), int(ys[k])) for k in nearest]
+    return Task("park", tuple(cells) or (start,), carried is not None, carried)

@@ -14,6 +14,7 @@ from collections.abc import Callable, Collection
 from itertools import pairwise
 
 import clingo
+import numpy as np
 
 from asprilo.bounds import INFINITE
 from asprilo.domain import Domain, Job
@@ -51,8 +52,12 @@ class Work:
         self.kept_clear: set[Cell] = set()
         #: shelf -> the spare cell it is put down on after its trip (chosen with its errand)
         self.claims: dict[int, Cell] = {}
-        storage = instance.storage_cells
-        self._spare = sorted(storage - set(self.homes.values()))
+        self._cells, self._storage = instance.cells, instance.storage_cells
+        self._spare = sorted(self._storage - set(self.homes.values()))
+        self._needed: tuple[tuple, set[Cell]] | None = None  # ((trips, goals, kept clear), needed cells)
+        self._taken: tuple[set[Cell], np.ndarray] | None = None  # needed cells -> the cells taken (a mask)
+        self._highways = grid.mask(instance.highways.values())
+        self._resting = grid.mask(self.resting)
         self._carrying = grid.floor & ~grid.mask(self.resting)  # where a robot with a shelf gets through
         self._ways: dict[tuple[Cell, bool], object] = {}
 
@@ -157,7 +162,7 @@ class Work:
         home = self.homes[trips_[-1].shelf]
         # a shelf carried from the start has the robot's start cell as its home: park
         # elsewhere when that is no place for a shelf (a highway, a station)
-        park = (home,) if home in self.instance.storage_cells else self._room(robot).cells
+        park = (home,) if home in self._storage else self._room(robot).cells
         if last is not None and roomy:
             if all(other in routed for other in self.trips if other != robot and last in self.stations_of(other)):
                 park = (last,)
@@ -179,7 +184,7 @@ class Work:
             home = self.homes[trip.shelf]
             start = trip.deliveries[-1][0] if trip.deliveries else home
             carry, walk = self._way(start, True), self._way(self.homes[following.shelf], False)
-            candidates = [home] if home in self.instance.storage_cells else []
+            candidates = [home] if home in self._storage else []
             candidates += [cell for cell in self._spare if cell not in taken]
             reachable = [cell for cell in candidates if carry[cell] < INFINITE and walk[cell] < INFINITE]
             if not reachable:
@@ -223,12 +228,19 @@ class Work:
     def needed_cells(self) -> set[Cell]:
         """Cells robots with work must be able to use: goals, shelves to fetch, stations and
         the cells next to them (the ways in and out)."""
+        if self._needed is not None:  # kept while the work is the same (it is replaced, never changed in place)
+            (trips_, goals, clear), cells = self._needed
+            if trips_ is self.trips and goals is self.goals and clear == len(self.kept_clear):
+                return cells
         if self.domain.work is Job.GOALS:
-            return set(self.goals.values()) | self.kept_clear
-        stations = {cell for robot in self.trips for cell in self.stations_of(robot)}
-        cells = stations | {(x + dx, y + dy) for x, y in stations for dx, dy in DIRECTIONS}
-        cells |= {self.homes[trip.shelf] for ts in self.trips.values() for trip in ts}
-        return (cells | self.kept_clear) & self.instance.cells
+            cells = set(self.goals.values()) | self.kept_clear
+        else:
+            stations = {cell for robot in self.trips for cell in self.stations_of(robot)}
+            cells = stations | {(x + dx, y + dy) for x, y in stations for dx, dy in DIRECTIONS}
+            cells |= {self.homes[trip.shelf] for ts in self.trips.values() for trip in ts}
+            cells = (cells | self.kept_clear) & self._cells
+        self._needed = ((self.trips, self.goals, len(self.kept_clear)), cells)
+        return cells
 
     def movers(self) -> list[int]:
         """Robots without work that have to make room (see :mod:`.room`), in routing order."""
@@ -254,7 +266,12 @@ class Work:
         return [self._room(robot)]
 
     def _room(self, robot: int) -> Task:
-        return room_task(self.instance, self.grid, robot, self.needed_cells(), self.resting)
+        needed = self.needed_cells()
+        if self._taken is None or self._taken[0] is not needed:
+            stations = {s.at for s in self.instance.stations.values()}
+            starts = {r.at for r in self.instance.robots.values()}
+            self._taken = (needed, self.grid.mask(needed | stations | starts))
+        return room_task(self.instance, self.grid, robot, self._taken[1], self._highways, self._resting)
 
     def estimate(self, robot: int) -> float:
         """Steps the robot's errand takes at least (to order robots: the longest first)."""
