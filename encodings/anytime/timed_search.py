@@ -35,7 +35,7 @@ def search(space: Space) -> tuple[list[Cell], dict[int, Task]] | None:
     Needs :meth:`Space.estimate`: the states are visited best first, by their first step plus
     the steps still to go (A*; the estimate never overshoots, so the first parked state taken
     is the earliest one)."""
-    rooms = [_rooms(space, number) for number in range(1, space.last + 1)]
+    rooms = [_Rooms(space, number) for number in range(1, space.last + 1)]
     parking = [(cell, rooms[-1][cell]) for cell in space.task_cells[-1] if cell in rooms[-1]]
     if not any(runs and runs[-1][1] >= space.free_from.get(cell, 0) for cell, (runs, _, _) in parking):
         return None  # no parking cell is free within the window: no need to search
@@ -58,7 +58,7 @@ def search(space: Space) -> tuple[list[Cell], dict[int, Task]] | None:
     return None
 
 
-def _successors(space: Space, rooms: list[dict[Cell, Room]], state: State, step: int):
+def _successors(space: Space, rooms: list[_Rooms], state: State, step: int):
     """The states reachable from ``state`` (reached at ``step``), each with the earliest
     step it is reached at: parked there, on a neighbour, or on to the next task."""
     number, cell, run = state
@@ -79,7 +79,7 @@ def _successors(space: Space, rooms: list[dict[Cell, Room]], state: State, step:
                 break
 
 
-def _moves(space: Space, room: dict[Cell, Room], cell: Cell, step: int, last: int):
+def _moves(space: Space, room: _Rooms, cell: Cell, step: int, last: int):
     """The moves from ``cell`` (reached at ``step``, free until ``last``) to a neighbour:
     ``(neighbour, earliest step there, its run)`` for every run of the neighbour it can reach
     in time, without swapping cells with a robot coming the other way."""
@@ -116,17 +116,30 @@ def _start_run(room: Room, step: int) -> int:
     return index
 
 
-def _rooms(space: Space, number: int) -> dict[Cell, Room]:
-    """Cell -> ``(runs, their first steps, to_go)`` on the way to task ``number``: the runs
-    of steps the robot may be there (inside its window, cut where another robot stays for
-    good, between the steps another robot is there or, for a robot carrying a shelf, another
-    shelf rests there), and the steps at least still to go from there."""
-    carrying = space.carrying(number)
-    rooms = {}
-    for cell, (first, last) in space.windows[number - 1].items():
+class _Rooms(dict):
+    """Cell -> :data:`Room` on the way to task ``number``: the runs of steps the robot may be
+    there (inside its window, cut where another robot stays for good, between the steps
+    another robot is there or, for a robot carrying a shelf, another shelf rests there), and
+    the steps at least still to go from there.  Each is made when first asked for: a search
+    seldom looks at more than the cells near one way, and a long way's windows hold many."""
+
+    def __init__(self, space: Space, number: int):
+        super().__init__()
+        self.space, self.number, self.window = space, number, space.windows[number - 1]
+        self.carrying = space.carrying(number)
+
+    def __contains__(self, cell: object) -> bool:
+        return cell in self.window
+
+    def get(self, cell: Cell, default: Room | None = None) -> Room | None:  # type: ignore[override]
+        return self[cell] if cell in self.window else default
+
+    def __missing__(self, cell: Cell) -> Room:
+        space = self.space
+        first, last = self.window[cell]
         last = min(last, space.stays.get(cell, last + 1) - 1)
         closed = set(space.busy.get(cell, ()))
-        if carrying:
+        if self.carrying:
             for since, until in space.rests.get(cell, ()):
                 closed.update(range(max(first, since), min(last, until) + 1))
         runs, begins = [], first
@@ -136,8 +149,8 @@ def _rooms(space: Space, number: int) -> dict[Cell, Room]:
             begins = shut + 1
         if begins <= last:
             runs.append((begins, last))
-        rooms[cell] = (runs, [begins for begins, _ in runs], space.to_go(number, cell))
-    return rooms
+        room = self[cell] = (runs, [begins for begins, _ in runs], space.to_go(self.number, cell))
+        return room
 
 
 def _trace(space: Space, came_from: dict[State, State | None], arrival: dict[State, int], parked: State
