@@ -58,7 +58,7 @@ class Work:
         self._taken: tuple[set[Cell], np.ndarray] | None = None  # needed cells -> the cells taken (a mask)
         self._highways = grid.mask(instance.highways.values())
         self._resting = grid.mask(self.resting)
-        self._carrying = grid.floor & ~grid.mask(self.resting)  # where a robot with a shelf gets through
+        self._carrying = grid.floor & ~self._resting  # where a robot with a shelf gets through
         self._ways: dict[tuple[Cell, bool], object] = {}
 
     # --- the first assignment ----------------------------------------------------------------
