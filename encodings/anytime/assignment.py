@@ -149,7 +149,7 @@ def shelf_problem(instance: Instance, grid: Grid, domain: Domain, homes: dict[in
     facts.append(f"cap({cap}).")
     hinted = len(shelves) * len(instance.robots) >= HINT_SIZE
     if hinted:
-        orders = {o.id: o.station for o in instance.orders.values()}
+        orders = {o.id: o.station for o in instance.orders.values() if o.station is not None}
         facts += _greedy(lines, {s: stock[s] for s in shelves}, haul, orders, options, cap, domain.counts_units)
     assigner = Assigner("assign_shelves.lp", facts, {"delivery": domain.delivery.value},
                         ["--heuristic=Domain"] if hinted else [])
@@ -157,42 +157,51 @@ def shelf_problem(instance: Instance, grid: Grid, domain: Domain, homes: dict[in
 
 
 def _greedy(lines: dict[tuple[int, int], int], stock: dict[int, dict[int, int | None]],
-            haul: dict[tuple[int, int], int], orders: dict[int, int | None], options: list[tuple[int, int, int]],
+            haul: dict[tuple[int, int], int], orders: dict[int, int], options: list[tuple[int, int, int]],
             cap: int, counts_units: bool) -> list[str]:
     """A greedy assignment as ``hint_give/4`` and ``hint_carry/2`` facts: every line served by
     the shelves holding its product nearest to its station (in A as many as its units need,
     none giving more than it has left), each shelf used carried by the nearest robot offered
     that has fewer than ``cap`` shelves yet (or the least busy one)."""
+    gives = _greedy_gives(lines, stock, haul, orders, counts_units)
+    carriers: dict[int, list[tuple[int, int]]] = {}
+    for robot, shelf, steps in options:
+        carriers.setdefault(shelf, []).append((steps, robot))
+    hints = [f"hint_give({shelf},{order},{product},{units})." for shelf, order, product, units in gives]
+    load: dict[int, int] = {}
+    for shelf in dict.fromkeys(shelf for shelf, *_ in gives):
+        offered = [robot for _, robot in sorted(carriers.get(shelf, ()))]
+        if offered:
+            room = [robot for robot in offered if load.get(robot, 0) < cap]
+            robot = room[0] if room else min(offered, key=load.__getitem__)
+            load[robot] = load.get(robot, 0) + 1
+            hints.append(f"hint_carry({robot},{shelf}).")
+    return hints
+
+
+def _greedy_gives(lines: dict[tuple[int, int], int], stock: dict[int, dict[int, int | None]],
+                  haul: dict[tuple[int, int], int], orders: dict[int, int],
+                  counts_units: bool) -> list[tuple[int, int, int, int]]:
+    """(shelf, order, product, units) for every line, from the shelves nearest its station."""
     left = {(s, p): (u or 1) if counts_units else 1 for s, held in stock.items() for p, u in held.items()}
     holders: dict[int, list[int]] = {}
     for shelf, held in stock.items():
         for product in held:
             holders.setdefault(product, []).append(shelf)
-    hints, used = [], []
+    gives = []
     for (order, product), units in sorted(lines.items()):
         station = orders.get(order)
+        if station is None:
+            continue  # no station to deliver at: no plan serves the line
         for shelf in sorted(holders.get(product, ()), key=lambda s: haul.get((s, station), INFINITE)):
             if units <= 0:
                 break
             given = min(units, left[(shelf, product)]) if counts_units else 1
-            if given <= 0:
-                continue
-            left[(shelf, product)] -= given
-            units -= given
-            hints.append(f"hint_give({shelf},{order},{product},{given}).")
-            used.append(shelf)
-    carriers: dict[int, list[tuple[int, int]]] = {}
-    for robot, shelf, steps in options:
-        carriers.setdefault(shelf, []).append((steps, robot))
-    load: dict[int, int] = {}
-    for shelf in dict.fromkeys(used):
-        offered = sorted(carriers.get(shelf, ()))
-        if offered:
-            room = [robot for _, robot in offered if load.get(robot, 0) < cap]
-            robot = room[0] if room else min((robot for _, robot in offered), key=load.__getitem__)
-            load[robot] = load.get(robot, 0) + 1
-            hints.append(f"hint_carry({robot},{shelf}).")
-    return hints
+            if given > 0:
+                left[(shelf, product)] -= given
+                units -= given
+                gives.append((shelf, order, product, given))
+    return gives
 
 
 def _workloads(instance: Instance, options: list[tuple[int, int, int]], haul: dict[tuple[int, int], int],
