@@ -145,6 +145,9 @@ class _Step:
     def pick(self, robot: int, pusher: int | None) -> bool:
         """Choose ``robot``'s next cell (pushing the robot there); whether it could move."""
         at, after, taken = self.at, self.after, self.taken
+        if pusher is None and at[robot] == self.pibt.aims[robot] and at[robot] not in taken:
+            after[robot], taken[at[robot]] = at[robot], robot  # at its goal: staying ranks first
+            return True
         options = self.pibt.ranked(robot, at[robot], self.standing)
         partner = self.pibt.swap_partner(robot, options[0], at, self.standing, after)
         if partner is not None:
