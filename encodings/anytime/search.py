@@ -44,7 +44,7 @@ from .work import ASSIGN_CAP, ASSIGN_SHARE, Work
 CHECK_GAP, CHECK_FACTOR = 0.5, 3.0
 #: the shares of the time limit LaCAM may take for a first plan of M/Md (then prioritized
 #: planning takes over: LaCAM finds one for 200 MovingAI agents in about 0.5 s, for 400 in
-#: 10-25 s with most seeds, where prioritized planning fails), and prioritized planning for a
+#: 5-18 s with most seeds, where prioritized planning fails), and prioritized planning for a
 #: better first plan than LaCAM's
 FAST_SHARE, PRIORITIZED_SHARE = 0.5, 0.25
 #: how many of the last neighbourhoods' durations say how long the next one may take
