@@ -103,7 +103,8 @@ class TimeExpandedNetwork:
         capacities = [1] * len(tails)
         surplus = len(starts) - len(goal_set)
         if surplus > 0:
-            others = [v for v in range(cells) if v not in set(goal_set)]
+            ending = set(goal_set)
+            others = [v for v in range(cells) if v not in ending]
             tails += [last + self.outlet(v) for v in others] + [self.idle]
             heads += [self.idle] * len(others) + [self.sink]
             capacities += [1] * len(others) + [surplus]

@@ -97,12 +97,15 @@ class Router:
             if self.stopped():
                 return None
             legs = self._legs(tasks, begin, step, passable, level, avoid)
-            if legs is not None and level.radius is None and _slots(legs) > MAX_SLOTS[self.engine]:
-                legs = self._legs(tasks, begin, step, passable, Level(NARROW, level.slack), avoid)
             if legs is None or _too_late(legs, self.reservations, robot):
                 return None  # some task cannot be reached (in time) at all
             if _slots(legs) > MAX_SLOTS[self.engine]:
-                return None
+                if level.radius is not None:
+                    return None
+                # a long way across an open floor: the corridor around one shortest way (NARROW)
+                legs = self._legs(tasks, begin, step, passable, Level(NARROW, level.slack), avoid)
+                if legs is None or _slots(legs) > MAX_SLOTS[self.engine]:
+                    return None
             found = self._solve(robot, legs, begin, step)
             if found is not None:
                 return found

@@ -59,7 +59,6 @@ class Work:
         self._highways = grid.mask(instance.highways.values())
         self._resting = grid.mask(self.resting)
         self._carrying = grid.floor & ~self._resting  # where a robot with a shelf gets through
-        self._ways: dict[tuple[Cell, bool], object] = {}
 
     # --- the first assignment ----------------------------------------------------------------
 
@@ -198,17 +197,14 @@ class Work:
         return putdowns
 
     def _way(self, cell: Cell, carrying: bool):
-        """Steps from ``cell`` to every cell (``carrying``: around the resting shelves)."""
-        key = (cell, carrying)
-        if key not in self._ways:
-            self._ways[key] = self.grid.distances([cell], self._carrying if carrying else None)
-        return self._ways[key]
+        """Steps from ``cell`` to every cell (``carrying``: around the resting shelves; the
+        grid keeps the latest searches)."""
+        return self.grid.distances([cell], self._carrying if carrying else None)
 
     def _near(self, station: Cell) -> tuple[Cell, ...]:
         """Cells a few steps from a station where a robot with a shelf may park."""
         if station not in self._parking:
-            passable = self.grid.floor & ~self.grid.mask(self.resting)
-            distance = self.grid.distances([station], passable)
+            distance = self.grid.distances([station], self._carrying)
             stations = {s.at for s in self.instance.stations.values()}
             self._parking[station] = tuple(sorted(
                 (c for c in cells_of(distance <= PARK_RADIUS) if c not in stations),
