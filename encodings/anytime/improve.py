@@ -15,6 +15,9 @@ Neighbourhoods, chosen with weights that grow with their successes:
   time one of the late robot's shelves (A/B/C) must go to another robot, so that the swap
   leaves the program's own optimum (an estimate) for another assignment.
 - ``order``: a late robot with several shelves brings them in another order (A/B/C).
+- ``clear``: a late robot with several shelves may put one down on a cell nearer its way
+  once a robot that finishes early has carried that cell's shelf, which serves no order,
+  away to a spare cell (A/B/C; :meth:`.work.Work.clear`).  Robots that clear go first.
 
 Robots parked for good on a station the freed robots deliver at are freed as well (routed
 after them): a changed errand may need that station later than before.
@@ -32,7 +35,7 @@ from .reservations import Reservations, Track
 from .router import Router
 from .work import Work
 
-KINDS = ("alone", "crowd", "tail", "random", "swap", "order")
+KINDS = ("alone", "crowd", "tail", "random", "swap", "order", "clear")
 #: the most robots one neighbourhood frees: in M/Md many robots cross paths and give way to
 #: each other, and larger groups find more (200 MovingAI agents, sum of costs after 60 s:
 #: 1.31 times its bound with 8, 1.27-1.29 with 16, 1.28 with 24 or 32)
@@ -62,7 +65,7 @@ class Improver:
         self.weights = dict.fromkeys(KINDS, 1.0)
         self.last_share, self.group = LAST_SHARE[work.domain.work], GROUP[work.domain.work]
         if work.domain.work is Job.GOALS:  # a robot of M/Md has one goal and no place to park near it
-            self.weights["alone"] = self.weights["order"] = 0.0
+            self.weights["alone"] = self.weights["order"] = self.weights["clear"] = 0.0
         if not work.reassignable():
             self.weights["swap"] = 0.0
         self.tried = dict.fromkeys(KINDS, 0)
@@ -107,6 +110,8 @@ class Improver:
             return [late], 0, False
         if kind == "order":
             return ([late], 0, False) if self._reorder(late) else ([], 0, False)
+        if kind == "clear":
+            return self._clearing(late), 0, False
         if kind in ("crowd", "tail"):
             group = [late, *self._met(late)[:size - 1]]
             if kind == "crowd":
@@ -131,6 +136,39 @@ class Improver:
                         met[other] = met.get(other, 0) + 1
         ranked = sorted(met, key=lambda r: -met[r])
         return ranked
+
+    def _clearing(self, late: int) -> list[int]:
+        """A ``clear`` neighbourhood, the robots to route again (those that clear first):
+
+        - half of the time, when robots clear cells, one of them (``late`` if it is one)
+          stops, with the robots that put shelves down on its cells;
+        - else ``late`` and its nearest neighbours, half of the time with their work assigned
+          anew first (one of ``late``'s shelves going to another robot, no cells cleared),
+          and among them a robot with several shelves gets a cell cleared by another.
+        """
+        work = self.work
+        if work.clearings and self.random.random() < 0.5:
+            helper = late if late in work.clearings else self.random.choice(sorted(work.clearings))
+            return [helper, *work.unclear(helper)]
+        group = [late, *self._nearest(late)[:self.random.randint(1, self.group - 1)]]
+        reassign = self.random.random() < 0.5
+        if reassign:
+            shelves = [trip.shelf for trip in work.trips.get(late, [])]
+            if not shelves:
+                return []
+            for robot in [robot for robot in group if robot in work.clearings]:  # the new work starts uncleared
+                group += [user for user in work.unclear(robot) if user not in group]
+            if not work.reassign(set(group), SWAP_SECONDS, self.random.choice(shelves)):
+                return []
+        several = [robot for robot in group if len(work.trips.get(robot, [])) >= 2]
+        if not several:
+            return []
+        robot = late if late in several else self.random.choice(several)
+        helpers = [r for r in group if r != robot and r in work.trips]
+        helper = self.random.choice(helpers) if helpers else None
+        if helper is None or not work.clear(robot, helper):
+            return []
+        return [helper, *(r for r in group if r != helper)] if reassign else [helper, robot]
 
     def _parked_on_stations(self, group: list[int]) -> list[int]:
         """The other robots whose tracks end on a station that the ``group`` delivers at."""
@@ -182,6 +220,7 @@ class Improver:
             if start > 0:
                 self.table.add(_prefix(old[robot], start))
         order = group[:1] + self.random.sample(group[1:], len(group) - 1)
+        order.sort(key=lambda robot: robot not in self.work.clearings)  # a cell is cleared before it is used
         routed = set(self.table.instance.robots) - set(group)
         for robot in order:
             if stopped() or not self._route(robot, old[robot], start, routed):

@@ -147,9 +147,11 @@ class _Run:
         ``False`` when it failed the check (the search then goes back to the last good one)."""
         self.pending = dict(tracks)
         self.pending_work = self.work.save()
-        if not force and self.watch.clock() - self.last_check < max(CHECK_GAP, CHECK_FACTOR * self.check_seconds):
-            return True
-        return self.report()
+        return self.report() if force or self.due() else True
+
+    def due(self) -> bool:
+        """Whether a plan may be checked now (:data:`CHECK_GAP`, :data:`CHECK_FACTOR`)."""
+        return self.watch.clock() - self.last_check >= max(CHECK_GAP, CHECK_FACTOR * self.check_seconds)
 
     def report(self) -> bool:
         """Check the pending plan and report it; whether it passed."""
@@ -297,7 +299,11 @@ def _improve(run: _Run, improver: Improver, table: Reservations) -> None:
         began = run.watch.clock()
         better = improver.step(partial(run.watch.out_of_time, reserve))
         recent.append(run.watch.clock() - began)
-        if better and not run.offer(table.tracks):
+        if better:
+            passed = run.offer(table.tracks)
+        else:  # a plan kept back while checking was not due is reported once it is
+            passed = run.pending is None or not run.due() or run.report()
+        if not passed:
             _go_back(table, run.good)
             improver.work.restore(run.good_work)
     run.result.stats.update(neighbourhoods=steps, tried=dict(improver.tried), improved=dict(improver.won))

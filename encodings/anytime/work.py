@@ -4,7 +4,9 @@
 into errands, one per robot, and re-assigns the robots a neighbourhood frees.  Robots
 without work that stand where others need to be (a station, a shelf to be fetched, a goal)
 are sent to park nearby.  A robot with several shelves puts each one but the last down on
-the spare storage cell (one no shelf starts on) that makes its way on shortest.
+the spare storage cell (one no shelf starts on) that makes its way on shortest, or on a
+cleared cell: one whose shelf serves no order and another robot first carries away to a
+spare cell (:meth:`Work.clear`), because putting a shelf down there saves steps.
 """
 
 from __future__ import annotations
@@ -52,6 +54,8 @@ class Work:
         self.kept_clear: set[Cell] = set()
         #: shelf -> the spare cell it is put down on after its trip (chosen with its errand)
         self.claims: dict[int, Cell] = {}
+        #: robot -> the shelves serving no order it carries away first, each to its spare cell
+        self.clearings: dict[int, list[tuple[int, Cell]]] = {}
         self._cells, self._storage = instance.cells, instance.storage_cells
         self._spare = sorted(self._storage - set(self.homes.values()))
         self._needed: tuple[tuple, set[Cell]] | None = None  # ((trips, goals, kept clear), needed cells)
@@ -90,15 +94,20 @@ class Work:
         self.choice, self._parking_cells, self._movers = choice, None, None
         if self.domain.work is Job.TRIPS:
             self.trips = trips(self.instance, self.domain, choice.of("give"), choice.of("carry"), self.homes)
+            # a robot left without trips clears nothing (its errand is to make room)
+            for robot in [robot for robot in self.clearings if robot not in self.trips]:
+                for shelf, _ in self.clearings[robot]:
+                    self.claims.pop(shelf, None)
+                self.clearings = {r: c for r, c in self.clearings.items() if r != robot}
         else:
             self.goals = aims(choice, self._problem)
 
     def save(self) -> tuple:
         """The current assignment, to :meth:`restore` it later."""
-        return self.choice, self.trips, self.goals, dict(self.claims)
+        return self.choice, self.trips, self.goals, dict(self.claims), self.clearings
 
     def restore(self, saved: tuple) -> None:
-        self.choice, self.trips, self.goals, claims = saved
+        self.choice, self.trips, self.goals, claims, self.clearings = saved
         self.claims = dict(claims)
         self._parking_cells = self._movers = None
 
@@ -169,7 +178,9 @@ class Work:
         putdowns = self._putdowns(trips_, set(parked))
         spared = set(self.claims.values())  # a shelf put down there stays: no robot parks there with one
         park = tuple(cell for cell in park if cell not in spared) or park
-        return delivery_errand(self.instance, robot, trips_, park, putdowns)
+        clearing = [task for shelf, cell in self.clearings.get(robot, [])
+                    for task in (Task("pickup", (self.homes[shelf],), False, shelf), Task("putdown", (cell,), True, shelf))]
+        return clearing + delivery_errand(self.instance, robot, trips_, park, putdowns)
 
     def _putdowns(self, trips_: list[Trip], parked: set[Cell]) -> dict[int, Cell]:
         """Where the shelves of ``trips_`` but the last are put down: on the spare storage cell
@@ -178,23 +189,77 @@ class Work:
         stays on (the choice is kept in :attr:`claims`)."""
         mine = {trip.shelf for trip in trips_}
         taken = {cell for shelf, cell in self.claims.items() if shelf not in mine} | parked
+        spare = self._spare + self.cleared()
         putdowns = {}
         for trip, following in pairwise(trips_):
             home = self.homes[trip.shelf]
             start = trip.deliveries[-1][0] if trip.deliveries else home
             carry, walk = self._way(start, True), self._way(self.homes[following.shelf], False)
             candidates = [home] if home in self._storage else []
-            candidates += [cell for cell in self._spare if cell not in taken]
-            reachable = [cell for cell in candidates if carry[cell] < INFINITE and walk[cell] < INFINITE]
+            candidates += [cell for cell in spare if cell not in taken]
+            steps = {cell: _entered(carry, cell) + walk[cell] for cell in candidates}
+            reachable = [cell for cell in candidates if steps[cell] < INFINITE]
             if not reachable:
                 continue
-            best = min(reachable, key=lambda cell: (carry[cell] + walk[cell], cell != home))
+            best = min(reachable, key=lambda cell: (steps[cell], cell != home))
             putdowns[trip.shelf] = best
             taken.add(best)
         for shelf in mine:
             self.claims.pop(shelf, None)
         self.claims.update({shelf: cell for shelf, cell in putdowns.items() if cell != self.homes[shelf]})
         return putdowns
+
+    def cleared(self) -> list[Cell]:
+        """The cells whose shelves robots carry away first (:attr:`clearings`)."""
+        return [self.homes[shelf] for jobs in self.clearings.values() for shelf, _ in jobs]
+
+    def clear(self, robot: int, helper: int) -> bool:
+        """Let ``helper`` first carry away a shelf that serves no order, to a spare cell,
+        where ``robot`` putting a shelf down instead of on its present cell makes its way
+        from the station to its next shelf shorter (the shortest such way is taken); whether
+        there is such a shelf."""
+        trips_ = self.trips.get(robot, [])
+        if helper not in self.trips or self.instance.robots[helper].carries is not None or len(trips_) < 2:
+            return False
+        busy = {trip.shelf for ts in self.trips.values() for trip in ts} | {r.carries for r in self.instance.robots.values()}
+        busy |= {shelf for jobs in self.clearings.values() for shelf, _ in jobs}
+        idle = [shelf for shelf, cell in self.homes.items() if shelf not in busy and cell in self._storage]
+        best: tuple[int, int] | None = None  # (steps saved, shelf)
+        for trip, following in pairwise(trips_):
+            start = trip.deliveries[-1][0] if trip.deliveries else self.homes[trip.shelf]
+            carry, walk = self._way(start, True), self._way(self.homes[following.shelf], False)
+            now = self.claims.get(trip.shelf, self.homes[trip.shelf])
+            steps = _entered(carry, now) + walk[now]
+            for shelf in idle:
+                cell = self.homes[shelf]
+                saved = steps - (_entered(carry, cell) + walk[cell])
+                if saved > 0 and (best is None or saved > best[0]):
+                    best = (int(saved), shelf)
+        if best is None:
+            return False
+        shelf = best[1]
+        mine = {trip.shelf for trip in trips_}
+        taken = {cell for other, cell in self.claims.items() if other not in mine} | set(self.cleared())
+        away = self._way(self.homes[shelf], True)  # out from the shelf's own cell
+        spots = [cell for cell in self._spare if cell not in taken and away[cell] < INFINITE]
+        if not spots:
+            return False
+        spot = min(spots, key=lambda cell: (away[cell], cell))
+        self.clearings = {**self.clearings, helper: [*self.clearings.get(helper, []), (shelf, spot)]}
+        self.claims[shelf] = spot
+        return True
+
+    def unclear(self, helper: int) -> list[int]:
+        """``helper`` clears no cells any more; the robots that put shelves down on them
+        (their shelves now go elsewhere)."""
+        cells = {self.homes[shelf] for shelf, _ in self.clearings.get(helper, [])}
+        for shelf, _ in self.clearings.get(helper, []):
+            self.claims.pop(shelf, None)
+        self.clearings = {robot: jobs for robot, jobs in self.clearings.items() if robot != helper}
+        users = {shelf for shelf, cell in self.claims.items() if cell in cells}
+        for shelf in users:
+            del self.claims[shelf]
+        return [robot for robot, trips_ in self.trips.items() if robot != helper and any(t.shelf in users for t in trips_)]
 
     def _way(self, cell: Cell, carrying: bool):
         """Steps from ``cell`` to every cell (``carrying``: around the resting shelves; the
@@ -284,3 +349,15 @@ class Work:
                 steps += abs(cell[0] - at[0]) + abs(cell[1] - at[1]) + 1
                 at = cell
         return steps
+
+
+def _entered(carry: np.ndarray, cell: Cell) -> float:
+    """Steps to ``cell`` for a robot with a shelf, ``carry`` being the steps around the
+    resting shelves: a cell whose own shelf is gone by then is entered from a neighbour."""
+    if carry[cell] < INFINITE:
+        return float(carry[cell])
+    x, y = cell
+    width, height = carry.shape
+    near = [carry[x + dx, y + dy] for dx, dy in DIRECTIONS if 0 <= x + dx < width and 0 <= y + dy < height]
+    return float(min(near, default=INFINITE)) + 1
+
