@@ -148,8 +148,8 @@ class Improver:
         """
         work = self.work
         if work.clearings and self.random.random() < 0.5:
-            helper = late if late in work.clearings else self.random.choice(sorted(work.clearings))
-            return [helper, *work.unclear(helper)]
+            clearer = late if late in work.clearings else self.random.choice(sorted(work.clearings))
+            return [clearer, *work.unclear(clearer)]
         group = [late, *self._nearest(late)[:self.random.randint(1, self.group - 1)]]
         reassign = self.random.random() < 0.5
         if reassign:
@@ -165,8 +165,8 @@ class Improver:
             return []
         robot = late if late in several else self.random.choice(several)
         helpers = [r for r in group if r != robot and r in work.trips]
-        helper = self.random.choice(helpers) if helpers else None
-        if helper is None or not work.clear(robot, helper):
+        helper = self.random.choice(helpers) if helpers else robot
+        if helper == robot or not work.clear(robot, helper):
             return []
         return [helper, *(r for r in group if r != helper)] if reassign else [helper, robot]
 

@@ -299,10 +299,8 @@ def _improve(run: _Run, improver: Improver, table: Reservations) -> None:
         began = run.watch.clock()
         better = improver.step(partial(run.watch.out_of_time, reserve))
         recent.append(run.watch.clock() - began)
-        if better:
-            passed = run.offer(table.tracks)
-        else:  # a plan kept back while checking was not due is reported once it is
-            passed = run.pending is None or not run.due() or run.report()
+        # a plan kept back while checking was not due is reported once it is
+        passed = run.offer(table.tracks) if better else run.pending is None or not run.due() or run.report()
         if not passed:
             _go_back(table, run.good)
             improver.work.restore(run.good_work)

@@ -179,7 +179,8 @@ class Work:
         spared = set(self.claims.values())  # a shelf put down there stays: no robot parks there with one
         park = tuple(cell for cell in park if cell not in spared) or park
         clearing = [task for shelf, cell in self.clearings.get(robot, [])
-                    for task in (Task("pickup", (self.homes[shelf],), False, shelf), Task("putdown", (cell,), True, shelf))]
+                    for task in (Task("pickup", (self.homes[shelf],), False, shelf),
+                                 Task("putdown", (cell,), True, shelf))]
         return clearing + delivery_errand(self.instance, robot, trips_, park, putdowns)
 
     def _putdowns(self, trips_: list[Trip], parked: set[Cell]) -> dict[int, Cell]:
@@ -221,7 +222,8 @@ class Work:
         trips_ = self.trips.get(robot, [])
         if helper not in self.trips or self.instance.robots[helper].carries is not None or len(trips_) < 2:
             return False
-        busy = {trip.shelf for ts in self.trips.values() for trip in ts} | {r.carries for r in self.instance.robots.values()}
+        busy = {trip.shelf for ts in self.trips.values() for trip in ts}
+        busy |= {r.carries for r in self.instance.robots.values() if r.carries is not None}
         busy |= {shelf for jobs in self.clearings.values() for shelf, _ in jobs}
         idle = [shelf for shelf, cell in self.homes.items() if shelf not in busy and cell in self._storage]
         best: tuple[int, int] | None = None  # (steps saved, shelf)
@@ -259,7 +261,8 @@ class Work:
         users = {shelf for shelf, cell in self.claims.items() if cell in cells}
         for shelf in users:
             del self.claims[shelf]
-        return [robot for robot, trips_ in self.trips.items() if robot != helper and any(t.shelf in users for t in trips_)]
+        return [robot for robot, trips_ in self.trips.items()
+                if robot != helper and any(trip.shelf in users for trip in trips_)]
 
     def _way(self, cell: Cell, carrying: bool):
         """Steps from ``cell`` to every cell (``carrying``: around the resting shelves; the
