@@ -149,15 +149,18 @@ class Improver:
         work = self.work
         if work.clearings and self.random.random() < 0.5:
             clearer = late if late in work.clearings else self.random.choice(sorted(work.clearings))
-            return [clearer, *work.unclear(clearer)]
+            group = self._with_users([clearer])
+            work.unclear(clearer)
+            return group
         group = [late, *self._nearest(late)[:self.random.randint(1, self.group - 1)]]
         reassign = self.random.random() < 0.5
         if reassign:
             shelves = [trip.shelf for trip in work.trips.get(late, [])]
             if not shelves:
                 return []
+            group = self._with_users(group)
             for robot in [robot for robot in group if robot in work.clearings]:  # the new work starts uncleared
-                group += [user for user in work.unclear(robot) if user not in group]
+                work.unclear(robot)
             if not work.reassign(set(group), SWAP_SECONDS, self.random.choice(shelves)):
                 return []
         several = [robot for robot in group if len(work.trips.get(robot, [])) >= 2]
@@ -169,6 +172,15 @@ class Improver:
         if helper == robot or not work.clear(robot, helper):
             return []
         return [helper, *(r for r in group if r != helper)] if reassign else [helper, robot]
+
+    def _with_users(self, group: list[int]) -> list[int]:
+        """The ``group`` and, after it, the other robots that come on the cells its robots
+        clear: their tracks count on the cleared shelf being gone by then."""
+        table = self.table
+        cells = {self.work.homes[shelf] for robot in group for shelf, _ in self.work.clearings.get(robot, [])}
+        users = [robot for cell in sorted(cells)
+                 for robot in (*table.visits.get(cell, {}).values(), *table.stays.get(cell, {}))]
+        return [*group, *(robot for robot in dict.fromkeys(users) if robot not in group)]
 
     def _parked_on_stations(self, group: list[int]) -> list[int]:
         """The other robots whose tracks end on a station that the ``group`` delivers at."""
@@ -210,6 +222,8 @@ class Improver:
         old = {robot: self.table.tracks[robot] for robot in group}
         if reassign and not self.work.reassign(set(group), SWAP_SECONDS, self._shaken(late=group[0])):
             return False
+        group = self._with_users(group)
+        old.update({robot: self.table.tracks[robot] for robot in group if robot not in old})
         if start > 0:
             group = [r for r in group if old[r].finish > start]
         else:  # the robots parked for good on the group's stations go too (the group may need them later now)

@@ -31,6 +31,8 @@ from .room import movers, room_task
 ASSIGN_SHARE, ASSIGN_CAP = 0.05, 2.0
 #: how far from its last station a robot may park when the others' tracks are all known
 PARK_RADIUS = 3
+#: the cells on each side of a put-down cell within which the ways around it must join
+AROUND = 2
 
 
 class Work:
@@ -94,11 +96,8 @@ class Work:
         self.choice, self._parking_cells, self._movers = choice, None, None
         if self.domain.work is Job.TRIPS:
             self.trips = trips(self.instance, self.domain, choice.of("give"), choice.of("carry"), self.homes)
-            # a robot left without trips clears nothing (its errand is to make room)
             for robot in [robot for robot in self.clearings if robot not in self.trips]:
-                for shelf, _ in self.clearings[robot]:
-                    self.claims.pop(shelf, None)
-                self.clearings = {r: c for r, c in self.clearings.items() if r != robot}
+                self.unclear(robot)  # a robot left without trips clears nothing (it makes room)
         else:
             self.goals = aims(choice, self._problem)
 
@@ -186,20 +185,22 @@ class Work:
     def _putdowns(self, trips_: list[Trip], parked: set[Cell]) -> dict[int, Cell]:
         """Where the shelves of ``trips_`` but the last are put down: on the spare storage cell
         (or the shelf's own cell, when that is as good) that makes the way from its last
-        station to the next shelf shortest, one no other shelf is put down on and no robot
-        stays on (the choice is kept in :attr:`claims`)."""
+        station to the next shelf shortest, one no other shelf is put down on, no robot
+        stays on, and none that would close a way (:meth:`_closes_a_way`: a shelf next to a
+        station can close its only way in); the choice is kept in :attr:`claims`."""
         mine = {trip.shelf for trip in trips_}
         taken = {cell for shelf, cell in self.claims.items() if shelf not in mine} | parked
-        spare = self._spare + self.cleared()
+        cleared = [cell for cell in self.cleared() if cell not in taken]
         putdowns = {}
         for trip, following in pairwise(trips_):
             home = self.homes[trip.shelf]
             start = trip.deliveries[-1][0] if trip.deliveries else home
             carry, walk = self._way(start, True), self._way(self.homes[following.shelf], False)
             candidates = [home] if home in self._storage else []
-            candidates += [cell for cell in spare if cell not in taken]
-            steps = {cell: _entered(carry, cell) + walk[cell] for cell in candidates}
-            reachable = [cell for cell in candidates if steps[cell] < INFINITE]
+            candidates += [cell for cell in self._spare if cell not in taken and not self._closes_a_way(cell)]
+            steps = {cell: carry[cell] + walk[cell] for cell in candidates}
+            steps.update({cell: _entered(carry, cell) + walk[cell] for cell in cleared if cell not in taken})
+            reachable = [cell for cell in steps if steps[cell] < INFINITE]
             if not reachable:
                 continue
             best = min(reachable, key=lambda cell: (steps[cell], cell != home))
@@ -209,6 +210,30 @@ class Work:
             self.claims.pop(shelf, None)
         self.claims.update({shelf: cell for shelf, cell in putdowns.items() if cell != self.homes[shelf]})
         return putdowns
+
+    def _closes_a_way(self, cell: Cell) -> bool:
+        """Whether a shelf put down on ``cell`` could cut the ways of robots with shelves:
+        the cells next to it where such a robot may be are not all joined around it within
+        the square of :data:`AROUND` cells on each side (a cut there may still be a detour
+        further away, but the floor's own shelves made few of those)."""
+        free, (x, y) = self._carrying, cell
+        width, height = free.shape
+
+        def open_(c: Cell) -> bool:
+            return 0 <= c[0] < width and 0 <= c[1] < height and c != cell and bool(free[c]) \
+                and abs(c[0] - x) <= AROUND and abs(c[1] - y) <= AROUND
+
+        near = [c for c in ((x + dx, y + dy) for dx, dy in DIRECTIONS) if open_(c)]
+        if len(near) < 2:
+            return False
+        seen, todo = {near[0]}, [near[0]]
+        while todo:
+            cx, cy = todo.pop()
+            for c in ((cx + dx, cy + dy) for dx, dy in DIRECTIONS):
+                if c not in seen and open_(c):
+                    seen.add(c)
+                    todo.append(c)
+        return not all(c in seen for c in near)
 
     def cleared(self) -> list[Cell]:
         """The cells whose shelves robots carry away first (:attr:`clearings`)."""
@@ -243,7 +268,8 @@ class Work:
         mine = {trip.shelf for trip in trips_}
         taken = {cell for other, cell in self.claims.items() if other not in mine} | set(self.cleared())
         away = self._way(self.homes[shelf], True)  # out from the shelf's own cell
-        spots = [cell for cell in self._spare if cell not in taken and away[cell] < INFINITE]
+        spots = [cell for cell in self._spare if cell not in taken and away[cell] < INFINITE
+                 and not self._closes_a_way(cell)]
         if not spots:
             return False
         spot = min(spots, key=lambda cell: (away[cell], cell))
@@ -251,18 +277,13 @@ class Work:
         self.claims[shelf] = spot
         return True
 
-    def unclear(self, helper: int) -> list[int]:
-        """``helper`` clears no cells any more; the robots that put shelves down on them
-        (their shelves now go elsewhere)."""
+    def unclear(self, helper: int) -> None:
+        """``helper`` clears no cells any more: the shelves put down on them go elsewhere."""
         cells = {self.homes[shelf] for shelf, _ in self.clearings.get(helper, [])}
         for shelf, _ in self.clearings.get(helper, []):
             self.claims.pop(shelf, None)
         self.clearings = {robot: jobs for robot, jobs in self.clearings.items() if robot != helper}
-        users = {shelf for shelf, cell in self.claims.items() if cell in cells}
-        for shelf in users:
-            del self.claims[shelf]
-        return [robot for robot, trips_ in self.trips.items()
-                if robot != helper and any(trip.shelf in users for trip in trips_)]
+        self.claims = {shelf: cell for shelf, cell in self.claims.items() if cell not in cells}
 
     def _way(self, cell: Cell, carrying: bool):
         """Steps from ``cell`` to every cell (``carrying``: around the resting shelves; the
