@@ -84,3 +84,13 @@ def test_no_shelf_is_cleared_for_a_robot_that_puts_none_down():
     _, work, _, _ = _planner()
     assert not work.clear(1, 3)  # robot 1 brings one shelf and keeps it
     assert work.clearings == {}
+
+
+def test_a_shelf_is_not_put_down_where_it_could_close_a_way():
+    # by hand on the small A example: (6,3) joins the rows above and below the two blocks of
+    # shelves (a robot with a shelf goes around it only beyond the 5x5 square); around (2,4)
+    # and (9,3) the free neighbours stay joined (or there is only one)
+    _, work, _, _ = _planner()
+    assert work._closes_a_way((6, 3))
+    assert not work._closes_a_way((2, 4))
+    assert not work._closes_a_way((9, 3))

@@ -29,6 +29,7 @@ def _legal(space: Space, cells: list, done: dict) -> None:
             if step in done:
                 assert done[step] is space.tasks[number - 1] and cell == before
                 assert before in space.task_cells[number - 1] and step >= space.settle.get(number, step)
+                assert step <= space.due.get(number, step)
                 number += 1
         first, last = space.windows[number - 1][cell]
         assert first <= step <= last and step not in space.busy.get(cell, ())

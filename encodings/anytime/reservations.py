@@ -195,6 +195,19 @@ class Reservations:
                 return FOREVER
         return last
 
+    def first_loaded_visit(self, cell: Cell, robot: int) -> int:
+        """The first step at which another robot carrying a shelf is on ``cell``
+        (``FOREVER``: never): the shelf resting there must be lifted earlier."""
+        first = FOREVER
+        for step, other in self.visits.get(cell, {}).items():
+            if other != robot and step < first and any(start <= step <= end
+                                                       for start, end in self.loads.get(other, ())):
+                first = step
+        for other, since in self.stays.get(cell, {}).items():  # parked there with a shelf
+            if other != robot and any(end >= since for _start, end in self.loads.get(other, ())):
+                first = min(first, since)
+        return first
+
     def still_shelves(self, skip: set[int]) -> list[Cell]:
         """The cells of the shelves that rest there all the time (none of ``skip``)."""
         return [cell for shelf, cell in self.homes.items()

@@ -39,6 +39,7 @@ class Space:
     rests: dict[Cell, list[tuple[int, int]]] = field(default_factory=lambda: defaultdict(list))
     free_from: dict[Cell, int] = field(default_factory=dict)
     settle: dict[int, int] = field(default_factory=dict)
+    due: dict[int, int] = field(default_factory=dict)
     deadlines: list[int] = field(default_factory=list)
     tails: list[int] = field(default_factory=list)
 
@@ -101,6 +102,10 @@ class Space:
                     self.settle[number] = min(settle, FOREVER)
             elif task.name != "park":
                 cells.add(cell)
+                if task.name == "pickup":  # before another robot comes there with a shelf
+                    due = table.first_loaded_visit(cell, robot) - 1
+                    if due < FOREVER - 1:
+                        self.due[number] = due
             elif table.stay(cell, robot) is None:
                 cells.add(cell)
                 last = table.last_visit(cell, robot)
@@ -130,6 +135,7 @@ class Space:
             out += [f"window({number},{_c(cell)},{first},{last})." for cell, (first, last) in window.items()]
             out += [f"task({number},{_c(cell)})." for cell in self.task_cells[number - 1]]
         out += [f"settle({number},{since})." for number, since in self.settle.items()]
+        out += [f"due({number},{by})." for number, by in self.due.items()]
         out += [f"free_from({_c(cell)},{since})." for cell, since in self.free_from.items()]
         out += [f"busy({_c(cell)},{t})." for cell, steps in self.busy.items() for t in steps]
         out += [f"stays({_c(cell)},{since})." for cell, since in self.stays.items()]

@@ -72,9 +72,10 @@ def _successors(space: Space, rooms: list[_Rooms], state: State, step: int):
     if number < space.last and cell in space.task_cells[number - 1] and space.acts(number):
         following = rooms[number].get(cell)
         earliest = max(step + 1, space.settle.get(number, 0))
+        latest = min(last + 1, space.due.get(number, last + 1))
         for index, (begins, ends) in enumerate(following[0] if following else ()):
             done = max(earliest, begins)
-            if done <= min(last + 1, ends):
+            if done <= min(latest, ends):
                 yield (number + 1, cell, index), done
                 break
 

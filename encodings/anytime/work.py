@@ -65,6 +65,7 @@ class Work:
         self._highways = grid.mask(instance.highways.values())
         self._resting = grid.mask(self.resting)
         self._carrying = grid.floor & ~self._resting  # where a robot with a shelf gets through
+        self._cuts: dict[Cell, bool] = {}  # cell -> whether a shelf there could close a way
 
     # --- the first assignment ----------------------------------------------------------------
 
@@ -199,7 +200,7 @@ class Work:
             candidates = [home] if home in self._storage else []
             candidates += [cell for cell in self._spare if cell not in taken and not self._closes_a_way(cell)]
             steps = {cell: carry[cell] + walk[cell] for cell in candidates}
-            steps.update({cell: _entered(carry, cell) + walk[cell] for cell in cleared if cell not in taken})
+            steps.update({cell: _entered(carry, cell) + walk[cell] for cell in cleared})
             reachable = [cell for cell in steps if steps[cell] < INFINITE]
             if not reachable:
                 continue
@@ -216,6 +217,8 @@ class Work:
         the cells next to it where such a robot may be are not all joined around it within
         the square of :data:`AROUND` cells on each side (a cut there may still be a detour
         further away, but the floor's own shelves made few of those)."""
+        if cell in self._cuts:
+            return self._cuts[cell]
         free, (x, y) = self._carrying, cell
         width, height = free.shape
 
@@ -224,16 +227,15 @@ class Work:
                 and abs(c[0] - x) <= AROUND and abs(c[1] - y) <= AROUND
 
         near = [c for c in ((x + dx, y + dy) for dx, dy in DIRECTIONS) if open_(c)]
-        if len(near) < 2:
-            return False
-        seen, todo = {near[0]}, [near[0]]
+        seen, todo = set(near[:1]), near[:1]
         while todo:
             cx, cy = todo.pop()
             for c in ((cx + dx, cy + dy) for dx, dy in DIRECTIONS):
                 if c not in seen and open_(c):
                     seen.add(c)
                     todo.append(c)
-        return not all(c in seen for c in near)
+        self._cuts[cell] = not seen.issuperset(near)
+        return self._cuts[cell]
 
     def cleared(self) -> list[Cell]:
         """The cells whose shelves robots carry away first (:attr:`clearings`)."""
@@ -268,11 +270,10 @@ class Work:
         mine = {trip.shelf for trip in trips_}
         taken = {cell for other, cell in self.claims.items() if other not in mine} | set(self.cleared())
         away = self._way(self.homes[shelf], True)  # out from the shelf's own cell
-        spots = [cell for cell in self._spare if cell not in taken and away[cell] < INFINITE
-                 and not self._closes_a_way(cell)]
-        if not spots:
+        spots = sorted((float(away[cell]), cell) for cell in self._spare if cell not in taken and away[cell] < INFINITE)
+        spot = next((cell for _, cell in spots if not self._closes_a_way(cell)), None)
+        if spot is None:
             return False
-        spot = min(spots, key=lambda cell: (away[cell], cell))
         self.clearings = {**self.clearings, helper: [*self.clearings.get(helper, []), (shelf, spot)]}
         self.claims[shelf] = spot
         return True
