@@ -16,6 +16,7 @@ os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 import pytest  # noqa: E402
 from helpers import OUTCOME, WRONG_OUTCOME  # noqa: E402
 from helpers.viewer import shown_window  # noqa: E402
+from PyQt5 import sip  # noqa: E402
 from PyQt5.QtCore import QPoint, QRect, Qt  # noqa: E402
 from PyQt5.QtGui import QScreen, QTextDocument  # noqa: E402
 from PyQt5.QtWidgets import (  # noqa: E402
@@ -158,7 +159,10 @@ def test_a_long_violation_sentence_is_readable_in_full(qtbot, window):
     QToolTip.showText(panel.mapToGlobal(QPoint(10, 10)), tip, panel)
     qtbot.waitUntil(QToolTip.isVisible, timeout=10_000)  # a hang guard (the first tip may fade in)
     assert plain(QToolTip.text()) == long
-    label = next(w for w in QApplication.allWidgets() if w.objectName() == "qtooltip_label" and w.isVisible())
+    # the tip's label is a window of its own: the top-level widgets hold it (not every widget
+    # of the session, some of which earlier tests' windows are taking down)
+    label = next(w for w in QApplication.topLevelWidgets()
+                 if not sip.isdeleted(w) and w.objectName() == "qtooltip_label" and w.isVisible())
     assert label.width() < 800  # ... wrapped into lines that fit the screen
     QToolTip.hideText()
 
