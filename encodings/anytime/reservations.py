@@ -186,27 +186,25 @@ class Reservations:
     def last_loaded_visit(self, cell: Cell, robot: int) -> int:
         """The last step at which another robot carrying a shelf is on ``cell`` (-1: never):
         a shelf put down there must come later."""
-        last = -1
-        for step, other in self.visits.get(cell, {}).items():
-            if other != robot and step > last and any(first <= step <= end for first, end in self.loads.get(other, ())):
-                last = step
-        for other, since in self.stays.get(cell, {}).items():  # parked there with a shelf: for good
-            if other != robot and any(end >= since for _first, end in self.loads.get(other, ())):
-                return FOREVER
-        return last
+        steps, parked = self._loaded_visits(cell, robot)
+        return FOREVER if parked else max(steps, default=-1)
 
     def first_loaded_visit(self, cell: Cell, robot: int) -> int:
         """The first step at which another robot carrying a shelf is on ``cell``
         (``FOREVER``: never): the shelf resting there must be lifted earlier."""
-        first = FOREVER
-        for step, other in self.visits.get(cell, {}).items():
-            if other != robot and step < first and any(start <= step <= end
-                                                       for start, end in self.loads.get(other, ())):
-                first = step
-        for other, since in self.stays.get(cell, {}).items():  # parked there with a shelf
-            if other != robot and any(end >= since for _start, end in self.loads.get(other, ())):
-                first = min(first, since)
-        return first
+        steps, parked = self._loaded_visits(cell, robot)
+        return min(steps + parked, default=FOREVER)
+
+    def _loaded_visits(self, cell: Cell, robot: int) -> tuple[list[int], list[int]]:
+        """The steps at which other robots carrying a shelf pass ``cell``, and those from
+        which others stay there with a shelf for good."""
+        def loaded(other: int, step: int) -> bool:
+            return any(first <= step <= end for first, end in self.loads.get(other, ()))
+
+        steps = [step for step, other in self.visits.get(cell, {}).items() if other != robot and loaded(other, step)]
+        parked = [since for other, since in self.stays.get(cell, {}).items()
+                  if other != robot and any(end >= since for _first, end in self.loads.get(other, ()))]
+        return steps, parked
 
     def still_shelves(self, skip: set[int]) -> list[Cell]:
         """The cells of the shelves that rest there all the time (none of ``skip``)."""

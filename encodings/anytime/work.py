@@ -12,7 +12,7 @@ spare cell (:meth:`Work.clear`), because putting a shelf down there saves steps.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Collection
+from collections.abc import Callable, Collection, Iterator
 from itertools import pairwise
 
 import clingo
@@ -59,13 +59,12 @@ class Work:
         #: robot -> the shelves serving no order it carries away first, each to its spare cell
         self.clearings: dict[int, list[tuple[int, Cell]]] = {}
         self._cells, self._storage = instance.cells, instance.storage_cells
-        self._spare = sorted(self._storage - set(self.homes.values()))
+        self._spare: list[Cell] | None = None  # storage cells no shelf starts on and none closes a way on
         self._needed: tuple[tuple, set[Cell]] | None = None  # ((trips, goals, kept clear), needed cells)
         self._taken: tuple[set[Cell], np.ndarray] | None = None  # needed cells -> the cells taken (a mask)
         self._highways = grid.mask(instance.highways.values())
         self._resting = grid.mask(self.resting)
         self._carrying = grid.floor & ~self._resting  # where a robot with a shelf gets through
-        self._cuts: dict[Cell, bool] = {}  # cell -> whether a shelf there could close a way
 
     # --- the first assignment ----------------------------------------------------------------
 
@@ -193,12 +192,10 @@ class Work:
         taken = {cell for shelf, cell in self.claims.items() if shelf not in mine} | parked
         cleared = [cell for cell in self.cleared() if cell not in taken]
         putdowns = {}
-        for trip, following in pairwise(trips_):
+        for trip, carry, walk in self._changes(trips_):
             home = self.homes[trip.shelf]
-            start = trip.deliveries[-1][0] if trip.deliveries else home
-            carry, walk = self._way(start, True), self._way(self.homes[following.shelf], False)
             candidates = [home] if home in self._storage else []
-            candidates += [cell for cell in self._spare if cell not in taken and not self._closes_a_way(cell)]
+            candidates += [cell for cell in self._spare_cells() if cell not in taken]
             steps = {cell: carry[cell] + walk[cell] for cell in candidates}
             steps.update({cell: _entered(carry, cell) + walk[cell] for cell in cleared})
             reachable = [cell for cell in steps if steps[cell] < INFINITE]
@@ -212,13 +209,25 @@ class Work:
         self.claims.update({shelf: cell for shelf, cell in putdowns.items() if cell != self.homes[shelf]})
         return putdowns
 
+    def _changes(self, trips_: list[Trip]) -> Iterator[tuple[Trip, np.ndarray, np.ndarray]]:
+        """For each trip of ``trips_`` but the last: the trip, the steps from its last station
+        with a shelf (around the resting shelves) and without one from the next shelf's cell."""
+        for trip, following in pairwise(trips_):
+            start = trip.deliveries[-1][0] if trip.deliveries else self.homes[trip.shelf]
+            yield trip, self._way(start, True), self._way(self.homes[following.shelf], False)
+
+    def _spare_cells(self) -> list[Cell]:
+        """The storage cells that no shelf starts on and where a shelf closes no way."""
+        if self._spare is None:
+            self._spare = sorted(cell for cell in self._storage - set(self.homes.values())
+                                 if not self._closes_a_way(cell))
+        return self._spare
+
     def _closes_a_way(self, cell: Cell) -> bool:
         """Whether a shelf put down on ``cell`` could cut the ways of robots with shelves:
         the cells next to it where such a robot may be are not all joined around it within
         the square of :data:`AROUND` cells on each side (a cut there may still be a detour
         further away, but the floor's own shelves made few of those)."""
-        if cell in self._cuts:
-            return self._cuts[cell]
         free, (x, y) = self._carrying, cell
         width, height = free.shape
 
@@ -234,8 +243,7 @@ class Work:
                 if c not in seen and open_(c):
                     seen.add(c)
                     todo.append(c)
-        self._cuts[cell] = not seen.issuperset(near)
-        return self._cuts[cell]
+        return not seen.issuperset(near)
 
     def cleared(self) -> list[Cell]:
         """The cells whose shelves robots carry away first (:attr:`clearings`)."""
@@ -254,9 +262,7 @@ class Work:
         busy |= {shelf for jobs in self.clearings.values() for shelf, _ in jobs}
         idle = [shelf for shelf, cell in self.homes.items() if shelf not in busy and cell in self._storage]
         best: tuple[int, int] | None = None  # (steps saved, shelf)
-        for trip, following in pairwise(trips_):
-            start = trip.deliveries[-1][0] if trip.deliveries else self.homes[trip.shelf]
-            carry, walk = self._way(start, True), self._way(self.homes[following.shelf], False)
+        for trip, carry, walk in self._changes(trips_):
             now = self.claims.get(trip.shelf, self.homes[trip.shelf])
             steps = _entered(carry, now) + walk[now]
             for shelf in idle:
@@ -270,21 +276,20 @@ class Work:
         mine = {trip.shelf for trip in trips_}
         taken = {cell for other, cell in self.claims.items() if other not in mine} | set(self.cleared())
         away = self._way(self.homes[shelf], True)  # out from the shelf's own cell
-        spots = sorted((float(away[cell]), cell) for cell in self._spare if cell not in taken and away[cell] < INFINITE)
-        spot = next((cell for _, cell in spots if not self._closes_a_way(cell)), None)
-        if spot is None:
+        spots = [cell for cell in self._spare_cells() if cell not in taken and away[cell] < INFINITE]
+        if not spots:
             return False
+        spot = min(spots, key=lambda cell: (away[cell], cell))
         self.clearings = {**self.clearings, helper: [*self.clearings.get(helper, []), (shelf, spot)]}
         self.claims[shelf] = spot
         return True
 
     def unclear(self, helper: int) -> None:
         """``helper`` clears no cells any more: the shelves put down on them go elsewhere."""
-        cells = {self.homes[shelf] for shelf, _ in self.clearings.get(helper, [])}
-        for shelf, _ in self.clearings.get(helper, []):
-            self.claims.pop(shelf, None)
+        shelves = {shelf for shelf, _ in self.clearings.get(helper, [])}
+        cells = {self.homes[shelf] for shelf in shelves}
         self.clearings = {robot: jobs for robot, jobs in self.clearings.items() if robot != helper}
-        self.claims = {shelf: cell for shelf, cell in self.claims.items() if cell not in cells}
+        self.claims = {shelf: cell for shelf, cell in self.claims.items() if shelf not in shelves and cell not in cells}
 
     def _way(self, cell: Cell, carrying: bool):
         """Steps from ``cell`` to every cell (``carrying``: around the resting shelves; the
