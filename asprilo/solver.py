@@ -16,7 +16,7 @@ Two places build a ``clingo.Control`` of their own, on purpose:
   set, messages located in the reader's terms, in a child process under limits when rules
   are allowed) and none of the driver's features (``#include`` resolved from files,
   theories, constants), which must not reach data;
-- the anytime planner's router (``encodings/anytime/router.py``) grounds and solves a tiny
+- the anytime planner's router (``asprilo/encodings/anytime/router.py``) grounds and solves a tiny
   program per routing call, hundreds of them per plan: the driver's bookkeeping (a solve in
   a thread of its own to keep the time limit, statistics, the ``#include`` check of the
   program file) adds about 0.8 ms to a call of about 20 ms, measured on the paper's

@@ -46,7 +46,7 @@ SMALL_A = ROOT / "examples/asprilo/dom-a/small/x11_y6_n66_r3_s12_ps2_pr5_u50_o3_
 #: the exercise-size A instances: 11x6 as the README's examples, 2 stations, 12 shelves of 8
 #: products with 30 units; seed S has 3 + (S-1) % 3 robots and 3 + (S-1) // 3 % 3 orders
 FLAGS = "-x 11 -y 6 -X 4 -Y 2 -H -p 2 -s 12 -P 8 -u 30 --domain a"
-#: the sizes of the examples in README.md, generator/README.md, docs/SPEC.md and the domains'
+#: the sizes of the examples in README.md, asprilo/generator/README.md, docs/SPEC.md and the domains'
 #: exercise sizes (asprilo/domain/*.py, Generation.exercise, as `asprilo demo` makes them);
 #: name -> (gen flags, the domains gen makes them in)
 SIZES = {

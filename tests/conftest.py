@@ -8,18 +8,10 @@ import threading
 from pathlib import Path
 
 import pytest
+from helpers.online import WAIT, tiny
 
-try:  # the tools are mapped into the package by the install; a plain checkout has only the core
-    import asprilo.generator  # noqa: F401
-except ImportError:  # pragma: no cover - a setup problem, not a test
-    pytest.exit("asprilo's tools are not importable: install the checkout for development first "
-                "(pip install -e \".[test]\"); a non-editable install is shadowed by the checkout's "
-                "asprilo/ folder when tests run from the repository root", returncode=4)
-
-from helpers.online import WAIT, tiny  # noqa: E402
-
-from asprilo.online.planner import OnlinePlanner, Schedule, encodings_planner  # noqa: E402
-from asprilo.online.serve import listen, serve, simulator_session, solver_session  # noqa: E402
+from asprilo.online.planner import OnlinePlanner, Schedule, encodings_planner
+from asprilo.online.serve import listen, serve, simulator_session, solver_session
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:

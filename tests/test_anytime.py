@@ -1,7 +1,7 @@
 """The anytime planner (``solve --method anytime``): every plan it returns passes the ASP
 checker, its improvements only ever get better, it keeps its time limit, and on tiny
 instances it reaches the minimal makespan known from an independent source (the exact
-encodings' figures in encodings/README.md, the max-flow solver for M and Md)."""
+encodings' figures in asprilo/encodings/README.md, the max-flow solver for M and Md)."""
 
 from __future__ import annotations
 

@@ -486,7 +486,7 @@ def test_a_far_node_is_refused_in_one_line_with_bounded_memory(tmp_path):
     default cell (2 px) are 20,001 px a side, 400 million pixels.  The export took 2.1 GB
     (PNG) or ran out of memory (GIF); now one line.  (About 0.9 GB remain: the viewer's
     scene draws the floor in one pixel per cell, in 9 bytes per cell of the 10,000 x 10,000
-    box, before the export is asked for: visualizer/scene/warehouse.py.)"""
+    box, before the export is asked for: asprilo/visualizer/scene/warehouse.py.)"""
     far = tmp_path / "far.lp"
     far.write_text("init(object(node,1),value(at,(1,1))).\ninit(object(node,2),value(at,(10000,10000))).\n"
                    "init(object(robot,1),value(at,(1,1))).\n")

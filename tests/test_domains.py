@@ -37,11 +37,11 @@ def test_a_descriptor_is_complete(name):
     assert domain.reads and domain.reads <= set(KINDS)
     assert domain.checker[-1] == "goal" and len(set(domain.checker)) == len(domain.checker)
     for concern in domain.checker:
-        assert (ROOT / "checker" / f"{concern}.lp").is_file(), concern
+        assert (ROOT / "asprilo" / "checker" / f"{concern}.lp").is_file(), concern
     assert domain.encodings and domain.encodings[0].name == "plain"
     for encoding in domain.encodings:
-        assert (ROOT / "encodings" / encoding.program).is_file(), encoding.program
-        assert encoding.names is None or (ROOT / "encodings" / encoding.names).is_file()
+        assert (ROOT / "asprilo" / "encodings" / encoding.program).is_file(), encoding.program
+        assert encoding.names is None or (ROOT / "asprilo" / "encodings" / encoding.names).is_file()
         assert encoding.theory in (None, "clingcon", "dl")
     if domain.generation is None:
         assert domain.made_by
@@ -52,7 +52,7 @@ def test_a_descriptor_is_complete(name):
 
 @pytest.mark.parametrize("name", BUILTIN)
 def test_the_plain_clingo_checker_file_includes_exactly_the_descriptors_concerns(name):
-    text = (ROOT / "checker" / "domains" / f"{name}.lp").read_text()
+    text = (ROOT / "asprilo" / "checker" / "domains" / f"{name}.lp").read_text()
     included = re.findall(r'#include "\.\./(\w+)\.lp"\.', text)
     assert tuple(included) == Domain.parse(name).checker
 

@@ -58,7 +58,7 @@ def test_search_climbs_from_the_bound_on_a_floor_with_walls(style):
 
 
 def test_plain_clingo_runs_the_main_files(tmp_path):
-    """A student's command line: python -m clingo instance.lp encodings/m/plain.lp -c horizon=N."""
+    """A student's command line: python -m clingo instance.lp asprilo/encodings/m/plain.lp -c horizon=N."""
     import subprocess
     import sys
 
@@ -66,7 +66,7 @@ def test_plain_clingo_runs_the_main_files(tmp_path):
     from asprilo.reader import read_plan
     instance_file = tmp_path / "walled.lp"
     instance_file.write_text(format_instance(WALLED))
-    program = EXAMPLES.parent / "encodings/m/plain.lp"
+    program = EXAMPLES.parent / "asprilo/encodings/m/plain.lp"
     for horizon, expected in ((3, "UNSATISFIABLE"), (4, "SATISFIABLE")):
         run = subprocess.run([sys.executable, "-m", "clingo", str(instance_file), str(program),
                               "-c", f"horizon={horizon}"], capture_output=True, text=True)

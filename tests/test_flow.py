@@ -1,4 +1,4 @@
-"""The exact max-flow solver of domains M and Md (encodings/flow.py)."""
+"""The exact max-flow solver of domains M and Md (asprilo/encodings/flow.py)."""
 
 from __future__ import annotations
 

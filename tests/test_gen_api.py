@@ -92,7 +92,7 @@ def test_domain_m_alignment():
 
 
 def test_logic_programs_are_documented():
-    for program in sorted((ROOT / "generator").glob("*.lp")):
+    for program in sorted((ROOT / "asprilo" / "generator").glob("*.lp")):
         text = program.read_text()
         assert text.startswith("% "), program.name
         assert "#program" in text, program.name

@@ -54,7 +54,7 @@ def test_options_directly_under_a_directory_key_say_where_they_go(write, capsys)
     path = write("old.yml", "run_configs:\n  a:\n    '-x': 6\n")
     assert main(["gen", "-j", str(path)]) == 2
     assert capsys.readouterr().err == (f"error: {path}:3: '-x': an option where a sub-directory is expected; "
-                                       f"options go under 'args:' (see generator/README.md)\n")
+                                       f"options go under 'args:' (see asprilo/generator/README.md)\n")
 
 
 def test_random_is_taken_and_changes_nothing(write, capsys):

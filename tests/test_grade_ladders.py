@@ -1,4 +1,4 @@
-"""The ladders of ``asprilo grade`` (encodings/ladders/): their stored minima derived again,
+"""The ladders of ``asprilo grade`` (asprilo/encodings/ladders/): their stored minima derived again,
 independently of the grader.
 
 - every minimum by the method that established it: max-flow for M/Md (exact), the

@@ -1,4 +1,4 @@
-"""LaCAM's first plans for M and Md (encodings/anytime/lacam.py over the PIBT steps of
+"""LaCAM's first plans for M and Md (asprilo/encodings/anytime/lacam.py over the PIBT steps of
 pibt.py): tracks that keep the rules, checked here apart from the planner, plans where robots
 must take turns in a dead end, and no tracks where no plan exists."""
 

@@ -160,7 +160,7 @@ def test_a_model_without_a_plan_says_what_the_interface_is(capsys):
 
 
 def test_a_reference_encoding_s_anonymous_model_is_no_plan_of_its_own():
-    outcome = solve(read_instance(A_TINY), encoding=own_encoding([ROOT / "encodings/abc/a.lp"]))
+    outcome = solve(read_instance(A_TINY), encoding=own_encoding([ROOT / "asprilo/encodings/abc/a.lp"]))
     assert outcome.status is SolveStatus.INVALID and "no occurs(object(robot,R)" in outcome.message
 
 

@@ -1,4 +1,4 @@
-"""The Python routing engine (encodings/anytime/timed_search.py) against ``route.lp``: the same
+"""The Python routing engine (asprilo/encodings/anytime/timed_search.py) against ``route.lp``: the same
 earliest arrival on every routing call of the anytime planner, and routes that keep every
 rule of the space (checked here step by step, apart from both engines)."""
 

@@ -50,7 +50,7 @@ class Job(str, Enum):
 
 @dataclass(frozen=True)
 class ReferenceEncoding:
-    """A reference encoding: its name, its main file (relative to the ``encodings/`` folder
+    """A reference encoding: its name, its main file (relative to the ``asprilo/encodings/`` folder
     unless absolute), the clingo extension it needs (``"clingcon"``, ``"dl"`` or ``None``),
     whether it is incremental (``step(t)``/``check(t)`` parts, a ``query(t)`` external), a
     one-line summary, the program that names the robots of its anonymous models, and the
@@ -90,7 +90,7 @@ class Domain:
     delivery: Delivery | None            # what deliver does (None: no deliveries)
     goal: Goal
     reads: frozenset[str]                # the object kinds its instances use
-    checker: tuple[str, ...]             # checker concerns (checker/<name>.lp, or absolute paths)
+    checker: tuple[str, ...]             # checker concerns (asprilo/checker/<name>.lp, or absolute paths)
     encodings: tuple[ReferenceEncoding, ...]
     bound: Bound
     work: Job
