@@ -21,12 +21,19 @@ safe (no other thread running in the parent) and ``spawn`` otherwise.  A *standa
 child (``standalone=True``: a benchmark run) runs as a program of its own would: a fresh
 interpreter (its peak memory is its own; it imports nothing but what the function needs),
 in a session of its own that is killed as a whole (whatever it started goes with it), its
-output discarded.
+output discarded but for its last words, which say why it ended when it ended without a
+result (an import that failed, say).  It imports the same package ``asprilo`` as its parent,
+whatever the current folder holds.
+
+No child outlives its parent: a child ignores the interrupts (Ctrl-C, SIGTERM, SIGHUP: the
+parent decides when to stop, and kills it), and on Linux the kernel kills it when its parent
+ends, whatever ended the parent (``PR_SET_PDEATHSIG``), even ``kill -9``.
 """
 
 from __future__ import annotations
 
 import contextlib
+import ctypes
 import multiprocessing
 import os
 import pickle
@@ -34,11 +41,13 @@ import resource
 import signal
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from multiprocessing.connection import Connection
+from pathlib import Path
 from typing import Any
 
 from .objects import KINDS, ObjectKind, register_kind, registered_kinds
@@ -74,9 +83,30 @@ class _OutOfMemory:
     pass
 
 
+#: the signals that ask a command to stop: a child ignores them (its parent stops it)
+INTERRUPTS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
+#: Linux's prctl option that names the signal a process gets when its parent ends
+_PR_SET_PDEATHSIG = 1
+
+
+def _die_with_parent(parent: int) -> None:
+    """Have the kernel kill this process when its parent ends (Linux); a parent that ended
+    already (before this was asked) ends this process now."""
+    try:
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(_PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    except (OSError, AttributeError):  # not Linux: the parent's cleanup alone ends its children
+        return
+    if os.getppid() != parent:
+        os._exit(1)
+
+
 def _child(connection, function: Callable, args: tuple, memory_mb: int | None,
-           kinds: Sequence[ObjectKind] = ()) -> None:
-    signal.signal(signal.SIGINT, signal.SIG_IGN)  # the parent decides when to stop
+           kinds: Sequence[ObjectKind] = (), parent: int | None = None) -> None:
+    for interrupt in INTERRUPTS:  # the parent decides when to stop
+        signal.signal(interrupt, signal.SIG_IGN)
+    if parent is not None:
+        _die_with_parent(parent)
     for kind in kinds:  # object kinds the parent registered at run time (a fresh interpreter lacks them)
         if kind.name not in KINDS:
             register_kind(kind)
@@ -125,8 +155,8 @@ def _start(function: Callable, args: tuple, memory_mb: int | None):
     """A child process that runs :func:`_child`, and the end of the pipe it answers on."""
     context = _context()
     receiver, sender = context.Pipe(duplex=False)
-    process = context.Process(target=_child, args=(sender, function, args, memory_mb, registered_kinds()),
-                              daemon=True)
+    process = context.Process(target=_child, daemon=True,
+                              args=(sender, function, args, memory_mb, registered_kinds(), os.getpid()))
     process.start()
     sender.close()
     return process, receiver
@@ -135,17 +165,21 @@ def _start(function: Callable, args: tuple, memory_mb: int | None):
 class _Standalone:
     """A standalone child: ``python -c`` in a session of its own, told what to run on its
     standard input (a pickle), answering on a pipe as :func:`_child` does; a fresh
-    interpreter imports nothing of the parent's (not even its main module)."""
+    interpreter imports nothing of the parent's (not even its main module).  Its standard
+    error goes to a temporary file, whose last line says why a child that ended without a
+    result ended."""
 
     def __init__(self, function: Callable, args: tuple, memory_mb: int | None):
         reading, writing = os.pipe()
+        self.stderr = tempfile.TemporaryFile()  # noqa: SIM115 - closed with the child (close)
         try:
             self.popen = subprocess.Popen(
-                [sys.executable, "-c", "from asprilo.isolation import _standalone_main; _standalone_main()"],
-                stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                [sys.executable, "-c", _standalone_command()],
+                stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=self.stderr,
                 pass_fds=(writing,), start_new_session=True)
         except BaseException:
             os.close(reading)
+            self.stderr.close()
             raise
         finally:
             os.close(writing)
@@ -154,9 +188,18 @@ class _Standalone:
         stdin = self.popen.stdin
         assert stdin is not None  # stdin=PIPE
         with contextlib.suppress(OSError):  # a child that died at once says so through the pipe
-            stdin.write(pickle.dumps((writing, function, args, memory_mb, registered_kinds())))
+            stdin.write(pickle.dumps((writing, function, args, memory_mb, registered_kinds(), os.getpid())))
         with contextlib.suppress(OSError):
             stdin.close()
+
+    def last_words(self) -> str:
+        """The last line the child wrote on its standard error (e.g. the exception that ended
+        it), at most 300 characters of it; empty if it wrote nothing."""
+        self.stderr.seek(0, os.SEEK_END)
+        self.stderr.seek(max(0, self.stderr.tell() - 4096))
+        lines = [line.strip() for line in self.stderr.read().decode("utf-8", "replace").splitlines()]
+        last = next((line for line in reversed(lines) if line), "")
+        return last if len(last) <= 300 else last[:297] + "..."
 
     @property
     def exitcode(self) -> int | None:
@@ -175,11 +218,24 @@ class _Standalone:
         with contextlib.suppress(subprocess.TimeoutExpired):
             self.popen.wait(timeout)
 
+    def close(self) -> None:
+        self.stderr.close()
+
+
+def _standalone_command() -> str:
+    """The standalone child's program: the folder the parent's ``asprilo`` came from goes
+    first on its path in place of the current folder (which ``python -c`` puts there, and
+    which may hold another ``asprilo``: a checkout's, say), then :func:`_standalone_main`."""
+    home = str(Path(__file__).resolve().parent.parent)
+    return (f"import sys; del sys.path[0]; home = {home!r}\n"
+            "if home not in sys.path: sys.path.insert(0, home)\n"
+            "from asprilo.isolation import _standalone_main; _standalone_main()")
+
 
 def _standalone_main() -> None:
     """The standalone child's side: read what to run, run it as :func:`_child` does."""
-    pipe, function, args, memory_mb, kinds = pickle.load(sys.stdin.buffer)
-    _child(Connection(pipe, readable=False), function, args, memory_mb, kinds)
+    pipe, function, args, memory_mb, kinds, parent = pickle.load(sys.stdin.buffer)
+    _child(Connection(pipe, readable=False), function, args, memory_mb, kinds, parent)
 
 
 def run_isolated(function: Callable[..., Any], args: tuple = (), time_limit: float | None = None,
@@ -231,6 +287,10 @@ class Child:
                 process.kill()
             process.join(_GRACE)
             receiver.close()
+            if self.standalone:
+                if outcome.status == "crashed" and process.last_words():
+                    outcome.detail += f": {process.last_words()}"
+                process.close()
         outcome.seconds = time.perf_counter() - self.started
         if isinstance(outcome.value, _Failure):
             raise outcome.value.error

@@ -103,3 +103,28 @@ def test_a_bench_run_that_fails_is_an_error_with_the_last_line_of_its_error(tmp_
     run = limits.run_limited(job, 30, 2048)
     assert (run.status, run.report, run.detail) == (
         "error", {}, f"asprilo.errors.InputError: {tmp_path / 'missing.lp'}: no such file")
+
+
+def _where_asprilo_is(report):
+    import asprilo
+    return asprilo.__file__
+
+
+def test_a_standalone_child_imports_its_parents_asprilo_whatever_the_current_folder_holds(tmp_path, monkeypatch):
+    """``python -c`` puts the current folder first on the path: a folder holding another
+    ``asprilo`` (a checkout's, say) must not give the child another package than its parent's."""
+    import asprilo
+    (tmp_path / "asprilo").mkdir()
+    (tmp_path / "asprilo" / "__init__.py").write_text("raise ImportError('the wrong asprilo')\n")
+    monkeypatch.chdir(tmp_path)
+    outcome = run_isolated(_where_asprilo_is, (), time_limit=60, standalone=True)
+    assert outcome.status == "done" and outcome.value == asprilo.__file__
+
+
+def test_a_standalone_child_that_cannot_start_says_why(monkeypatch):
+    """A child that ends without a result is said with its last words (its standard error's last line)."""
+    import asprilo.isolation as isolation
+    monkeypatch.setattr(isolation, "_standalone_command", lambda: "import asprilo_nowhere")
+    outcome = run_isolated(_where_asprilo_is, (), time_limit=60, standalone=True)
+    assert outcome.status == "crashed"
+    assert outcome.detail == "exit status 1: ModuleNotFoundError: No module named 'asprilo_nowhere'"

@@ -89,8 +89,10 @@ def export(suite: Suite, folder: str | Path, runner: Runner, jobs: int = 1) -> P
     for own in suite.encodings.values():
         _copy_encoding(own, folder)
     program = folder / "programs" / f"{SYSTEM}-{__version__}"
-    # --root: the export folder, which the settings' --own-encoding is relative to
-    write_text(program, f"#!/bin/sh\nexec {sys.executable} -m asprilo.bench.single "
+    # --root: the export folder, which the settings' --own-encoding is relative to; -P (Python 3.11
+    # and later): the run's folder is not put on the path, so nothing there can hide asprilo
+    safe_path = " -P" if sys.version_info >= (3, 11) else ""
+    write_text(program, f"#!/bin/sh\nexec {sys.executable}{safe_path} -m asprilo.bench.single "
                         f"--root \"$(dirname \"$0\")/..\" \"$@\"\n")
     runlim = folder / "programs" / "runlim"
     write_text(runlim, "#!/bin/sh\n# runlim (Debian: apt-get install runlim); replace this file by a runlim binary "

@@ -8,17 +8,22 @@ something ignored (:class:`InputWarning`) one line ``warning: FILE[:LINE]: ...``
 command that reads data takes ``--allow-rules`` and ``--limit NAME=N`` (README: "Reading
 data").  Standard output that cannot be written (a full disk) is one line ``error: standard
 output: ...`` and exit status 2; a reader that goes away (``| head``) ends the command quietly.
+SIGTERM and SIGHUP (``timeout``, a closed terminal, a cluster's ``scancel``, a service manager)
+stop a command as Ctrl-C does: what it found so far is kept, its children end, exit status 130.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import errno
 import importlib
 import os
+import signal
 import sys
+import threading
 import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 
 from asprilo import __version__
 from asprilo.arguments import add_reading_options, reading_limits
@@ -61,7 +66,7 @@ def _parser(name: str, prog: str, summary: str, parent=None) -> argparse.Argumen
 def run_command(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespace) -> int:
     """Run a command within the limits its options ask for, turning bad input and
     interruptions into messages and exit codes."""
-    with using(reading_limits(args)), warnings.catch_warnings():
+    with using(reading_limits(args)), warnings.catch_warnings(), _stops_as_interrupts():
         warnings.simplefilter("always", InputWarning)
         warnings.showwarning = _show_warning
         stdout = sys.stdout
@@ -111,6 +116,33 @@ class _StandardOutput:
 
     def __getattr__(self, name: str):
         return getattr(self._stream, name)
+
+
+@contextlib.contextmanager
+def _stops_as_interrupts() -> Iterator[None]:
+    """While a command runs, SIGTERM and SIGHUP do what Ctrl-C (SIGINT) does at that moment:
+    its handler runs (``solve`` stops its search and answers with the best plan so far), or
+    KeyboardInterrupt is raised.  A signal the process was started to ignore (``nohup``)
+    stays ignored."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def as_ctrl_c(_signal: int, frame) -> None:
+        handler = signal.getsignal(signal.SIGINT)
+        if not callable(handler):  # SIGINT ignored or default: a stop request stops all the same
+            raise KeyboardInterrupt
+        handler(signal.SIGINT, frame)  # signal.default_int_handler raises KeyboardInterrupt
+
+    previous = {stop: signal.getsignal(stop) for stop in (signal.SIGTERM, signal.SIGHUP)}
+    for stop, handler in previous.items():
+        if handler != signal.SIG_IGN:
+            signal.signal(stop, as_ctrl_c)
+    try:
+        yield
+    finally:
+        for stop, handler in previous.items():
+            signal.signal(stop, handler if handler is not None else signal.SIG_DFL)
 
 
 def _named(error: OSError) -> OSError:
