@@ -108,3 +108,50 @@ def test_console_script_prints_no_traceback(tmp_path):
                             capture_output=True, text=True)
     assert (result.returncode, result.stdout) == (2, "")
     assert result.stderr == f"error: {tmp_path}/x.lp: no such file\n"
+
+
+def _json_answer(capsys, *args) -> tuple[int, dict, str]:
+    import json
+
+    try:
+        code = main(list(map(str, args)))
+    except SystemExit as exit_:  # a usage error, as argparse ends it
+        code = exit_.code
+    out, err = capsys.readouterr()
+    return code, json.loads(out), err
+
+
+@pytest.mark.parametrize("command", ["check", "info"])
+def test_a_refusal_with_json_is_a_json_object_too(capsys, write, command):
+    plan = write("plan.lp", PLAN_FOR_ROBOT_9)
+    code, answer, err = _json_answer(capsys, command, "--json", SMALL_A, plan)
+    message = f"{plan}:2: the plan moves robot 9, but the instance has robots 1..3 (plan and instance do not fit)"
+    assert (code, err) == (2, f"error: {message}\n")
+    assert answer == {"error": message, "file": str(plan), "line": 2, "exit": 2}
+
+
+def test_a_missing_file_with_json_is_a_json_object(capsys, tmp_path):
+    code, answer, _err = _json_answer(capsys, "solve", "--json", tmp_path / "x.lp")
+    assert (code, answer) == (2, {"error": f"{tmp_path}/x.lp: no such file", "file": f"{tmp_path}/x.lp",
+                                  "line": None, "exit": 2})
+
+
+def test_an_option_clingo_refuses_is_said_before_solving_also_in_json(capsys):
+    """An option for clingo that clingo does not know, with a reference encoding: refused in
+    clingo's words before any search starts (it was a traceback from the search's child)."""
+    code, answer, err = _json_answer(capsys, "solve", "--json", SMALL_A, "--no-such-option=3")
+    message = "clingo refuses the option --no-such-option=3: unknown option: 'no-such-option'"
+    assert (code, err, answer) == (2, f"error: {message}\n", {"error": message, "exit": 2})
+
+
+@pytest.mark.parametrize("argv, usage", [
+    (["check", "--json"], "asprilo check: error: the following arguments are required: INSTANCE"),
+    (["info", SMALL_A, "--json", "--domain", "z"],
+     "asprilo info: error: argument --domain: unknown domain 'z' (choose one of a, b, c, m, md)"),
+    (["grade", "--json", "--time-limit", "soon"],
+     "asprilo grade: error: argument --time-limit: not a number of seconds: 'soon'"),
+])
+def test_a_usage_error_with_json_is_a_json_object(capsys, argv, usage):
+    code, answer, err = _json_answer(capsys, *argv)
+    assert code == 2 and err.startswith("usage: ") and err.endswith(f"\n{usage}\n")
+    assert answer == {"error": usage, "exit": 2}

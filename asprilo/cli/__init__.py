@@ -8,7 +8,9 @@ something ignored (:class:`InputWarning`) one line ``warning: FILE[:LINE]: ...``
 command that reads data takes ``--allow-rules`` and ``--limit NAME=N`` (README: "Reading
 data").  Standard output that cannot be written (a full disk) is one line ``error: standard
 output: ...`` and exit status 2; a reader that goes away (``| head``) ends the command quietly.
-SIGTERM and SIGHUP (``timeout``, a closed terminal, a cluster's ``scancel``, a service manager)
+With ``--json`` a refusal is also a JSON object on standard output, ``{"error": ..., "exit": 2}``
+(``file`` and ``line`` too where the error has them), so that a script reading JSON always gets
+one.  SIGTERM and SIGHUP (``timeout``, a closed terminal, a cluster's ``scancel``, a service manager)
 stop a command as Ctrl-C does: what it found so far is kept, its children end, exit status 130.
 """
 
@@ -55,7 +57,7 @@ def _parser(name: str, prog: str, summary: str, parent=None) -> argparse.Argumen
     kwargs = dict(description=(module.__doc__ or summary).strip(),
                   formatter_class=argparse.RawDescriptionHelpFormatter)
     parser = parent.add_parser(name, help=summary, **kwargs) if parent else \
-        argparse.ArgumentParser(prog=prog, **kwargs)
+        _Parser(prog=prog, **kwargs)
     module.configure(parser)
     if name not in WITHOUT_DATA:
         add_reading_options(parser)
@@ -156,14 +158,11 @@ def _run(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespa
         sys.stdout.flush()  # here, so that a full disk or a closed pipe is said, not met at exit
         return code
     except InputError as error:
-        print(f"error: {error}", file=sys.stderr)
-        return 2
+        return _refuse(args, f"error: {error}", 2, error)
     except MemoryError:
-        print("error: out of memory (the limits on data are in README, Reading data)", file=sys.stderr)
-        return 2
+        return _refuse(args, "error: out of memory (the limits on data are in README, Reading data)", 2)
     except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return 130
+        return _refuse(args, "interrupted", 130)
     except BrokenPipeError:
         # the reader went away (e.g. `| head`): stop quietly
         _silence_stdout()
@@ -175,6 +174,28 @@ def _run(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespa
         print(f"error: {STANDARD_OUTPUT}: cannot be written ({error.strerror or error})", file=sys.stderr)
         _silence_stdout()
         return 2
+
+
+def _refuse(args: argparse.Namespace, sentence: str, code: int, error: InputError | None = None) -> int:
+    """Say ``sentence`` on standard error and, with ``--json``, as a JSON object on standard
+    output; return the exit status ``code``."""
+    print(sentence, file=sys.stderr)
+    if getattr(args, "json", False):
+        _print_json_refusal(sentence.removeprefix("error: "), code, error)
+    return code
+
+
+def _print_json_refusal(message: str, code: int, error: InputError | None = None) -> None:
+    import json
+
+    answer: dict[str, object] = {"error": message}
+    if error is not None and error.file is not None:
+        answer.update(file=error.file, line=error.line)
+    answer["exit"] = code
+    try:
+        print(json.dumps(answer, indent=2), flush=True)
+    except OSError:  # standard output is gone too: the line on standard error stays
+        _silence_stdout()
 
 
 def _silence_stdout() -> None:
@@ -196,7 +217,7 @@ def _show_warning(message, category, filename, lineno, file=None, line=None) -> 
 def main(argv: Sequence[str] | None = None) -> int:
     """``asprilo COMMAND ...``."""
     argv = list(sys.argv[1:] if argv is None else argv)
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="asprilo",
         description="asprilo: experimenting with robotic intra-logistics in Answer Set Programming.")
     parser.add_argument("--version", action="version", version=f"asprilo {__version__}")
@@ -214,10 +235,39 @@ def main(argv: Sequence[str] | None = None) -> int:
     return run_command(args.run, args)
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser, whose usage errors are raised (:class:`_UsageError`) rather than
+    printed, so that :func:`_parse` can also answer them in JSON (its subcommands' parsers are
+    of this class too)."""
+
+    def error(self, message: str):  # type: ignore[override]
+        raise _UsageError(self, message)
+
+
+class _UsageError(Exception):
+    def __init__(self, parser: argparse.ArgumentParser, message: str):
+        super().__init__(message)
+        self.parser = parser
+
+
 def _parse(parser: argparse.ArgumentParser, argv: list[str], chosen: str | None) -> argparse.Namespace:
     """The arguments; a command that runs clingo on a user's program (its module says
     ``CLINGO_OPTIONS = True``) gets the options asprilo does not know as ``clingo_options``,
-    for clingo to accept or refuse."""
+    for clingo to accept or refuse.  A usage error is said as argparse says it (exit status
+    2), and with ``--json`` also as a JSON object."""
+    try:
+        return _parse_arguments(parser, argv, chosen)
+    except _UsageError as error:
+        error.parser.print_usage(sys.stderr)
+        sentence = f"{error.parser.prog}: error: {error}"
+        print(sentence, file=sys.stderr)
+        options = argv[:argv.index("--")] if "--" in argv else argv
+        if "--json" in options:
+            _print_json_refusal(sentence, 2)
+        raise SystemExit(2) from None
+
+
+def _parse_arguments(parser: argparse.ArgumentParser, argv: list[str], chosen: str | None) -> argparse.Namespace:
     module = importlib.import_module(COMMANDS[chosen][0]) if chosen in COMMANDS else None
     if not getattr(module, "CLINGO_OPTIONS", False):
         return parser.parse_args(argv)

@@ -11,7 +11,7 @@ from pathlib import Path
 from asprilo.domain import Domain
 from asprilo.errors import InputError
 
-from .own import own_encoding
+from .own import check_options, own_encoding
 from .registry import Encoding, encoding_names, find_encoding
 
 
@@ -30,6 +30,7 @@ def choose_encoding(values: Sequence[str], const: Sequence[str], options: Sequen
         if constants:
             raise InputError("-c sets constants of your own encoding; the reference encodings take none")
         reference = find_encoding(domain, values[0])
+        check_options(options)
         return replace(reference, options=reference.options + options), horizon
     if len(files) < len(values):
         names = [value for value in values if value not in files]

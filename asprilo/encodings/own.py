@@ -102,7 +102,7 @@ def own_encoding(paths: Sequence[str | Path], constants: Iterable[tuple[str, str
     for file, code in codes.items():
         _refuse_clingcon3(file, code)
     constants = tuple((name, str(value)) for name, value in constants)
-    _check_options(options)
+    check_options(options)
     features = _features(program)
     style = _style(features, any(_INCMODE.search(code) for code in codes.values()),
                    any(_CSP.search(code) for code in codes.values()))
@@ -150,7 +150,8 @@ def _refuse_clingcon3(path: Path, code: str) -> None:
                          "(docs/OWN_ENCODINGS.md)", str(path), line)
 
 
-def _check_options(options: Sequence[str]) -> None:
+def check_options(options: Sequence[str]) -> None:
+    """Refuse (InputError) clingo options that clingo does not take, in clingo's words."""
     if not options:
         return
     try:
