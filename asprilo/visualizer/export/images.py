@@ -24,6 +24,7 @@ from PyQt5.QtGui import QFontMetricsF, QImage, QPainter
 
 from asprilo.errors import InputError
 from asprilo.limits import current
+from asprilo.model import Instance
 from asprilo.writer import write_bytes
 
 from ..panels.controls import time_text
@@ -43,6 +44,8 @@ DEFAULT_CELL_PX = 48
 PICTURE_CELL_PX = 128
 #: The caption line's height in pixels at most.
 MAX_CAPTION_PX = 48
+#: Cells of margin around the floor in a picture (``WarehouseScene.picture_rect``'s default).
+PICTURE_MARGIN = 0.25
 #: The longest side of a JPEG picture Qt writes (libjpeg's limit).
 JPEG_SIDE = 65_500
 
@@ -62,7 +65,11 @@ def default_cell_px(scene: WarehouseScene, largest: int = DEFAULT_CELL_PX) -> in
     """Pixels per cell: ``largest`` (48 for animations, ``PICTURE_CELL_PX`` for pictures),
     less for big warehouses so the longest side stays under 2000 px."""
     rect = scene.picture_rect()
-    cells = max(rect.width(), rect.height()) / CELL
+    return _cell_px_for(max(rect.width(), rect.height()) / CELL, largest)
+
+
+def _cell_px_for(cells: float, largest: int) -> int:
+    """Pixels per cell for a picture ``cells`` cells long at its longest side."""
     return max(2, min(largest, int(MAX_SIDE / cells)))
 
 
@@ -70,13 +77,36 @@ def image_size(scene: WarehouseScene, cell_px: int, caption: bool = False) -> QS
     """The picture's size at ``cell_px`` pixels per cell: at most ``pixels`` pixels (the
     limit; else :class:`InputError`, before anything is drawn)."""
     rect = scene.picture_rect()
-    width = round(rect.width() / CELL * cell_px)
-    height = round(rect.height() / CELL * cell_px) + (caption_height(cell_px) if caption else 0)
+    return QSize(*_picture_size(rect.width() / CELL, rect.height() / CELL, cell_px, caption))
+
+
+def _picture_size(width_cells: float, height_cells: float, cell_px: int, caption: bool) -> tuple[int, int]:
+    """The size in pixels of a picture ``width_cells`` x ``height_cells`` cells large, within
+    the limit ``pixels`` (else :class:`InputError`)."""
+    width = round(width_cells * cell_px)
+    height = round(height_cells * cell_px) + (caption_height(cell_px) if caption else 0)
     limits = current()
     if width * height > limits.pixels:
         raise limits.exceeded("pixels", f"a picture of {width:,}x{height:,} pixels ({cell_px:,} per cell; "
                                         f"a smaller --cell makes it smaller)")
-    return QSize(width, height)
+    return width, height
+
+
+def check_budget(instance: Instance, suffix: str, cell_px: int | None, horizon: int, frames_per_step: int) -> None:
+    """Refuse an export beyond the limits ``pixels``, ``frames`` and ``animation-pixels``
+    from the instance alone, before its scene and floor image are made (a floor of
+    10000x10000 cells takes most of a GB to draw): the floor with the margins of
+    ``WarehouseScene.picture_rect`` is the least a picture of it shows."""
+    cells = [*instance.nodes.values(), *instance.highways.values()]
+    if not cells:
+        return
+    width = max(x for x, _ in cells) + 2 * PICTURE_MARGIN
+    height = max(y for _, y in cells) + 2 * PICTURE_MARGIN
+    animation = suffix in ANIMATIONS
+    cell_px = cell_px or _cell_px_for(max(width, height), DEFAULT_CELL_PX if animation else PICTURE_CELL_PX)
+    size = _picture_size(width, height, cell_px, caption=animation)
+    if animation:
+        check_animation(animation_frames(horizon, frames_per_step), QSize(*size))
 
 
 def caption_height(cell_px: int) -> int:

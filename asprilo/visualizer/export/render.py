@@ -53,6 +53,7 @@ def render(instance: Instance, plan: Plan, path: str | Path, domain: Domain | No
     from . import images
 
     suffix = images.export_format(path)  # a bad name fails before any work
+    images.check_budget(instance, suffix, cell, plan.horizon, frames)  # a picture too large, before drawing
     app = application()  # noqa: F841 (Qt objects below need it alive)
     track = Track(instance, plan, domain)
     scene = WarehouseScene(instance)

@@ -138,7 +138,7 @@ class WarehouseScene(QGraphicsScene):
         self._extra_cells.update(cells)
         self._update_rect()
 
-    def picture_rect(self, margin: float = 0.25) -> QRectF:
+    def picture_rect(self, margin: float = 0.25) -> QRectF:  # images.PICTURE_MARGIN
         """The floor and every object position, with ``margin`` cells around: what exports show."""
         width, height = self.floor.size
         if not width and not self._extra_cells:  # no floor: whatever is drawn
