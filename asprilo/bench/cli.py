@@ -1,4 +1,4 @@
-"""Run benchmark suites and report on them.
+"""Run benchmark suites under time and memory limits, report tables and plots, export for btool.
 
   asprilo bench SUITE.yml [-o DIR] [--jobs N] [--time-limit S] [--memory-limit MB] [--domain D]
       make the suite's instances, find their minimal makespans, run every (instance,

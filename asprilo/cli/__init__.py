@@ -34,17 +34,25 @@ from asprilo.limits import using
 
 #: name -> (module, one-line summary); a command is listed here once it works.
 COMMANDS: dict[str, tuple[str, str]] = {
-    "demo": ("asprilo.cli.demo", "generate, solve, check and render a small warehouse: the whole tool chain"),
-    "info": ("asprilo.cli.info", "summarise an instance (and plan): counts, domain, horizon"),
-    "check": ("asprilo.cli.check", "check a plan with the ASP checker: violations in plain words, metrics, bounds; "
-              "--watch: again on every save"),
-    "gen": ("asprilo.generator.cli", "generate instances: random, structured (-H), templates (-T), YAML batches (-j)"),
-    "viz": ("asprilo.visualizer.cli", "show a warehouse, animate a plan, export pictures and animations"),
-    "bench": ("asprilo.bench.cli", "run benchmark suites under limits, report tables and plots, export for btool"),
-    "convert": ("asprilo.interop.convert", "convert between asprilo, MovingAI maps/scenarios, LaCAM results, M and Md"),
-    "serve": ("asprilo.online.serve", "serve the online link: a solver that re-plans, or a simulator releasing orders"),
-    "solve": ("asprilo.encodings.cli", "find a plan of minimal makespan with a reference encoding or max-flow"),
-    "grade": ("asprilo.encodings.grade", "grade your encoding on a ladder of instances: valid plans? minimal?"),
+    # each summary is the first line of the command's own description (its module's docstring)
+    "demo": ("asprilo.cli.demo", "run the whole tool chain on a small warehouse: generate, solve, check, render"),
+    "info": ("asprilo.cli.info", "summarise an instance (and a plan): counts, standard file name, domain, horizon"),
+    "check": ("asprilo.cli.check", "check a plan with the ASP checker: broken rules in plain words, metrics, lower "
+              "bounds; --watch: again on every save"),
+    "gen": ("asprilo.generator.cli", "generate instances with multi-shot ASP: random, structured (-H) and template (-T) "
+            "layouts, YAML batches (-j)"),
+    "viz": ("asprilo.visualizer.cli", "show a warehouse, animate a plan (valid or not), edit the layout; or export "
+            "pictures and animations"),
+    "bench": ("asprilo.bench.cli", "run benchmark suites under time and memory limits, report tables and plots, "
+              "export for btool"),
+    "convert": ("asprilo.interop.convert", "convert between asprilo and the MAPF world: MovingAI maps and scenarios, "
+                "LaCAM results, domains M and Md"),
+    "serve": ("asprilo.online.serve", "serve the online link: a solver that re-plans as orders arrive, or a simulator "
+              "releasing orders over time"),
+    "solve": ("asprilo.encodings.cli", "find a plan fast and prove its makespan minimal: reference encodings, your own, "
+              "anytime, max-flow"),
+    "grade": ("asprilo.encodings.grade", "grade your encoding on a ladder of instances: is each plan valid, is it "
+              "minimal?"),
 }
 #: the commands that read no data files
 WITHOUT_DATA = {"demo"}

@@ -1,4 +1,4 @@
-"""Show the whole tool chain on a small warehouse: generate, solve, check, render.
+"""Run the whole tool chain on a small warehouse: generate, solve, check, render.
 
 Generates a structured 11x6 warehouse with three robots (domain A: shelves hold product
 units, orders ask for them at picking stations), finds a plan of minimal makespan with

@@ -1,4 +1,4 @@
-"""Summarise an instance and, optionally, a plan: counts, standard file name, domain, horizon.
+"""Summarise an instance (and a plan): counts, standard file name, domain, horizon.
 
 Examples:
   asprilo info instance.lp

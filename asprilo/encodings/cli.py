@@ -1,11 +1,11 @@
-"""Find a plan for an instance with a reference encoding, your own encoding, or max-flow.
+"""Find a plan fast and prove its makespan minimal: reference encodings, your own, anytime, max-flow.
 
 By default (--method auto) two searches run side by side, each in a process of its own:
 the exact search, which starts at a lower bound of the makespan and goes up one step at a
 time, and the anytime planner, which finds a plan fast and then better ones.  The answer is
 the best plan found, proven minimal as soon as the exact search has refuted every shorter
 horizon (or found it), else with the bound proven so far and the gap; a plan once found is
-never lost (time limit, Ctrl-C).  M/Md with anonymous goals: max-flow, exact and fast.
+never lost (time limit, Ctrl-C, SIGTERM).  M/Md with anonymous goals: max-flow, exact and fast.
 --method asp, anytime or flow runs that method alone; --encoding runs that encoding alone
 (method asp).  The plan is checked, then printed as occurs/3 facts (stdout, or -o PLAN); a
 summary goes to stderr.  On a terminal a line redrawn twice a second says what the searches

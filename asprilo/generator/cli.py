@@ -1,4 +1,6 @@
-"""Generate warehouse instances with a compartmentalised multi-shot ASP program.
+"""Generate instances with multi-shot ASP: random, structured (-H) and template (-T) layouts, YAML batches (-j).
+
+The generator is a compartmentalised ASP program, solved stage by stage.
 
 Layouts: random (default; -n for a partial grid with gaps), structured (-H: storage zones
 surrounded by highways) and templates (-T: populate a hand-made layout).  The flags are those

@@ -1,5 +1,6 @@
-"""Convert between asprilo and the MAPF world: MovingAI maps and scenarios, LaCAM/PIBT
-result files, and asprilo's own domains M and Md.
+"""Convert between asprilo and the MAPF world: MovingAI maps and scenarios, LaCAM results, domains M and Md.
+
+LaCAM/PIBT result files convert into plans; M and Md instances into each other.
 
 Examples:
   asprilo convert random-32-32-20.map floor.lp

@@ -1,5 +1,7 @@
-"""Serve the online link: a solver that plans step by step and re-plans when orders arrive,
-or a simulator that releases an instance's orders over time.  The visualizer connects to
+"""Serve the online link: a solver that re-plans as orders arrive, or a simulator releasing orders over time.
+
+The solver plans step by step and re-plans when orders arrive; the simulator releases an
+instance's orders over time.  The visualizer connects to
 both (Online > Connect…) and plays what they say; see asprilo/visualizer/README.md for the protocol.
 
 Examples:

@@ -1,4 +1,6 @@
-"""Show a warehouse and animate a plan on it; or export pictures and animations without a window.
+"""Show a warehouse, animate a plan (valid or not), edit the layout; or export pictures and animations.
+
+Exports need no window.
 
 FILE is the instance, then plan files or clingo output (- = standard input).  One file may
 hold both (e.g. clingo output that shows init/2 and occurs/3 atoms).  Without files, piped
