@@ -169,10 +169,12 @@ _B = r"[ \t\r\n]*+"
 _ID = r"((?!not(?![A-Za-z0-9_']))[_']*+[a-z][A-Za-z0-9_']*+)"
 _NUM = r"-?(?:0|[1-9][0-9]{0,8})"
 _INT = "(" + _NUM + ")"
-_INIT = re.compile(
+# The two alone are compiled where a grounded atom is taken apart (re's own cache keeps them):
+# reading files needs only the two together (_PLAIN), and ``check`` starts without the rest.
+_INIT = (
     rf"init\({_B}object\({_B}{_ID}{_B},{_B}{_INT}{_B}\){_B},{_B}value\({_B}{_ID}{_B},{_B}"
     rf"(?:\({_B}{_INT}{_B},{_B}{_INT}{_B}\)|{_INT}){_B}\){_B}\){_B}\.")
-_OCCURS = re.compile(
+_OCCURS = (
     rf"occurs\({_B}object\({_B}{_ID}{_B},{_B}{_INT}{_B}\){_B},{_B}action\({_B}{_ID}{_B},{_B}"
     rf"\({_B}((?:{_NUM}{_B},{_B}{_NUM}{_B}(?:,{_B}{_NUM}{_B})*)?)\){_B}\){_B},{_B}{_INT}{_B}\){_B}\.")
 _SKIP = re.compile(r"(?:[ \t\r\n]++|%(?!\*)[^\r\n]*+|#program[ \t\r\n]++base[ \t\r\n]*+\.)++")
@@ -181,7 +183,7 @@ _PLAIN_DEPTH = 3
 
 
 #: either plain fact: init's groups 1-6, occurs' 7-11
-_PLAIN = re.compile(f"{_INIT.pattern}|{_OCCURS.pattern}")
+_PLAIN = re.compile(f"{_INIT}|{_OCCURS}")
 
 
 def _init_args(match: re.Match) -> tuple[str, int, str, tuple[int, int] | int]:
@@ -321,7 +323,7 @@ def shape_error(atom: Fn) -> InputError:
 def init_terms(atom: clingo.Symbol) -> tuple[Any, Any, Any, Any]:
     """``(Type, Id, Attribute, Value)`` of an ``init/2`` atom (:class:`InputError` if it has
     another shape)."""
-    match = _INIT.fullmatch(str(atom) + ".")
+    match = re.fullmatch(_INIT, str(atom) + ".")
     if match:
         return _init_args(match)
     obj, val = atom.arguments
@@ -343,7 +345,7 @@ def assign_terms(atom: clingo.Symbol) -> tuple[int, str, int]:
 
 def action_of(atom: clingo.Symbol) -> Action:
     """The action of an ``occurs/3`` atom (:class:`InputError` if it has another shape)."""
-    match = _OCCURS.fullmatch(str(atom) + ".")
+    match = re.fullmatch(_OCCURS, str(atom) + ".")
     if match:
         kind, robot, name, args, step = _occurs_args(match)
         return Action(step, robot, name, args, kind)

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Callable, Iterable, Sequence
-from difflib import get_close_matches
 from itertools import chain
 from typing import Any
 
@@ -386,7 +385,7 @@ class _PlanMistakes:
         if name == "occurs":
             self.mistakes[what] = (f"{what} is ignored: occurs has 3 arguments, {OCCURS_SHAPE} "
                                    "(a parenthesis in the wrong place?)", origin)
-        elif get_close_matches(name, ["occurs"], n=1, cutoff=0.6):
+        elif _close_matches(name, ["occurs"], n=1, cutoff=0.6):
             self.mistakes[what] = (f"{_shown_name(name)}/{arity} is ignored: did you mean occurs/3?", origin)
         else:
             self.other[what] = origin
@@ -397,14 +396,14 @@ class _PlanMistakes:
             self.actions.add(name)
             known = _known_actions()
             if name not in known:
-                close = get_close_matches(str(name), known, n=1)
+                close = _close_matches(str(name), known, n=1)
                 hint = f": did you mean {close[0]}?" if close else ""
                 self.mistakes[f"action {name}"] = (
                     f"there is no action '{_shown_name(name)}'{hint} (the actions: {', '.join(known)})", origin)
         if kind not in self.kinds:
             self.kinds.add(kind)
             if kind not in _ACTING:
-                close = get_close_matches(str(kind), _ACTING, n=1)
+                close = _close_matches(str(kind), _ACTING, n=1)
                 hint = f": did you mean {close[0]}?" if close else ""
                 self.mistakes[f"kind {kind}"] = (f"only robots act, not object({_shown_name(kind)},..){hint}", origin)
 
@@ -496,7 +495,7 @@ def plan_misfits(plan: Plan, instance: Instance, domain: Domain | None = None) -
         said.append(f"it moves robot{'s' * (len(robots) > 1)} {names}, but the instance has {_robots_of(instance)}")
     known = _known_actions()
     for name in sorted({action.name for action in plan.actions} - set(known), key=str):
-        close = get_close_matches(str(name), known, n=1)
+        close = _close_matches(str(name), known, n=1)
         said.append(f"there is no action '{_shown_name(name)}'" + (f" (did you mean {close[0]}?)" if close else ""))
     domain = domain or detect_domain(instance, plan)
     foreign = sorted({action.name for action in plan.actions if action.name in known} - set(domain.actions))
@@ -521,3 +520,10 @@ def require_known_robots(plan: Plan, instance: Instance, sources: Sequence[Sourc
             raise InputError(f"the plan moves robot {_shown(action.robot)}, but the instance has "
                              f"{_robots_of(instance)} (plan and instance do not fit)",
                              *locate(sources, format_action(action)))
+
+
+def _close_matches(word: str, candidates: Sequence[str], n: int = 3, cutoff: float = 0.6) -> list[str]:
+    """:func:`difflib.get_close_matches`, imported when a mistake is to be named (reading
+    a well-formed file never needs it)."""
+    from difflib import get_close_matches
+    return get_close_matches(word, candidates, n=n, cutoff=cutoff)

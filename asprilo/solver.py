@@ -34,13 +34,14 @@ from pathlib import Path
 from typing import TYPE_CHECKING, cast
 
 import clingo
-import clingo.ast
 
 from . import clingo_logger
 from .errors import InputError
 
 if TYPE_CHECKING:
     import tempfile
+
+    import clingo.ast  # imported where a program is rewritten (a theory, renamed parts): a check needs none
 
 clingo_logger.install()
 
@@ -198,8 +199,9 @@ class Solver:
             if self.theory is None and not renamed:
                 self.control.load(str(loaded))
             else:
-                with clingo.ast.ProgramBuilder(self.control) as builder:
-                    clingo.ast.parse_files([str(loaded)], self._adder(builder, renamed), logger=self._log)
+                from clingo.ast import ProgramBuilder, parse_files
+                with ProgramBuilder(self.control) as builder:
+                    parse_files([str(loaded)], self._adder(builder, renamed), logger=self._log)
         except RuntimeError:
             raise self._error(str(path)) from None
 
@@ -258,9 +260,10 @@ class Solver:
             if self.theory is None and not renamed:
                 self.control.add(part, list(parameters), text)
             else:
+                from clingo.ast import ProgramBuilder, parse_string
                 header = f"#program {part}({','.join(parameters)}).\n" if parameters else f"#program {part}.\n"
-                with clingo.ast.ProgramBuilder(self.control) as builder:
-                    clingo.ast.parse_string(header + text, self._adder(builder, renamed), logger=self._log)
+                with ProgramBuilder(self.control) as builder:
+                    parse_string(header + text, self._adder(builder, renamed), logger=self._log)
         except RuntimeError:
             raise self._error(name) from None
 

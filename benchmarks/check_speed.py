@@ -2,22 +2,30 @@
 ASP checker (``asprilo.checker.check``) and the simulator in a warm process.  Each figure is
 the median wall-clock time of several runs.
 
-Whole commands (issue 32, item 3 and the small M solve; targets in brackets):
-  check small-a       check on the small A example with its outcome.txt        [<= 0.15 s]
+Whole commands (issue 32, item 3, issue 44, part 4 and the small M solve; targets in brackets):
+  check small-a       the ``check`` command on the small A example with its
+                      outcome.txt                                              [<= 0.15 s]
+  asprilo check ...   the same as ``asprilo check`` (python -m asprilo.cli)    [<= 0.15 s]
   check small-a -B    the same with --bound strong (the strongest bound)       [none]
+  check wrong-a       check on the small A example with wrong_outcome.txt
+                      (3 violations, worded by the simulator)                  [none]
   check medium-a      check on the medium A example with a plan                [<= 0.3 s]
                       (the anytime planner's first plan, made once before timing)
-  original checker    the issue's 1.1-1.3 s for the small A example (the original ASP
-                      checker is not installed here), over check small-a      [>= 7x]
+  original checker    --original 'COMMAND {instance} {plan}': the original ASP checker
+                      on the small A example, timed run for run beside check small-a;
+                      without it, the issue's 1.1-1.3 s (it is not installed
+                      here); the ratio over check small-a                      [>= 10x]
   solve small-m       asprilo solve with defaults on the paper's small M instance
                       with 11 robots (makespan 4)                              [<= 0.15 s]
   python              the interpreter alone (python -c pass), for scale
-The lower bound that check shows is the cheap one unless --bound strong asks for the
-strongest; the line after the table says which bound each check command showed.
---pythonpath DIR runs the commands with that folder first on the Python path (a copy of
-another commit installed with ``pip install --no-deps --target DIR``), to time a version
-before a change on the same machine; the commands run in an empty folder, so that the
-checkout's own folders are not on the path.
+Each figure is the median of --runs runs (default 11), with the bytecode cached and
+compiled from source.  Then where check small-a's start-up goes: ``python -X importtime``,
+the least of --runs runs per module.  The lower bound that check shows is the cheap one
+unless --bound strong asks for the strongest; the lines after the table say which bound each
+check command showed.  --pythonpath DIR runs the commands with that folder first on the
+Python path (a copy of another commit: ``git archive COMMIT | tar -x -C DIR``, the package
+folder ``asprilo/`` at its top), to time a version before a change on the same machine; the
+commands run in an empty folder, so that the checkout's own folders are not on the path.
 
 Warm-process cases (targets of the checker's issue in brackets):
   outcome       the 29-step domain-A plan of the paper's example            [<= 0.5 s]
@@ -29,8 +37,10 @@ Warm-process cases (targets of the checker's issue in brackets):
 
 Times are of ``check(instance, plan)`` in a warm process (its programs parsed once).
 
-Usage: python benchmarks/check_speed.py [--repeat N] [--commands | --quick] [--pythonpath DIR]
-(--commands: the whole commands only; --quick leaves out the two 1000x500 cases.)
+Usage: python benchmarks/check_speed.py [--runs N] [--repeat N] [--commands | --quick] [--pythonpath DIR]
+                                        [--original 'COMMAND {instance} {plan}']
+(--commands: the whole commands only; --quick leaves out the two 1000x500 cases; --repeat:
+runs per warm-process case.)
 """
 
 from __future__ import annotations
@@ -40,6 +50,8 @@ import heapq
 import math
 import os
 import random
+import re
+import shlex
 import statistics
 import subprocess
 import sys
@@ -59,10 +71,13 @@ from asprilo.simulate import simulate
 EXAMPLES = Path(__file__).resolve().parent.parent / "examples"
 SMALL_A = EXAMPLES / "asprilo/dom-a/small/x11_y6_n66_r3_s12_ps2_pr5_u50_o3_N001.lp"
 OUTCOME = EXAMPLES / "asprilo/dom-a/small/outcome.txt"
+WRONG_OUTCOME = EXAMPLES / "asprilo/dom-a/small/wrong_outcome.txt"
 MEDIUM_A = EXAMPLES / "asprilo/dom-a/medium/x19_y9_n171_r6_s45_ps3_pr180_u540_o12_N1.lp"
 SMALL_M = EXAMPLES / "paper-m/1x2x4/x11_y6_n66_r11_s16_ps1_pr16_u16_o11_N001.lp"
 #: the original ASP checker on the small A example, as the issue measured it (not installed here)
 ORIGINAL_CHECKER = (1.1, 1.3)
+#: how many times faster than the original checker check small-a should be (issue 44, part 4)
+ORIGINAL_RATIO = 10.0
 
 
 # --- plans to check ----------------------------------------------------------------------
@@ -167,78 +182,145 @@ def medium_plan(folder: Path) -> Path:
     return path
 
 
-def _median_run(command: list[str], variables: dict, folder: str, repeat: int,
-                warm_up: int) -> tuple[float, subprocess.CompletedProcess]:
-    """The median wall time of ``repeat`` runs of ``command`` after ``warm_up`` runs, and the
-    last run (the first that fails, if one does)."""
-    runs = []
-    for run in range(warm_up + repeat):
-        started = time.perf_counter()
-        done = subprocess.run(command, capture_output=True, text=True, env=variables, cwd=folder)
-        if done.returncode not in (0, 1):
-            return math.nan, done
-        if run >= warm_up:
-            runs.append(time.perf_counter() - started)
-    return statistics.median(runs), done
+def _median_runs(commands: dict[str, list[str]], variables: dict, folder: str, runs: int,
+                 warm_up: int) -> dict[str, tuple[float, subprocess.CompletedProcess]]:
+    """For each of ``commands`` (name -> argv) the median wall time of ``runs`` runs after
+    ``warm_up`` runs, the commands taking turns run by run (a load that comes and goes
+    falls on all of them), and its last run (the first that fails, if one does)."""
+    times: dict[str, list[float]] = {name: [] for name in commands}
+    last: dict[str, subprocess.CompletedProcess] = {}
+    for run in range(warm_up + runs):
+        for name, command in commands.items():
+            if name in last and last[name].returncode not in (0, 1):
+                continue
+            started = time.perf_counter()
+            last[name] = subprocess.run(command, capture_output=True, text=True, env=variables, cwd=folder)
+            if run >= warm_up:
+                times[name].append(time.perf_counter() - started)
+    return {name: (statistics.median(times[name]) if last[name].returncode in (0, 1) else math.nan, last[name])
+            for name in commands}
 
 
-def command_times(repeat: int, pythonpath: str | None) -> None:
-    """The whole commands of the module docstring, each the median of ``repeat`` runs: with
-    the modules' bytecode cached (as after ``pip install``, which compiles it; here in a
-    folder of its own, after a first run that writes it) and compiled from source at every
-    start (``PYTHONDONTWRITEBYTECODE=1`` without a cache, as in a checkout that is never
-    written to)."""
+def _environments(pythonpath: str | None, folder: str) -> tuple[dict, dict]:
+    """The environments of the cached and the from-source runs."""
     environment = {key: value for key, value in os.environ.items() if key != "PYTHONDONTWRITEBYTECODE"}
     if pythonpath:
         environment["PYTHONPATH"] = pythonpath + os.pathsep + environment.get("PYTHONPATH", "")
+    cached = dict(environment, PYTHONPYCACHEPREFIX=str(Path(folder) / "bytecode"))
+    return cached, dict(environment, PYTHONDONTWRITEBYTECODE="1")
+
+
+def _check_command() -> list[str]:
+    """The ``check`` command as installed beside this interpreter (else ``python -c`` running it)."""
+    script = Path(sys.executable).parent / "check"
+    if script.is_file():
+        return [str(script)]
+    return [sys.executable, "-c", "import sys; from asprilo.cli import check_main; sys.exit(check_main())"]
+
+
+def command_times(runs: int, pythonpath: str | None, original: str | None) -> None:
+    """The whole commands of the module docstring, each the median of ``runs`` runs: with
+    the modules' bytecode cached (as after ``pip install``, which compiles it; here in a
+    folder of its own, after a first run that writes it) and compiled from source at every
+    start (``PYTHONDONTWRITEBYTECODE=1`` without a cache, as in a checkout that is never
+    written to); ``original``: the original checker's command line, timed beside check small-a."""
     asprilo = [sys.executable, "-m", "asprilo.cli"]
+    check = _check_command()
     with tempfile.TemporaryDirectory() as folder:
-        cached = dict(environment, PYTHONPYCACHEPREFIX=str(Path(folder) / "bytecode"))
-        uncached = dict(environment, PYTHONDONTWRITEBYTECODE="1")
+        cached, uncached = _environments(pythonpath, folder)
         print("making a plan for the medium A example ...", file=sys.stderr, flush=True)
         medium = medium_plan(Path(folder))
         cases = [
-            ("check small-a", 0.15, [*asprilo, "check", str(SMALL_A), str(OUTCOME)]),
-            ("check small-a -B", None, [*asprilo, "check", str(SMALL_A), str(OUTCOME), "--bound", "strong"]),
-            ("check medium-a", 0.3, [*asprilo, "check", str(MEDIUM_A), str(medium)]),
+            ("check small-a", 0.15, [*check, str(SMALL_A), str(OUTCOME)]),
+            ("asprilo check ...", 0.15, [*asprilo, "check", str(SMALL_A), str(OUTCOME)]),
+            ("check small-a -B", None, [*check, str(SMALL_A), str(OUTCOME), "--bound", "strong"]),
+            ("check wrong-a", None, [*check, str(SMALL_A), str(WRONG_OUTCOME)]),
+            ("check medium-a", 0.3, [*check, str(MEDIUM_A), str(medium)]),
             ("solve small-m", 0.15, [*asprilo, "solve", str(SMALL_M)]),
             ("python", None, [sys.executable, "-c", "pass"]),
         ]
-        print(f"{'whole command':18s} {'cached s':>8s} {'source s':>8s} {'target':>6s}  (medians of {repeat} runs)")
+        if original:
+            cases.insert(1, ("original checker", None,
+                             [word.format(instance=SMALL_A, plan=OUTCOME) for word in shlex.split(original)]))
+        commands = {name: command for name, _target, command in cases}
+        print(f"{'whole command':18s} {'cached s':>8s} {'source s':>8s} {'target':>6s}  (medians of {runs} runs)")
+        measured = [_median_runs(commands, cached, folder, runs, 1),  # the first cached run writes the bytecode
+                    _median_runs({name: command for name, command in commands.items() if name != "original checker"},
+                                 uncached, folder, runs, 0)]  # the original checker is no Python: once is enough
         times, said = {}, {}
-        for name, target, command in cases:
-            medians = []
-            for variables, warm_up in ((cached, 1), (uncached, 0)):  # the first cached run writes the bytecode
-                seconds, done = _median_run(command, variables, folder, repeat, warm_up)
-                if done.returncode not in (0, 1):  # an older version without the option
-                    print(f"{name:18s} exit status {done.returncode}: {done.stderr.strip().splitlines()[-1]}")
-                    break
-                medians.append(seconds)
-            if len(medians) < 2:
+        for name, target, _command in cases:
+            (seconds, done), (source, _) = measured[0][name], measured[1].get(name, measured[0][name])
+            if done.returncode not in (0, 1):  # an older version without the option
+                print(f"{name:18s} exit status {done.returncode}: {(done.stderr.strip().splitlines() or [''])[-1]}")
                 continue
-            times[name] = medians[0]
-            lines = done.stdout.strip().splitlines()
-            said[name] = next((line for line in lines if line.startswith("lower bound")), "")
+            times[name] = (seconds, source)
+            said[name] = next((line for line in done.stdout.strip().splitlines() if line.startswith("lower bound")), "")
             shown = "-" if target is None else f"{target:.2f}"
-            print(f"{name:18s} {medians[0]:8.3f} {medians[1]:8.3f} {shown:>6s}", flush=True)
-    low, high = ORIGINAL_CHECKER
-    check_small = times["check small-a"]
-    print(f"original checker   {low:.1f}-{high:.1f} s (the issue's figure, not measured here): "
-          f"{low / check_small:.1f}-{high / check_small:.1f}x the time of check small-a, cached [>= 7x]")
+            from_source = "-" if name == "original checker" else f"{source:.3f}"
+            print(f"{name:18s} {seconds:8.3f} {from_source:>8s} {shown:>6s}", flush=True)
+    _ratio_lines(times)
     for name in ("check small-a", "check small-a -B", "check medium-a"):
         if name in said:
             print(f"{name}: {said[name] or '(no bound line)'}")
+    print()
+    import_times([str(SMALL_A), str(OUTCOME)], runs, pythonpath)
+
+
+def _ratio_lines(times: dict[str, tuple[float, float]]) -> None:
+    """How many times faster than the original checker check small-a is, cached and from source."""
+    if "check small-a" not in times:
+        return
+    cached, source = times["check small-a"]
+    if "original checker" in times:
+        original = times["original checker"][0]
+        print(f"original checker   {original:.3f} s measured beside it: check small-a takes {cached:.3f} s cached, "
+              f"{original / cached:.1f}x faster ({original / source:.1f}x from source) [>= {ORIGINAL_RATIO:g}x]")
+        return
+    low, high = ORIGINAL_CHECKER
+    print(f"original checker   {low:.1f}-{high:.1f} s (the issue's figure, not measured here; --original to measure): "
+          f"check small-a takes {cached:.3f} s cached, {low / cached:.1f}-{high / cached:.1f}x faster "
+          f"({low / source:.1f}-{high / source:.1f}x from source) [>= {ORIGINAL_RATIO:g}x]")
+
+
+_IMPORT_TIME = re.compile(r"import time:\s+(\d+) \|\s+(\d+) \|( *)(\S+)")
+
+
+def import_times(arguments: list[str], runs: int, pythonpath: str | None, shown: int = 12) -> None:
+    """Where the start-up of ``check ARGUMENTS`` goes: ``python -X importtime``, cached, the least time
+    of ``runs`` runs per module; the modules imported at the top (with what they import) and
+    asprilo's own."""
+    program = "import sys; from asprilo.cli import check_main; sys.argv[0] = 'check'; sys.exit(check_main())"
+    least: dict[str, tuple[int, int, int]] = {}  # module -> (self us, cumulative us, depth)
+    with tempfile.TemporaryDirectory() as folder:
+        cached, _ = _environments(pythonpath, folder)
+        for _ in range(runs + 1):  # the first writes the bytecode
+            done = subprocess.run([sys.executable, "-X", "importtime", "-c", program, *arguments],
+                                  capture_output=True, text=True, env=cached, cwd=folder)
+            for match in _IMPORT_TIME.finditer(done.stderr):
+                module, own, total, depth = match[4], int(match[1]), int(match[2]), len(match[3]) // 2
+                old = least.get(module, (own, total, depth))
+                least[module] = (min(old[0], own), min(old[1], total), depth)
+    top = sorted(((total, module) for module, (_own, total, depth) in least.items() if depth == 0), reverse=True)
+    ours = sum(own for module, (own, _total, _depth) in least.items() if module.split(".")[0] == "asprilo")
+    print(f"imports of check small-a, cached (python -X importtime, least of {runs} runs): "
+          f"{sum(own for own, _total, _depth in least.values()) / 1000:.1f} ms in {len(least)} modules, "
+          f"asprilo's own {ours / 1000:.1f} ms")
+    print("  at the top: " + ", ".join(f"{module} {total / 1000:.1f}" for total, module in top[:shown]))
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--repeat", type=int, default=5, help="runs per case (median reported; large cases: 3)")
+    parser.add_argument("--runs", type=int, default=11, help="runs per whole command (median reported)")
+    parser.add_argument("--repeat", type=int, default=5,
+                        help="runs per warm-process case (median reported; large cases: 3)")
     parser.add_argument("--quick", action="store_true", help="leave out the 1000x500 cases")
     parser.add_argument("--commands", action="store_true", help="the whole commands only")
     parser.add_argument("--pythonpath", metavar="DIR", help="run the commands with DIR first on the Python path")
+    parser.add_argument("--original", metavar="COMMAND",
+                        help="the original checker's command line, {instance} and {plan} in it: timed beside check")
     args = parser.parse_args(argv)
 
-    command_times(args.repeat, args.pythonpath)
+    command_times(args.runs, args.pythonpath, args.original)
     if args.commands:
         return 0
     print()

@@ -18,7 +18,7 @@ from pathlib import Path
 import pytest
 
 from asprilo.cli import main
-from asprilo.cli.check import EncodingSolve, PlanCheck
+from asprilo.cli.reruns import EncodingSolve, PlanCheck
 from asprilo.cli.watching import Stamps, watch
 
 ROOT = Path(__file__).resolve().parent.parent

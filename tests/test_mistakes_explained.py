@@ -302,7 +302,7 @@ def test_a_watched_recheck_says_the_readers_warnings_below_its_heading(tmp_path,
     import io
     from pathlib import Path
 
-    from asprilo.cli.check import PlanCheck
+    from asprilo.cli.reruns import PlanCheck
     monkeypatch.chdir(tmp_path)
     instance, plan = Path("i.lp"), Path("p.lp")
     instance.write_text("init(object(node,1),value(at,(1,1))). init(object(node,2),value(at,(2,1))).\n"

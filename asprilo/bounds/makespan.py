@@ -13,13 +13,17 @@ shows by default: their first stage alone, in milliseconds and without numpy).
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 from ..domain import Bound, Domain
 from ..model import Instance
-from .delivery import Deliveries, schedulable, schedule_bound, short_of_stock, station_bound
 from .floor import INFINITE, Floor
-from .mapf import mapf_bounds, nearest_goal_bounds
-from .trip import trip_bound
+
+# The bounds of each family are imported where a domain of that family asks for them (A/B/C:
+# delivery, and trip for the strong bound only; M/Md: mapf): ``check`` shows the cheap bound of
+# one domain and loads only what that takes.
+if TYPE_CHECKING:
+    from .delivery import Deliveries
 
 #: cell visits the cheap A/B/C bound may spend on a search per shelf that holds an ordered
 #: product (shelves resting in the way); beyond, one search per station (Deliveries.blocking)
@@ -35,6 +39,7 @@ def makespan_bound(instance: Instance, domain: Domain, floor: Floor | None = Non
     """
     floor = floor or Floor(instance.cells)
     if domain.bound is Bound.MAPF:
+        from .mapf import mapf_bounds
         return mapf_bounds(instance, floor, total=False)[0]
     return delivery_bound(instance, domain, floor)
 
@@ -43,12 +48,14 @@ def delivery_bound(instance: Instance, domain: Domain, floor: Floor) -> float:
     """An admissible makespan bound for A, B and C (``INFINITE``: some line can never be served):
     the stations' bound, raised by the scheduling relaxation where every shelf serves one line
     at most (:mod:`asprilo.bounds.delivery`), else by the trip relaxation (:mod:`asprilo.bounds.trip`)."""
+    from .delivery import Deliveries, schedulable, schedule_bound
     facts = Deliveries(instance, domain, floor)
     bound = _first_stage(facts)
     if not facts.lines or not math.isfinite(bound):
         return bound
     if schedulable(facts):
         return schedule_bound(facts, bound)
+    from .trip import trip_bound
     return trip_bound(facts, bound)
 
 
@@ -57,6 +64,7 @@ def strong_bounds(instance: Instance, domain: Domain, floor: Floor | None = None
     bound of the same assignment (:func:`~asprilo.bounds.mapf.mapf_bounds`; ``None`` for A/B/C)."""
     floor = floor or Floor(instance.cells)
     if domain.bound is Bound.MAPF:
+        from .mapf import mapf_bounds
         return mapf_bounds(instance, floor)
     return makespan_bound(instance, domain, floor), None
 
@@ -74,7 +82,9 @@ def cheap_bounds(instance: Instance, domain: Domain, floor: Floor | None = None)
     """
     floor = floor or Floor(instance.cells)
     if domain.bound is Bound.MAPF:
+        from .mapf import nearest_goal_bounds
         return nearest_goal_bounds(instance, floor)
+    from .delivery import Deliveries
     facts = Deliveries(instance, domain, floor)
     holders = {shelf for line in facts.lines for shelf in line.holders}
     facts.blocking = len(holders) * len(floor.cells) <= CHEAP_VISITS  # a search per shelf, else per station
@@ -85,6 +95,7 @@ def _first_stage(facts: Deliveries) -> float:
     """The A/B/C bound before any relaxation: 0 with nothing to deliver, ``INFINITE`` when some
     line can never be served (no station, no shelf that gets there, A: too little stock),
     else the stations' bound."""
+    from .delivery import short_of_stock, station_bound
     if not facts.lines and not facts.stationless:
         return 0.0
     if facts.stationless or not all(math.isfinite(facts.release(line)) for line in facts.lines) \

@@ -18,7 +18,6 @@ Examples:
 from __future__ import annotations
 
 import argparse
-import json
 
 from asprilo.arguments import domain_argument
 from asprilo.model import Instance, Plan
@@ -45,6 +44,7 @@ def show(instance: Instance, plan: Plan, args: argparse.Namespace) -> int:
     violations first, then the bounds (``--bound strong``: when they come)."""
     strength: Strength = "strong" if getattr(args, "bound", None) == "strong" else "cheap"
     if args.json:
+        import json  # only --json prints JSON
         report = check(instance, plan, args.domain, bound=strength)
         print(json.dumps(report.as_json(), indent=2))
     elif strength == "cheap":

@@ -13,9 +13,9 @@ from __future__ import annotations
 
 from functools import cache
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import clingo
-import clingo.ast
 
 from asprilo.domain import Domain
 from asprilo.facts import format_action
@@ -23,12 +23,18 @@ from asprilo.facts import instance_facts as all_facts
 from asprilo.model import Instance, Plan, Term
 from asprilo.solver import Solver, Statistics
 
+if TYPE_CHECKING:  # the checker's statements are parsed from a domain's second check on (run_checker)
+    import clingo.ast
+
 HERE = Path(__file__).resolve().parent
 
 #: move directions as packed.lp numbers them (0: no move)
 _PACKED = {(1, 0): 1, (-1, 0): 2, (0, 1): 3, (0, -1): 4}
 _DIGITS = 13  # moves per packed integer: 5**13 - 1 < 2**31
 PACK_FROM = 2_000
+
+#: the domains checked in this process so far (their checker is parsed once, at the second check)
+_checked: set[Domain] = set()
 
 
 def concerns(domain: Domain) -> list[Path]:
@@ -74,20 +80,43 @@ def plan_facts(instance: Instance, plan: Plan, packed: bool | None = None) -> st
     return "\n".join(lines)
 
 
+def _files(domain: Domain) -> list[Path]:
+    """The checker of ``domain`` and packed.lp."""
+    return [*concerns(domain), HERE / "packed.lp"]
+
+
 @cache
 def _statements(domain: Domain) -> tuple[clingo.ast.AST, ...]:
-    """The checker of ``domain`` and packed.lp, parsed once."""
+    """The checker of ``domain`` and packed.lp, parsed once; dropped at exit, before the
+    modules are torn down (``clingo.ast``, imported after this module, goes first, and a
+    statement's finalizer calls into it)."""
+    import atexit
+
+    import clingo.ast
     statements: list[clingo.ast.AST] = []
-    clingo.ast.parse_files([str(path) for path in (*concerns(domain), HERE / "packed.lp")], statements.append)
+    clingo.ast.parse_files([str(path) for path in _files(domain)], statements.append)
+    atexit.unregister(_statements.cache_clear)  # registered once
+    atexit.register(_statements.cache_clear)
     return tuple(statements)
 
 
 def run_checker(facts: str, domain: Domain) -> tuple[list[clingo.Symbol], Statistics]:
-    """Ground and solve the checker of ``domain`` on ``facts``; its ``err/3`` atoms."""
+    """Ground and solve the checker of ``domain`` on ``facts``; its ``err/3`` atoms.
+
+    The first check of a domain in a process loads the checker's files as they are (the
+    ``check`` command checks once: no ``clingo.ast``, no parse kept); from the second on, the
+    statements parsed once are handed over (a process that checks many plans: a solve, a
+    benchmark), which is quicker than reading the files again."""
     solver = Solver(options=["--warn=none"])
-    with clingo.ast.ProgramBuilder(solver.control) as builder:
-        for statement in _statements(domain):
-            builder.add(statement)
+    if domain in _checked:
+        from clingo.ast import ProgramBuilder
+        with ProgramBuilder(solver.control) as builder:
+            for statement in _statements(domain):
+                builder.add(statement)
+    else:
+        _checked.add(domain)
+        for path in _files(domain):
+            solver.control.load(str(path))
     solver.add(facts)
     solver.ground()
     # one answer set, found without search: the program negates only what earlier steps decided

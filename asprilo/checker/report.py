@@ -15,7 +15,8 @@ from typing import TYPE_CHECKING, Any, Literal
 
 import clingo
 
-from asprilo.bounds import Floor, cheap_bounds, strong_bounds
+from asprilo.bounds.floor import Floor
+from asprilo.bounds.makespan import cheap_bounds, strong_bounds
 from asprilo.domain import Bound, Domain, Goal
 from asprilo.facts import value_of
 from asprilo.model import Instance, Plan, Term

@@ -11,8 +11,8 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from ..domain import Goal
+from ..facts import format_value  # not the writer, which re-exports it: explaining writes no file
 from ..model import Action
-from ..writer import format_value
 
 if TYPE_CHECKING:
     from .timeline import Timeline

@@ -6,8 +6,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from ..facts import format_value  # not the writer, which re-exports it: explaining writes no file
 from ..model import Cell
-from ..writer import format_value
 from .messages import MESSAGES
 
 if TYPE_CHECKING:
