@@ -1,6 +1,7 @@
-"""Check a plan with the ASP checker: every broken rule in plain words, then a summary and
-the plan's metrics (horizon, actions, sum of costs, idle steps, orders fulfilled, lower
-bounds and the ratios plan/bound).
+"""Check a plan with the ASP checker: broken rules in plain words, metrics, lower bounds; --watch: again on every save.
+
+Every broken rule is said in plain words, then a summary and the plan's metrics (horizon,
+actions, sum of costs, idle steps, orders fulfilled, lower bounds and the ratios plan/bound).
 
 The lower bounds shown are the cheap ones (milliseconds) unless --bound strong asks for the
 strongest (what solve starts from; up to seconds on A/B/C, printed after the verdict); the

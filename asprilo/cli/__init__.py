@@ -39,8 +39,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "info": ("asprilo.cli.info", "summarise an instance (and a plan): counts, standard file name, domain, horizon"),
     "check": ("asprilo.cli.check", "check a plan with the ASP checker: broken rules in plain words, metrics, lower "
               "bounds; --watch: again on every save"),
-    "gen": ("asprilo.generator.cli", "generate instances with multi-shot ASP: random, structured (-H) and template (-T) "
-            "layouts, YAML batches (-j)"),
+    "gen": ("asprilo.generator.cli", "generate instances with multi-shot ASP: random, structured (-H) and template "
+            "(-T) layouts, YAML batches (-j)"),
     "viz": ("asprilo.visualizer.cli", "show a warehouse, animate a plan (valid or not), edit the layout; or export "
             "pictures and animations"),
     "bench": ("asprilo.bench.cli", "run benchmark suites under time and memory limits, report tables and plots, "
@@ -49,10 +49,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
                 "LaCAM results, domains M and Md"),
     "serve": ("asprilo.online.serve", "serve the online link: a solver that re-plans as orders arrive, or a simulator "
               "releasing orders over time"),
-    "solve": ("asprilo.encodings.cli", "find a plan fast and prove its makespan minimal: reference encodings, your own, "
-              "anytime, max-flow"),
-    "grade": ("asprilo.encodings.grade", "grade your encoding on a ladder of instances: is each plan valid, is it "
-              "minimal?"),
+    "solve": ("asprilo.encodings.cli", "find a plan fast and prove its makespan minimal: reference encodings, your "
+              "own, anytime, max-flow"),
+    "grade": ("asprilo.encodings.grade", "grade your encoding on a ladder of instances: is each plan valid, is "
+              "it minimal?"),
 }
 #: the commands that read no data files
 WITHOUT_DATA = {"demo"}
@@ -248,7 +248,7 @@ class _Parser(argparse.ArgumentParser):
     printed, so that :func:`_parse` can also answer them in JSON (its subcommands' parsers are
     of this class too)."""
 
-    def error(self, message: str):  # type: ignore[override]
+    def error(self, message: str):
         raise _UsageError(self, message)
 
 
