@@ -75,3 +75,35 @@ def add_reading_options(parser: argparse.ArgumentParser) -> None:
 def reading_limits(args: argparse.Namespace) -> Limits:
     """The limits the reading options of ``args`` ask for."""
     return Limits().with_options(getattr(args, "limit", []) or [], getattr(args, "allow_rules", False))
+
+
+# --- rule variants (docs/VARIANTS.md) ---------------------------------------------------------
+
+def add_variant_option(parser: argparse.ArgumentParser) -> None:
+    """``--variant NAME|FILE``, repeatable: the rule variants a command follows."""
+    parser.add_argument("--variant", action="append", default=[], metavar="NAME|FILE",
+                        help="change the rules with a variant: diagonal, visit-anytime, energy, sides or a variant "
+                             "file (repeat to compose; docs/VARIANTS.md)")
+
+
+def loaded_variants(args: argparse.Namespace) -> list:
+    """The variants ``--variant`` names, loaded once (their attributes made known to the
+    reader: call this before reading instances)."""
+    names = getattr(args, "variant", None) or []
+    if names and "loaded_variants" not in vars(args):
+        from .domain.variants import load_variant  # YAML: only for a command that names a variant
+        args.loaded_variants = [load_variant(name) for name in names]
+    return vars(args).get("loaded_variants", [])
+
+
+def chosen_domain(args: argparse.Namespace, detected: Domain | None = None) -> Domain | None:
+    """The domain a command works in: ``--domain`` (else ``detected``, else ``None``: the tool
+    detects it), changed by the ``--variant`` files in turn."""
+    domain = getattr(args, "domain", None) or detected
+    variants = loaded_variants(args)
+    if not variants:
+        return domain
+    if domain is None:
+        raise InputError("a variant changes a domain: name it (--domain a|b|c|m|md)")
+    from .domain.variants import with_variants
+    return with_variants(domain, variants)

@@ -141,10 +141,13 @@ def fact_groups(instance: Instance) -> list[tuple[str, list[str]]]:
     groups = []
     for kind in KINDS.values():
         if kind.name in _WRITERS:
-            groups.append((kind.title, _WRITERS[kind.name](instance)))
+            facts = _WRITERS[kind.name](instance)
         else:
-            cells = kind.cells(instance)
-            groups.append((kind.title, [init_fact(kind.name, i, "at", cell) for i, cell in sorted(cells.items())]))
+            facts = [init_fact(kind.name, i, "at", cell) for i, cell in sorted(kind.cells(instance).items())]
+        facts += [init_fact(kind.name, ident, attribute, value)
+                  for (name, ident), values in sorted(instance.attributes.items()) if name == kind.name
+                  for attribute, value in sorted(values.items())]
+        groups.append((kind.title, facts))
     groups += [
         ("labelled goals: robot -> goal", [assign_fact(robot, kind, goal)
                                            for robot, (kind, goal) in sorted(instance.assignment.items())]),

@@ -50,7 +50,7 @@ from multiprocessing.connection import Connection
 from pathlib import Path
 from typing import Any
 
-from .objects import KINDS, ObjectKind, register_kind, registered_kinds
+from .objects import ObjectKind, registered_kinds, restore_kind
 
 #: how long a killed child may take to go, and how often the parent looks at the clock
 _GRACE = 1.0
@@ -108,8 +108,7 @@ def _child(connection, function: Callable, args: tuple, memory_mb: int | None,
     if parent is not None:
         _die_with_parent(parent)
     for kind in kinds:  # object kinds the parent registered at run time (a fresh interpreter lacks them)
-        if kind.name not in KINDS:
-            register_kind(kind)
+        restore_kind(kind)
     if memory_mb:
         size = memory_mb * 2**20
         resource.setrlimit(resource.RLIMIT_AS, (size, size))

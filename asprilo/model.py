@@ -81,6 +81,9 @@ class Instance:
     #: ``init/2`` facts of object types or attributes asprilo does not know (e.g. a robot's
     #: ``energy``), as text: ignored by every tool, written back with the instance
     other_facts: list[str] = field(default_factory=list)
+    #: values of the attributes variants declare (a robot's ``energy``: registered with
+    #: :func:`asprilo.objects.register_attribute`): (kind, id) -> attribute -> value
+    attributes: dict[tuple[str, int], dict[str, Term]] = field(default_factory=dict)
     #: objects of the placed kinds registered beyond SPEC.md's (:func:`asprilo.objects.register_kind`):
     #: kind -> id -> cell
     placed: dict[str, dict[int, Cell]] = field(default_factory=dict)

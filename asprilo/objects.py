@@ -29,6 +29,10 @@ def _is_count(value: Any) -> bool:
     return _is_int(value) or is_cell(value)
 
 
+def _is_term(_value: Any) -> bool:
+    return True
+
+
 @dataclass(frozen=True)
 class Attribute:
     """An attribute's value: the test of its shape and the words messages describe it with."""
@@ -36,8 +40,15 @@ class Attribute:
     shape: Callable[[Any], bool]
     description: str
 
+    @staticmethod
+    def named(shape: str) -> Attribute:
+        """The attribute a variant declares: ``integer`` or ``term`` (any term)."""
+        return INTEGER if shape == "integer" else TERM
+
 
 CELL = Attribute(is_cell, "a cell (X,Y)")
+INTEGER = Attribute(_is_int, "an integer")
+TERM = Attribute(_is_term, "a term")
 
 
 @dataclass(frozen=True)
@@ -60,8 +71,9 @@ class ObjectKind:
 
     @cached_property
     def placed(self) -> bool:
-        """Whether an object of the kind is only an id at a cell."""
-        return set(self.attributes) == {"at"}
+        """Whether an object of the kind is only an id at a cell (attributes a variant
+        declares aside: they are kept in ``Instance.attributes``)."""
+        return set(BUILTIN_ATTRIBUTES.get(self.name, self.attributes)) == {"at"}
 
     def objects(self, instance: Instance) -> dict[int, Any]:
         """A placed kind's objects in ``instance``: id -> cell (or object with ``.at``)."""
@@ -101,6 +113,20 @@ KINDS: dict[str, ObjectKind] = {kind.name: kind for kind in (
 )}
 
 
+#: the attributes of every kind as SPEC.md defines them (those beyond come from variants)
+BUILTIN_ATTRIBUTES: dict[str, frozenset[str]] = {name: frozenset(kind.attributes) for name, kind in KINDS.items()}
+
+
+def register_attribute(kind: str, attribute: str, value: Attribute) -> None:
+    """Make an attribute of a kind known (a variant's robot ``energy``): its values are read
+    with their shape checked, kept in ``Instance.attributes`` and written back."""
+    known = KINDS[kind]
+    if attribute in BUILTIN_ATTRIBUTES.get(kind, ()):
+        raise ValueError(f"{kind} has an attribute {attribute} of its own")
+    KINDS[kind] = ObjectKind(known.name, known.words, known.title, {**known.attributes, attribute: value},
+                             known.table, known.factory)
+
+
 def register_kind(kind: ObjectKind) -> ObjectKind:
     """Make a new placed kind known to the reader and the writer (its objects are kept in
     ``Instance.placed``)."""
@@ -110,6 +136,15 @@ def register_kind(kind: ObjectKind) -> ObjectKind:
     return kind
 
 
+def unregister_attribute(kind: str, attribute: str) -> None:
+    """Forget an attribute registered for a while (a test's variant)."""
+    known = KINDS[kind]
+    if attribute in known.attributes and attribute not in BUILTIN_ATTRIBUTES.get(kind, ()):
+        KINDS[kind] = ObjectKind(known.name, known.words, known.title,
+                                 {name: value for name, value in known.attributes.items() if name != attribute},
+                                 known.table, known.factory)
+
+
 def unregister_kind(name: str) -> None:
     """Forget a kind registered for a while (a test's)."""
     if name in KINDS and KINDS[name].table is None:
@@ -117,9 +152,21 @@ def unregister_kind(name: str) -> None:
 
 
 def registered_kinds() -> list[ObjectKind]:
-    """The kinds registered at run time (:func:`register_kind`), which a fresh interpreter
-    (a child process started by ``spawn``) must be told of."""
-    return [kind for kind in KINDS.values() if kind.table is None]
+    """The kinds registered or given attributes at run time (:func:`register_kind`,
+    :func:`register_attribute`), which a fresh interpreter (a child process started by
+    ``spawn``) must be told of."""
+    return [kind for kind in KINDS.values()
+            if kind.table is None or set(kind.attributes) != BUILTIN_ATTRIBUTES.get(kind.name)]
+
+
+def restore_kind(kind: ObjectKind) -> None:
+    """Take in a kind a parent process registered or gave attributes (see :func:`registered_kinds`)."""
+    if kind.table is None:
+        KINDS[kind.name] = kind
+    else:
+        for attribute, value in kind.attributes.items():
+            if attribute not in KINDS[kind.name].attributes:
+                register_attribute(kind.name, attribute, value)
 
 
 def placed_kinds() -> list[ObjectKind]:

@@ -26,7 +26,7 @@ from .facts import (
 )
 from .limits import Limits, current, require_plan_fits
 from .model import Action, Destination, Instance, Order, Plan, Product, Robot, Shelf
-from .objects import KINDS, ObjectKind, placed_kinds
+from .objects import BUILTIN_ATTRIBUTES, KINDS, ObjectKind, placed_kinds
 from .parse import Fn, shown, text_of
 from .sources import ScannedFact, Source, SourceLike, as_sources, line_of, load_facts, locate
 
@@ -137,7 +137,9 @@ class _InstanceBuilder:
         if not expected.shape(value):
             raise self.fail(f"{kind} {ident}: value of '{attribute}' must be {expected.description}, "
                             f"got {_shown(value)}", origin)
-        if known.placed:
+        if attribute not in BUILTIN_ATTRIBUTES.get(kind, known.attributes):
+            self._declared(kind, ident, attribute, value, origin)
+        elif known.placed:
             self._placed(known, ident, value, origin)
         else:
             self._readers[kind](ident, attribute, value, origin)
@@ -208,6 +210,11 @@ class _InstanceBuilder:
     def _placed(self, kind: ObjectKind, ident: int, value: Any, origin: Any) -> None:
         self.single((kind.words, ident, "at"), value, origin, f"{kind.words} {ident} is at two places")
         kind.place(self.instance, ident, value)
+
+    def _declared(self, kind: str, ident: int, attribute: str, value: Any, origin: Any) -> None:
+        """An attribute a variant declares (:func:`asprilo.objects.register_attribute`)."""
+        self.single((kind, ident, attribute), value, origin, f"{kind} {ident} has two values of {attribute}")
+        self.instance.attributes.setdefault((kind, ident), {})[attribute] = value
 
     def _robot(self, ident: int, attribute: str, value: Any, origin: Any) -> None:
         robot = self.instance.robots.get(ident)

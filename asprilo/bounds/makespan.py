@@ -37,6 +37,8 @@ def makespan_bound(instance: Instance, domain: Domain, floor: Floor | None = Non
     (order lines released no earlier than a robot can bring a shelf, stations serving one
     robot at a time, robots one line at a time).
     """
+    if domain.bound is None:  # a variant that may allow shorter plans: nothing but 0 is known
+        return 0.0
     floor = floor or Floor(instance.cells)
     if domain.bound is Bound.MAPF:
         from .mapf import mapf_bounds
@@ -61,7 +63,10 @@ def delivery_bound(instance: Instance, domain: Domain, floor: Floor) -> float:
 
 def strong_bounds(instance: Instance, domain: Domain, floor: Floor | None = None) -> tuple[float, float | None]:
     """``(makespan, sum of costs)``: :func:`makespan_bound` and, for M/Md, the sum-of-costs
-    bound of the same assignment (:func:`~asprilo.bounds.mapf.mapf_bounds`; ``None`` for A/B/C)."""
+    bound of the same assignment (:func:`~asprilo.bounds.mapf.mapf_bounds`; ``None`` for A/B/C).
+    A domain without a bound (``domain.bound`` is ``None``): ``(0, None)``."""
+    if domain.bound is None:
+        return 0.0, None
     floor = floor or Floor(instance.cells)
     if domain.bound is Bound.MAPF:
         from .mapf import mapf_bounds
@@ -80,6 +85,8 @@ def cheap_bounds(instance: Instance, domain: Domain, floor: Floor | None = None)
     sum of costs; the shelves resting in a carried shelf's way are taken into account up to
     :data:`CHEAP_VISITS`).  ``INFINITE`` where no plan exists, as for the strong bound.
     """
+    if domain.bound is None:
+        return 0.0, None
     floor = floor or Floor(instance.cells)
     if domain.bound is Bound.MAPF:
         from .mapf import nearest_goal_bounds

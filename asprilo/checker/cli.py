@@ -20,7 +20,8 @@ from __future__ import annotations
 
 import argparse
 
-from asprilo.arguments import domain_argument
+from asprilo.arguments import add_variant_option, chosen_domain, domain_argument
+from asprilo.domain import detect_domain
 from asprilo.model import Instance, Plan
 
 from . import STRENGTHS, Report, Strength, check
@@ -33,6 +34,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         "instance facts in it are ignored (with --watch --encoding: where the plan found "
                         "is written, if given)")
     parser.add_argument("--domain", type=domain_argument, help="a|b|c|m|md (default: detected)")
+    add_variant_option(parser)
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
     parser.add_argument("--bound", choices=STRENGTHS, default="cheap",
                         help="the lower bounds shown: cheap (default: milliseconds) or strong (the strongest, "
@@ -44,18 +46,21 @@ def show(instance: Instance, plan: Plan, args: argparse.Namespace) -> int:
     ``json``, ``bound``), print the report and return the exit status: the verdict and the
     violations first, then the bounds (``--bound strong``: when they come)."""
     strength: Strength = "strong" if getattr(args, "bound", None) == "strong" else "cheap"
+    detected = args.domain is None
+    domain = chosen_domain(args, detect_domain(instance, plan) if detected else None)
     if args.json:
         import json  # only --json prints JSON
-        report = check(instance, plan, args.domain, bound=strength)
+        report = check(instance, plan, domain, bound=strength)
         print(json.dumps(report.as_json(), indent=2))
     elif strength == "cheap":
-        report = check(instance, plan, args.domain, bound=strength)
-        print(summary(report, detected=args.domain is None))
+        report = check(instance, plan, domain, bound=strength)
+        print(summary(report, detected=detected))
     else:
-        report = check(instance, plan, args.domain, bound=None)
-        print(summary(report, detected=args.domain is None), flush=True)
-        add_bounds(report, instance, strength)
-        print(bound_line(report.metrics))
+        report = check(instance, plan, domain, bound=None)
+        print(summary(report, detected=detected), flush=True)
+        if report.domain.bound is not None:  # else the summary said there is none
+            add_bounds(report, instance, strength)
+            print(bound_line(report.metrics))
     return 0 if report.valid else 1
 
 
@@ -72,7 +77,10 @@ def summary(report: Report, detected: bool = False) -> str:
         lines.append(f"destinations reached: {m['destinations_reached']} of {m['destinations']}")
     else:
         lines.append(f"orders fulfilled: {m['orders_fulfilled']} of {m['orders']}")
-    if "bounds" in m:
+    if m.get("bounds") == "none":
+        lines.append(f"lower bounds: none known for {report.domain.label} (its rules may allow shorter plans than "
+                     f"those of {report.domain.label.split('+')[0]})")
+    elif "bounds" in m:
         lines.append(bound_line(m))
     return "\n".join(lines)
 

@@ -106,18 +106,22 @@ def run_checker(facts: str, domain: Domain) -> tuple[list[clingo.Symbol], Statis
     The first check of a domain in a process loads the checker's files as they are (the
     ``check`` command checks once: no ``clingo.ast``, no parse kept); from the second on, the
     statements parsed once are handed over (a process that checks many plans: a solve, a
-    benchmark), which is quicker than reading the files again."""
-    solver = Solver(options=["--warn=none"])
+    benchmark), which is quicker than reading the files again.  A domain's facts and constants
+    (a variant's moves and costs) come with them."""
+    solver = Solver(options=["--warn=none"], constants=dict(domain.constants))
     if domain in _checked:
         from clingo.ast import ProgramBuilder
         with ProgramBuilder(solver.control) as builder:
             for statement in _statements(domain):
                 builder.add(statement)
     else:
-        _checked.add(domain)
         for path in _files(domain):
-            solver.control.load(str(path))
-    solver.add(facts)
+            if path.parent == HERE:
+                solver.control.load(str(path))
+            else:  # a module of a variant's or a domain's own: its mistakes are said in words
+                solver.load(path)
+        _checked.add(domain)
+    solver.add(facts + "\n" + domain.checker_facts)
     solver.ground()
     # one answer set, found without search: the program negates only what earlier steps decided
     with solver.control.solve(yield_=True) as answers:

@@ -108,12 +108,21 @@ def metrics(instance: Instance, plan: Plan, domain: Domain, errors: list[Violati
         result["destinations"] = len(instance.destinations)
         result["destinations_reached"] = len(instance.destinations) - len(missed)
     else:
-        missed = {e.params[0] for e in errors if e.check == "unfilledOrder"}
+        missed = {e.params[0] for e in errors if e.check == "unfilledOrder" or _names_order(domain, e)}
         result["orders"] = len(instance.orders)
         result["orders_fulfilled"] = len(set(instance.orders) - missed)
-    if bound is not None or known[0] is not None:
+    if domain.bound is None:  # a variant that may allow shorter plans than the base's bounds say
+        result["bounds"] = "none"
+    elif bound is not None or known[0] is not None:
         result.update(bound_metrics(instance, domain, result, known, bound or "cheap"))
     return result
+
+
+def _names_order(domain: Domain, error: Any) -> bool:
+    """Whether a variant's check says an order is not served: its words name an order first."""
+    words = domain.messages.get((error.module, error.check)) if domain.variants else None
+    params: tuple[tuple[str, str], ...] = getattr(words, "params", ())
+    return bool(params) and params[0][1] == "order"
 
 
 def bound_metrics(instance: Instance, domain: Domain, measured: dict[str, Any], known: Known = (None, None),
@@ -134,6 +143,8 @@ def bound_metrics(instance: Instance, domain: Domain, measured: dict[str, Any], 
 def add_bounds(report: Report, instance: Instance, bound: Strength = "strong") -> None:
     """Put the lower bounds of strength ``bound`` into the metrics of ``report`` (checked on
     ``instance``), in place of those there: the verdict first, the bounds when they come."""
+    if report.domain.bound is None:
+        return
     for key in ("bounds", "makespan_bound", "sum_of_costs_bound", "sum_of_costs_ratio", "makespan_ratio"):
         report.metrics.pop(key, None)
     report.metrics.update(bound_metrics(instance, report.domain, report.metrics, (None, None), bound))

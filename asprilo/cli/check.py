@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from asprilo.arguments import seconds_argument
+from asprilo.arguments import loaded_variants, seconds_argument
 from asprilo.checker import cli as checker_cli
 from asprilo.errors import InputError
 from asprilo.reader import read_instance_and_plan
@@ -84,6 +84,7 @@ def _check_once(args: argparse.Namespace) -> int:
     violations here and one line there."""
     if args.plan is None:
         raise InputError("no plan given (check INSTANCE PLAN)")
+    loaded_variants(args)  # before reading: the attributes they declare are data
     instance, plan = read_instance_and_plan(args.instance, args.plan, domain=args.domain)
     return checker_cli.show(instance, plan, args)
 

@@ -16,6 +16,8 @@ from enum import Enum
 from typing import Any, ClassVar
 
 from ..errors import InputError
+from ..model import DIRECTIONS, Cell
+from .templates import Resource
 
 
 class Delivery(str, Enum):
@@ -92,13 +94,25 @@ class Domain:
     reads: frozenset[str]                # the object kinds its instances use
     checker: tuple[str, ...]             # checker concerns (asprilo/checker/<name>.lp, or absolute paths)
     encodings: tuple[ReferenceEncoding, ...]
-    bound: Bound
+    bound: Bound | None                  # None: no admissible bound known (a variant that relaxes the rules)
     work: Job
     generation: Generation | None        # None: gen does not make it (see ``made_by``)
     made_by: str = ""                    # how to get an instance when gen does not make one
     #: words for the domain's own checks: (module, check) -> describe(timeline, *params),
     #: which returns the sentence and what to highlight (see asprilo.simulate.messages)
     messages: Mapping[tuple[str, str], Callable[..., tuple[str, dict]]] = field(default_factory=dict)
+    #: the moves robots may make, as (DX,DY): the four of SPEC.md unless a variant gives others
+    directions: tuple[Cell, ...] = DIRECTIONS
+    #: facts and constants the checker reads beside the instance and the plan (a variant's moves
+    #: as ``direction/1`` facts, its costs as ``#const`` values)
+    checker_facts: str = ""
+    constants: tuple[tuple[str, int], ...] = ()
+    #: per-robot resources that actions consume (a variant's energy): the timeline's levels
+    resources: tuple[Resource, ...] = ()
+    #: the rule variants that made this domain from its base, in order (``()`` for a built-in one)
+    variants: tuple[str, ...] = ()
+    #: attributes ``gen`` gives the objects: (kind, attribute, least, most), drawn uniformly
+    attributes: tuple[tuple[str, str, int, int], ...] = ()
 
     A: ClassVar[Domain]
     B: ClassVar[Domain]

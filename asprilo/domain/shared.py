@@ -3,8 +3,9 @@
 from .descriptor import ReferenceEncoding
 
 #: the checker's concerns of every domain: the world, the instance, the actions' form,
-#: the state and its collisions, moves (each domain adds its own, then "goal")
-WORLD_RULES = ("world", "instance", "action", "state", "collision", "move")
+#: the state and its collisions, the moves' directions and moves (each domain adds its own,
+#: then "goal")
+WORLD_RULES = ("world", "instance", "action", "state", "collision", "directions", "move")
 #: ... and those of the domains whose robots carry shelves
 CARRYING_RULES = (*WORLD_RULES, "pickup", "putdown", "deliver")
 

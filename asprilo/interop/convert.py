@@ -264,6 +264,7 @@ def _copy(instance: Instance) -> Instance:
         orders={i: Order(o.id, dict(o.lines), o.station) for i, o in instance.orders.items()},
         destinations={i: Destination(d.id, d.at) for i, d in instance.destinations.items()},
         assignment=dict(instance.assignment), other_facts=list(instance.other_facts),
+        attributes={key: dict(values) for key, values in instance.attributes.items()},
         placed={kind: dict(cells) for kind, cells in instance.placed.items()})
 
 

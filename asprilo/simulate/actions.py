@@ -9,9 +9,7 @@ from collections.abc import Callable
 from typing import Any
 
 from ..domain import Domain
-from ..model import DIRECTIONS, Action, Instance, Plan
-
-_MOVES = frozenset(DIRECTIONS)
+from ..model import Action, Instance, Plan
 
 #: report(module, check, *params)
 Report = Callable[..., None]
@@ -22,9 +20,10 @@ def _ints(args: Any, lengths: tuple[int, ...]) -> bool:
 
 
 def well_formed(name: str, args: Any, domain: Domain) -> bool:
-    """Whether ``args`` have the shape action ``name`` takes in ``domain`` (SPEC.md §3)."""
+    """Whether ``args`` have the shape action ``name`` takes in ``domain`` (SPEC.md §3; the
+    moves are the domain's: a variant may give others)."""
     if name == "move":
-        return args in _MOVES and type(args[0]) is int
+        return args in domain.directions and type(args[0]) is int
     if name in ("pickup", "putdown"):
         return args == ()
     if name == "deliver":

@@ -142,7 +142,7 @@ def action_unknown_action(timeline, robot, name, step):
         {"robots": [robot]}
 
 
-_SHAPES = {"move": "(1,0), (-1,0), (0,1) or (0,-1)", "pickup": "()", "putdown": "()"}
+_SHAPES = {"pickup": "()", "putdown": "()"}
 
 
 def action_bad_arguments(timeline, robot, name, step):
@@ -150,6 +150,9 @@ def action_bad_arguments(timeline, robot, name, step):
     if name == "deliver":
         shape = "(Order,Product,Units) with Units >= 1" if timeline.domain.counts_units else \
             "(Order,Product) or (Order,Product,Units)"
+    elif name == "move":  # the domain's moves: a variant may give others
+        *others, last = (format_value(direction) for direction in timeline.domain.directions)
+        shape = f"{', '.join(others)} or {last}" if others else last
     else:
         shape = _SHAPES.get(name, "other arguments")
     given = " or ".join(format_value(a) for a in args)

@@ -9,7 +9,8 @@ from asprilo.writer import format_value
 
 from .track import Track
 
-_DIRECTIONS = {(1, 0): "right", (-1, 0): "left", (0, 1): "down", (0, -1): "up"}
+_DIRECTIONS = {(1, 0): "right", (-1, 0): "left", (0, 1): "down", (0, -1): "up",
+               (1, 1): "down-right", (-1, 1): "down-left", (1, -1): "up-right", (-1, -1): "up-left"}
 
 
 def cell_text(cell: Cell | tuple[float, float]) -> str:
