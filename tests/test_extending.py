@@ -17,7 +17,7 @@ from helpers import ROOT
 
 from asprilo.checker import check
 from asprilo.cli import main
-from asprilo.domain import Domain, ReferenceEncoding, register, unregister
+from asprilo.domain import Domain, ReferenceEncoding, Words, register, unregister
 from asprilo.model import Action, Plan
 from asprilo.objects import CELL, ObjectKind, register_kind, unregister_kind
 from asprilo.reader import read_instance, read_plan
@@ -28,8 +28,7 @@ CORRIDOR = EXAMPLE / "corridor.lp"
 STRAIGHT = Plan([Action(1, 1, "move", (1, 0)), Action(2, 1, "move", (1, 0))])
 
 
-def _never_charged(_timeline, robot, _step):
-    return f"robot {robot} never stands on a charger", {"robots": [robot]}
+NEVER_CHARGED = Words((("R", "robot"), ("T", "step")), "robot {R} never stands on a charger")
 
 
 @pytest.fixture
@@ -48,7 +47,7 @@ def mc(charger):
         checker=(*md.checker[:-1], str(EXAMPLE / "charged.lp"), "goal"),
         encodings=(ReferenceEncoding("charge", str(EXAMPLE / "charge.lp"), summary="Md's plain encoding + charging"),),
         generation=None, made_by="write it by hand (see docs/extending/corridor.lp)",
-        messages={("charged", "neverCharged"): _never_charged}))
+        messages={("charged", "neverCharged"): NEVER_CHARGED}))
     yield domain
     unregister(domain)
 
@@ -115,3 +114,25 @@ def test_the_variant_is_known_to_every_tool_by_its_name(mc, tmp_path, capsys):
     assert capsys.readouterr().err == "error: --domain mc is not generated; write it by hand " \
                                       "(see docs/extending/corridor.lp)\n"
 
+
+
+def test_the_variant_file_works_by_its_path_in_a_fresh_process(tmp_path):
+    """The command line knows no domain registered in another process: the variant file
+    (docs/extending/charged.yml) is how a shell user gives Mc."""
+    import subprocess
+    import sys
+
+    plan = tmp_path / "straight.lp"
+    plan.write_text("occurs(object(robot,1),action(move,(1,0)),1).\noccurs(object(robot,1),action(move,(1,0)),2).\n")
+    done = subprocess.run([sys.executable, "-m", "asprilo.cli", "check", str(CORRIDOR), str(plan), "--variant",
+                           str(EXAMPLE / "charged.yml")], capture_output=True, text=True, cwd=tmp_path)
+    assert (done.returncode, done.stderr) == (1, "")
+    assert done.stdout.splitlines()[:2] == ["step 2: robot 1 never stands on a charger",
+                                            "invalid plan: 1 violation (domain Md+charged (detected), horizon 2)"]
+
+
+def test_the_words_of_a_check_survive_a_child_process():
+    import pickle
+
+    words = pickle.loads(pickle.dumps(NEVER_CHARGED))
+    assert words(None, 1, 2) == ("robot 1 never stands on a charger", {"robots": [1]})

@@ -24,13 +24,17 @@ CORNER, SQUARE, CORRIDOR = HERE / "corner.lp", HERE / "square.lp", HERE / "corri
 
 
 @pytest.fixture(autouse=True)
-def _kinds_as_built_in():
-    """A variant's attributes are known in the process that loaded it: each test starts afresh."""
+def _as_built_in():
+    """A variant's domain and attributes are known in the process that loaded it: each test
+    starts afresh, and leaves the registries as it found them."""
     from asprilo import objects
-    kinds = dict(objects.KINDS)
+    from asprilo.domain import descriptor
+    kinds, domains = dict(objects.KINDS), dict(descriptor._REGISTRY)
     yield
     objects.KINDS.clear()
     objects.KINDS.update(kinds)
+    descriptor._REGISTRY.clear()
+    descriptor._REGISTRY.update(domains)
 
 
 def _plan(tmp_path: Path, *moves: tuple[int, tuple[int, int], int]) -> Path:
@@ -142,7 +146,7 @@ def test_the_energy_attribute_is_data_under_the_variant_and_warned_about_without
     ("variant: x\nsummary: y\nmessages: {a/b: {params: {R: robot}, text: 'robot {S}'}}\n",
      "message a/b says {S}, which 'params:' does not name"),
     ("variant: x\nsummary: y\ncolour: red\n", "unknown key 'colour' (the keys: variant, summary, domains, moves, "
-     "rules, replace, restricts, constants, attributes, generate, resource, encodings, messages)"),
+     "rules, replace, restricts, constants, kinds, attributes, generate, resource, encodings, messages)"),
 ])
 def test_a_bad_variant_file_is_one_line(capsys, tmp_path, text, message):
     variant = tmp_path / "v.yml"

@@ -35,9 +35,10 @@ from .descriptor import (
 )
 from .m import M
 from .md import MD
+from .templates import Resource, Words
 
-__all__ = ["Bound", "Delivery", "Domain", "Generation", "Goal", "ReferenceEncoding", "Job", "DEFAULT",
-           "detect_domain", "domains", "is_m_aligned", "register", "unregister"]
+__all__ = ["Bound", "Delivery", "Domain", "Generation", "Goal", "ReferenceEncoding", "Job", "DEFAULT", "Resource",
+           "Words", "detect_domain", "domains", "is_m_aligned", "register", "unregister"]
 
 for _builtin in (A, B, C, M, MD):
     register(_builtin)

@@ -15,8 +15,8 @@ from ..yamlfile import YamlList, YamlMapping, load_yaml, shown
 from .templates import KINDS, Resource, Words
 
 #: the keys of a variant file, in the order docs/VARIANTS.md explains them
-KEYS = ("variant", "summary", "domains", "moves", "rules", "replace", "restricts", "constants", "attributes",
-        "generate", "resource", "encodings", "messages")
+KEYS = ("variant", "summary", "domains", "moves", "rules", "replace", "restricts", "constants", "kinds",
+        "attributes", "generate", "resource", "encodings", "messages")
 #: what a declared attribute's values may be
 SHAPES = ("integer", "term")
 #: the actions a resource's costs name
@@ -39,6 +39,7 @@ class VariantFile:
     replace: tuple[tuple[str, Path | None], ...] = ()
     restricts: bool = False
     constants: tuple[tuple[str, int], ...] = ()
+    kinds: tuple[str, ...] = ()                               # new placed kinds: an id at a cell
     attributes: tuple[tuple[str, str, str], ...] = ()       # (kind, attribute, shape)
     generated: tuple[tuple[str, str, int, int], ...] = ()   # (kind, attribute, least, most)
     resource: Resource | None = None
@@ -77,7 +78,8 @@ class _Reader:
         if not _NAME.match(name):
             raise self.fail(f"the variant's name {shown(name)} is not a name (lower-case letters, digits and '-', "
                             "a letter first)", data, "variant")
-        attributes = self.attributes(data)
+        kinds = self.kinds(data)
+        attributes = self.attributes(data, kinds)
         resource = self.resource(data, attributes)
         constants = self.constants(data)
         if resource is not None:
@@ -87,7 +89,7 @@ class _Reader:
             moves=self.moves(data), rules=tuple(self.file(data, "rules", item, index)
                                                 for index, item in enumerate(self.listed(data, "rules"))),
             replace=self.replace(data), restricts=self.flag(data, "restricts"), constants=constants,
-            attributes=attributes, generated=self.generated(data, attributes), resource=resource,
+            kinds=kinds, attributes=attributes, generated=self.generated(data, attributes), resource=resource,
             encodings=self.encodings(data), messages=self.messages(data))
 
     # --- plain values ---------------------------------------------------------------------
@@ -165,10 +167,23 @@ class _Reader:
                 raise self.fail(f"a constant's name starts with a lower-case letter, got {shown(name)}", entries, name)
         return tuple((name, self.integer(value, f"constant {name}", entries, name)) for name, value in entries.items())
 
-    def attributes(self, data: YamlMapping) -> tuple[tuple[str, str, str], ...]:
+    def kinds(self, data: YamlMapping) -> tuple[str, ...]:
+        from ..objects import KINDS as OBJECT_KINDS
+
+        names = []
+        for index, name in enumerate(self.listed(data, "kinds")):
+            if not isinstance(name, str) or not _IDENTIFIER.match(name):
+                raise self.fail(f"'kinds:' lists names of object kinds, got {shown(name)}", data["kinds"], index)
+            if name in OBJECT_KINDS and OBJECT_KINDS[name].table is not None:
+                raise self.fail(f"'kinds:' lists new kinds; {name} is one of SPEC.md's", data["kinds"], index)
+            names.append(name)
+        return tuple(names)
+
+    def attributes(self, data: YamlMapping, kinds: tuple[str, ...]) -> tuple[tuple[str, str, str], ...]:
         found = []
         for kind, attributes in self.mapping(data, "attributes").items():
-            self.kind(data["attributes"], kind)
+            if kind not in kinds:
+                self.kind(data["attributes"], kind)
             if not isinstance(attributes, YamlMapping):
                 raise self.fail(f"the attributes of {kind} are a mapping NAME: {' | '.join(SHAPES)}",
                                 data["attributes"], kind)

@@ -30,7 +30,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..model import DIRECTIONS
-from ..objects import Attribute, register_attribute
+from ..objects import CELL, Attribute, ObjectKind, register_attribute, register_kind
 from .descriptor import Domain, ReferenceEncoding, register
 from .variant_file import VariantFile, read_variant
 
@@ -59,6 +59,8 @@ def load_variant(name: str) -> VariantFile:
                              "or the path of a variant file, NAME.yml)")
         path = builtin
     variant = read_variant(path)
+    for kind in variant.kinds:
+        register_kind(ObjectKind(kind, kind, f"{kind}s", {"at": CELL}))
     for kind, attribute, shape in variant.attributes:
         register_attribute(kind, attribute, Attribute.named(shape))
     return variant
