@@ -11,6 +11,7 @@ action stays an ``occurs/3`` fact.
 
 from __future__ import annotations
 
+import threading
 from functools import cache
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -35,6 +36,10 @@ PACK_FROM = 2_000
 
 #: the domains checked in this process so far (their checker is parsed once, at the second check)
 _checked: set[Domain] = set()
+#: held while a thread loads the checker, parses it or hands its parsed statements to a control:
+#: the statements are shared by every check of a domain, and a bench run with --jobs 2 once
+#: failed in the checker with 'invalid ast: term expected' (.ci/flows)
+_PARSED = threading.Lock()
 
 
 def concerns(domain: Domain) -> list[Path]:
@@ -109,18 +114,19 @@ def run_checker(facts: str, domain: Domain) -> tuple[list[clingo.Symbol], Statis
     benchmark), which is quicker than reading the files again.  A domain's facts and constants
     (a variant's moves and costs) come with them."""
     solver = Solver(options=["--warn=none"], constants=dict(domain.constants))
-    if domain in _checked:
-        from clingo.ast import ProgramBuilder
-        with ProgramBuilder(solver.control) as builder:
-            for statement in _statements(domain):
-                builder.add(statement)
-    else:
-        for path in _files(domain):
-            if path.parent == HERE:
-                solver.control.load(str(path))
-            else:  # a module of a variant's or a domain's own: its mistakes are said in words
-                solver.load(path)
-        _checked.add(domain)
+    with _PARSED:  # one thread at a time parses, or builds from the shared statements
+        if domain in _checked:
+            from clingo.ast import ProgramBuilder
+            with ProgramBuilder(solver.control) as builder:
+                for statement in _statements(domain):
+                    builder.add(statement)
+        else:
+            for path in _files(domain):
+                if path.parent == HERE:
+                    solver.control.load(str(path))
+                else:  # a module of a variant's or a domain's own: its mistakes are said in words
+                    solver.load(path)
+            _checked.add(domain)
     solver.add(facts + "\n" + domain.checker_facts)
     solver.ground()
     # one answer set, found without search: the program negates only what earlier steps decided
