@@ -15,6 +15,12 @@ minimum 7", the time, and the first violation in words or why there is no plan (
 limit, no answer set, no occurs/3 in the model, a crash); then a summary line.  --json
 prints the same as JSON for course tools (docs/GRADING.md).  Progress goes to stderr.
 
+Against a model solution: --reference TEACHER.lp --instances DIR (and --variant V for
+changed rules) takes each minimum from the teacher's encoding, searched from the lower
+bound up under the same time limit ("minimum unknown" where it proved none), and checks
+the plans under the variant's rules; --exercise FILE bundles all of it (docs/GRADING.md).
+There an encoding that clingo refuses is graded too, a line per instance.
+
 Exit status: 0 every instance got a valid plan, 1 some did not, 2 bad input (a bad
 encoding is refused before the first instance, with its located message).
 
@@ -24,6 +30,8 @@ Examples:
   asprilo grade my.lp --domain m --json --time-limit 10 > grades.json
   asprilo grade my.lp --ladder course/week3/ladder.yml
   asprilo grade --list --domain c
+  asprilo grade student.lp --variant visit-anytime --reference teacher.lp --instances exercise/
+  asprilo grade student.lp --exercise week5/exercise.yml --json
 """
 
 from __future__ import annotations
@@ -32,16 +40,28 @@ import argparse
 import json
 import sys
 import time
+from dataclasses import dataclass
+from pathlib import Path
 from typing import Any, TextIO
 
-from asprilo.arguments import domain_argument, megabytes_argument, seconds_argument
+from asprilo.arguments import (
+    add_variant_option,
+    chosen_domain,
+    domain_argument,
+    loaded_variants,
+    megabytes_argument,
+    seconds_argument,
+)
+from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
 from asprilo.reader import read_instance
 
 from .choice import choose_encoding
-from .grading import JSON_VERSION, VALID, VERDICTS, Graded, Summary, grade_ladder, horizons, too_strong
+from .exercise import Exercise, instance_files, instance_ladder, read_exercise
+from .grading import JSON_VERSION, VALID, VERDICTS, Graded, Summary, grade_ladder, horizons, refused, too_strong
 from .ladder import Ladder, Rung, bundled_ladder, read_ladder
-from .registry import Encoding
+from .reference import Reference
+from .registry import Encoding, find_encoding
 from .solving import Phase
 
 #: options asprilo does not know are clingo's (the command line passes them on)
@@ -57,7 +77,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--ladder", metavar="FILE", help="a ladder of your own (ladder.yml; docs/GRADING.md)")
     parser.add_argument("-c", "--const", action="append", default=[], metavar="NAME=VALUE",
                         help="a constant for your encoding, as clingo's -c (-c horizon=H solves at H only)")
-    parser.add_argument("--time-limit", type=seconds_argument, metavar="S", default=DEFAULT_TIME_LIMIT,
+    parser.add_argument("--time-limit", type=seconds_argument, metavar="S",
                         help=f"seconds per instance, grounding and check included (default {DEFAULT_TIME_LIMIT:g})")
     parser.add_argument("--memory-limit", type=megabytes_argument, metavar="MB",
                         help="megabytes per instance (default: no limit)")
@@ -65,6 +85,17 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print the grades as JSON (docs/GRADING.md)")
     parser.add_argument("--list", action="store_true", help="list the ladder's instances and their minima, and exit")
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress on stderr")
+    add_variant_option(parser)
+    group = parser.add_argument_group("against a model solution", "the minima from a teacher's encoding, the "
+                                      "plans checked under the exercise's rules (docs/GRADING.md)")
+    group.add_argument("--reference", nargs="+", action="extend", metavar="FILE",
+                       help="the model solution's files (or a reference encoding's name; default: the variant's "
+                            "model solution): each minimum is what its search proves")
+    group.add_argument("--instances", nargs="+", action="extend", metavar="DIR|FILE",
+                       help="the instances to grade on: a folder (its .lp files, by name) or files")
+    group.add_argument("--exercise", metavar="FILE",
+                       help="an exercise file (exercise.yml) naming the domain, variants, reference, instances and "
+                            "time limit")
 
 
 def _count(text: str) -> int:
@@ -77,27 +108,51 @@ def _count(text: str) -> int:
     return number
 
 
+@dataclass(frozen=True)
+class _Setup:
+    """What a run grades on: the instances (a ladder), the reference that computes their
+    minima (``None``: they are stored), the time limit and the exercise file, if any."""
+
+    ladder: Ladder
+    reference: Reference | None
+    time_limit: float
+    exercise: Exercise | None = None
+
+
 def run(args: argparse.Namespace) -> int:
-    ladder = _ladder(args)
+    setup = _setup(args)
+    ladder, reference, time_limit = setup.ladder, setup.reference, setup.time_limit
     if args.list:
-        _list(ladder)
+        _list(ladder, reference)
         return 0
     if not args.encoding:
         raise InputError("no encoding given (asprilo grade ENCODING... --domain D)")
-    encoding, horizon = choose_encoding(args.encoding, args.const, getattr(args, "clingo_options", None) or (),
-                                        ladder.domain)
+    refusal: InputError | None = None
+    horizon: int | None = None
+    try:
+        encoding, horizon = choose_encoding(args.encoding, args.const, getattr(args, "clingo_options", None) or (),
+                                            ladder.domain)
+    except InputError as error:
+        if reference is None or not _in_encoding(error):
+            raise
+        encoding, refusal = _refused_encoding(args.encoding), error
     progress = _Progress(sys.stderr, quiet=args.quiet)
     out = sys.stdout
     started = time.perf_counter()
     graded: list[Graded] = []
     steps = len(ladder.rungs) if args.first is None else min(args.first, len(ladder.rungs))
+    if refusal is not None:
+        grades = refused(ladder, refusal, args.first)
+    else:
+        grades = grade_ladder(encoding, ladder, time_limit=time_limit, horizon=horizon,
+                              memory_limit=args.memory_limit, first=args.first, reference=reference,
+                              refusals=reference is not None, on_start=progress.start, on_phase=progress.phase,
+                              on_reference_phase=progress.reference_phase)
     try:
-        for item in grade_ladder(encoding, ladder, time_limit=args.time_limit, horizon=horizon,
-                                 memory_limit=args.memory_limit, first=args.first,
-                                 on_start=progress.start, on_phase=progress.phase):
+        for item in grades:
             progress.clear()
             if not args.json and not graded:  # after the first grade: a refused encoding is an error alone
-                _say(out, _header(encoding, ladder, steps, args.time_limit))
+                _say(out, _header(encoding, ladder, steps, time_limit, reference))
             graded.append(item)
             if not args.json:
                 _say(out, line(item, steps))
@@ -105,10 +160,83 @@ def run(args: argparse.Namespace) -> int:
         progress.clear()
     summary = Summary.of(graded, time.perf_counter() - started)
     if args.json:
-        _say(out, json.dumps(report(encoding, horizon, ladder, args.time_limit, graded, summary), indent=2))
+        _say(out, json.dumps(report(encoding, horizon, ladder, time_limit, graded, summary, reference,
+                                    setup.exercise), indent=2))
     else:
         _say(out, summary.line())
     return 0 if summary.valid == summary.instances else 1
+
+
+def _setup(args: argparse.Namespace) -> _Setup:
+    """The ladder, or the instances with the reference that computes their minima."""
+    if args.exercise is not None:
+        return _exercise_setup(args)
+    time_limit = args.time_limit or DEFAULT_TIME_LIMIT
+    if args.instances is None:
+        if args.reference is not None or args.variant:
+            what = "--reference" if args.reference is not None else "--variant"
+            raise InputError(f"{what} grades against a model solution: name the instances (--instances DIR) or an "
+                             "exercise (--exercise FILE); a ladder's minima hold for the plain rules only")
+        return _Setup(_ladder(args), None, time_limit)
+    if args.ladder is not None:
+        raise InputError("grade on a ladder (--ladder) or on instances (--instances), not both")
+    variants = loaded_variants(args)  # before reading: the attributes they declare are data
+    files = instance_files(args.instances)
+    if args.domain is not None:
+        base = args.domain
+    elif variants and len(variants[0].domains) == 1:  # the one domain the variant changes
+        base = Domain.parse(variants[0].domains[0])
+    else:
+        base = detect_domain(read_instance(files[0]))
+    domain = chosen_domain(args, base) or base
+    shown = ", ".join(args.instances)
+    ladder = instance_ladder(domain, files, Path(args.instances[0]), f"the instances {shown}", "the reference")
+    return _Setup(ladder, _reference(args.reference, domain, time_limit, args.memory_limit), time_limit)
+
+
+def _exercise_setup(args: argparse.Namespace) -> _Setup:
+    given = [flag for flag, value in (("--ladder", args.ladder), ("--instances", args.instances),
+                                      ("--reference", args.reference), ("--variant", args.variant)) if value]
+    if given:
+        raise InputError(f"{given[0]} and --exercise: the exercise file names its own instances, variants and "
+                         "reference")
+    exercise = read_exercise(args.exercise)
+    if args.domain is not None and args.domain is not exercise.domain:
+        raise InputError(f"the exercise is of domain {exercise.domain.label}, not {args.domain.label}",
+                         str(exercise.path))
+    from asprilo.domain.variants import with_variants
+    domain = with_variants(exercise.domain, exercise.variants)  # loads them before the instances are read
+    time_limit = args.time_limit or exercise.time_limit or DEFAULT_TIME_LIMIT
+    title = f"the exercise {exercise.name} ({exercise.path})"
+    ladder = instance_ladder(domain, exercise.instances, exercise.path, title, "the reference")
+    reference = _reference(list(exercise.reference) or None, domain, time_limit, args.memory_limit)
+    return _Setup(ladder, reference, time_limit, exercise)
+
+
+def _reference(values: list[str] | None, domain: Domain, time_limit: float, memory_limit: int | None) -> Reference:
+    """The teacher's encoding: ``values`` as ``--reference`` names it, else the domain's model
+    solution (a varied domain's: its variant's)."""
+    if values is None:
+        if not domain.encodings:
+            raise InputError(f"no model solution for {domain.label}: name the teacher's encoding "
+                             "(--reference FILE, or 'reference:' in the exercise file)")
+        encoding = find_encoding(domain, domain.encodings[0].name)
+    else:
+        encoding, _ = choose_encoding(values, (), (), domain)
+    return Reference(encoding, domain, time_limit=time_limit, memory_limit=memory_limit)
+
+
+def _in_encoding(error: InputError) -> bool:
+    """Whether ``error`` is about what an encoding's files say (a syntax error, a missing
+    #include: a grade), not about the command line (a file not there, an option)."""
+    return error.file is not None and error.message not in ("no such file", "is not a file")
+
+
+def _refused_encoding(values: list[str]) -> Encoding:
+    """A stand-in for an encoding clingo refuses outright: its files, no style."""
+    files = [Path(value) for value in values]
+    return Encoding("+".join(file.stem for file in files), None, files[0], None, False, "refused by clingo",
+                    extra=tuple(files[1:]), own=True)
 
 
 def _ladder(args: argparse.Namespace) -> Ladder:
@@ -122,20 +250,26 @@ def _ladder(args: argparse.Namespace) -> Ladder:
     return ladder
 
 
-def _list(ladder: Ladder) -> None:
-    print(f"{ladder.label}: {len(ladder.rungs)} instances ({ladder.manifest})")
+def _list(ladder: Ladder, reference: Reference | None) -> None:
+    print(f"{ladder.label}: {len(ladder.rungs)} instances" + ("" if ladder.title else f" ({ladder.manifest})"))
+    if reference is not None:
+        print(f"  rules: {ladder.domain.label}; minima: {_reference_words(reference.encoding)}")
     width = max(len(rung.name) for rung in ladder.rungs)
     for step, rung in enumerate(ladder.rungs, 1):
         instance = read_instance(rung.file)
+        if reference is not None:
+            rung = reference.rung(rung, instance)
         (x, y), robots = instance.size, len(instance.robots)
         size = f"{x}x{y}, {robots} robot{'s' * (robots != 1)}"
-        print(f"{step:>2}  {rung.name:<{width}}  {size:<15}  minimum {rung.minimum}")
-        print(f"      established: {rung.established}")
+        minimum = "unknown" if rung.minimum is None else rung.minimum
+        print(f"{step:>2}  {rung.name:<{width}}  {size:<15}  minimum {minimum}")
+        print(f"      established: {rung.established if rung.reference is None else rung.reference.words()}")
         for method in rung.cross_checked:
             print(f"      cross-checked: {method}")
 
 
-def _header(encoding: Encoding, ladder: Ladder, count: int, time_limit: float) -> str:
+def _header(encoding: Encoding, ladder: Ladder, count: int, time_limit: float,
+            reference: Reference | None = None) -> str:
     if encoding.own:
         what = f"your encoding ({', '.join(str(file) for file in encoding.files)}: {encoding.summary})"
     else:
@@ -143,7 +277,16 @@ def _header(encoding: Encoding, ladder: Ladder, count: int, time_limit: float) -
     lines = [f"grading {what} on {ladder.label}: {count} instance{'s' * (count != 1)}, "
              f"time limit {time_limit:g} s each"]
     lines += [f"  assumed: {note}" for note in encoding.assumed]
+    if reference is not None:
+        lines.append(f"  rules: {ladder.domain.label}; minima: {_reference_words(reference.encoding)}")
     return "\n".join(lines)
+
+
+def _reference_words(encoding: Encoding) -> str:
+    """Who computes the minima, in words."""
+    name = ", ".join(str(file) for file in encoding.files) if encoding.own else encoding.name
+    how = "solved once" if encoding.fixed else "searched from the lower bound up"
+    return f"the reference encoding {name} ({encoding.summary}), {how}"
 
 
 def line(graded: Graded, steps: int) -> str:
@@ -155,15 +298,19 @@ def line(graded: Graded, steps: int) -> str:
 
 def detail(graded: Graded) -> str:
     """What to know about one grade, in words."""
-    minimum = graded.rung.minimum
+    rung = graded.rung
+    minimum = rung.minimum
     if graded.result == VALID:
-        if graded.makespan == minimum:
+        if minimum is not None and graded.makespan == minimum:
             return f"minimal (makespan {minimum})"
-        if graded.makespan is not None and graded.makespan < minimum:
-            return (f"makespan {graded.makespan}, below the stored minimum {minimum}: the ladder is wrong, "
-                    "please report it")
-        refuted = f" ({horizons(graded.too_strong)} refuted{too_strong(graded)})" if graded.too_strong else ""
-        return f"makespan {graded.makespan}, minimum {minimum}{refuted}"
+        floor = minimum if minimum is not None else rung.reference.at_least if rung.reference else None
+        if graded.makespan is not None and floor is not None and graded.makespan < floor:
+            return _below(graded, floor)
+        notes = [rung.reference.words()] if minimum is None and rung.reference is not None else []
+        if graded.too_strong:
+            notes.append(f"{horizons(graded.too_strong)} refuted{too_strong(graded)}")
+        said = f" ({'; '.join(notes)})" if notes else ""
+        return f"makespan {graded.makespan}, minimum {'unknown' if minimum is None else minimum}{said}"
     if graded.violation is not None:
         more = graded.violations - 1
         others = f" (and {more} more violation{'s' * (more != 1)})" if more else ""
@@ -171,27 +318,52 @@ def detail(graded: Graded) -> str:
     return graded.reason
 
 
+def _below(graded: Graded, floor: int) -> str:
+    """A valid plan shorter than what the ladder stores or the reference proved."""
+    if graded.rung.reference is None:
+        return (f"makespan {graded.makespan}, below the stored minimum {floor}: the ladder is wrong, "
+                "please report it")
+    said = f"the reference's minimum {floor}" if graded.rung.minimum is not None else \
+        f"what the reference proved (none shorter than {floor})"
+    return f"makespan {graded.makespan}, below {said}: the reference encoding misses plans"
+
+
 def report(encoding: Encoding, horizon: int | None, ladder: Ladder, time_limit: float, graded: list[Graded],
-           summary: Summary) -> dict[str, Any]:
-    """The grades as plain data (``--json``; the shape is docs/GRADING.md's)."""
-    return {
-        "version": JSON_VERSION,
-        "domain": ladder.domain.value,
-        "ladder": ladder.domain.value if ladder.bundled else str(ladder.manifest),
-        "encoding": {
-            "name": encoding.name,
-            "own": encoding.own,
-            "files": [str(file) for file in encoding.files] if encoding.own else [],
-            "style": encoding.summary,
-            "assumed": list(encoding.assumed),
-            "constants": dict(encoding.constants),
-            "horizon": horizon,
-            "options": list(encoding.options),
-        },
-        "time_limit": time_limit,
-        "instances": [item.as_json() for item in graded],
-        "summary": summary.as_json(),
-    }
+           summary: Summary, reference: Reference | None = None, exercise: Exercise | None = None) -> dict[str, Any]:
+    """The grades as plain data (``--json``; the shape is docs/GRADING.md's).  Graded against
+    a reference, the report, each instance and the summary have a few keys more."""
+    against = reference is not None
+    answer: dict[str, Any] = {"version": JSON_VERSION, "domain": ladder.domain.value}
+    if against:
+        answer["variants"] = list(ladder.domain.variants)
+    answer["ladder"] = None if against else ladder.domain.value if ladder.bundled else str(ladder.manifest)
+    if against:
+        answer["exercise"] = None if exercise is None else {"name": exercise.name, "file": str(exercise.path),
+                                                            "summary": exercise.summary or None}
+    answer["encoding"] = {**_encoding_json(encoding), "assumed": list(encoding.assumed),
+                          "constants": dict(encoding.constants), "horizon": horizon,
+                          "options": list(encoding.options)}
+    if reference is not None:
+        answer["reference"] = _encoding_json(reference.encoding)
+    answer["time_limit"] = time_limit
+    answer["instances"] = [_instance_json(item, against) for item in graded]
+    answer["summary"] = summary.as_json()
+    if against:
+        answer["summary"]["minima_unknown"] = summary.unknown
+    return answer
+
+
+def _instance_json(graded: Graded, against: bool) -> dict[str, Any]:
+    entry = graded.as_json()
+    if against:
+        found = graded.rung.reference
+        entry["reference"] = None if found is None else found.as_json()
+    return entry
+
+
+def _encoding_json(encoding: Encoding) -> dict[str, Any]:
+    return {"name": encoding.name, "own": encoding.own,
+            "files": [str(file) for file in encoding.files] if encoding.own else [], "style": encoding.summary}
 
 
 def _say(stream: TextIO, text: str) -> None:
@@ -211,17 +383,21 @@ class _Progress:
     def start(self, step: int, steps: int, rung: Rung) -> None:
         if self.quiet:
             return
-        self.current = f"[{step}/{steps}] {rung.name} (minimum {rung.minimum})"
+        minimum = "the reference's minimum first" if rung.minimum is None else f"minimum {rung.minimum}"
+        self.current = f"[{step}/{steps}] {rung.name} ({minimum})"
         if self.live:
             self.stream.write(f"\r\033[K{self.current}")
         else:
             self.stream.write(f"grading {self.current}\n")
         self.stream.flush()
 
-    def phase(self, phase: Phase) -> None:
+    def phase(self, phase: Phase, who: str = "") -> None:
         if self.live and phase.name in ("grounding", "solving"):
-            self.stream.write(f"\r\033[K{self.current}: horizon {phase.horizon}, {phase.name}")
+            self.stream.write(f"\r\033[K{self.current}: {who}horizon {phase.horizon}, {phase.name}")
             self.stream.flush()
+
+    def reference_phase(self, phase: Phase) -> None:
+        self.phase(phase, "the reference, ")
 
     def clear(self) -> None:
         if self.live:

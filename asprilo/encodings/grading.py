@@ -7,8 +7,11 @@ under a time limit, its plan checked, and the makespan compared with the stored 
         graded.result, graded.valid, graded.minimal, graded.makespan, graded.reason
 
 A wrong answer is a grade, never an error: a plan that breaks the rules (its first
-violation in words), no plan (no answer set, no occurs/3, a crash of the child process, the
-memory limit) or the time limit each give one :class:`Graded`.
+violation in words), no plan (no answer set, no occurs/3, occurs/3 atoms that are no plan, a
+crash of the child process, the memory limit) or the time limit each give one
+:class:`Graded`.  Against a model solution (``reference``: :class:`.reference.Reference`)
+each instance's minimum is what the reference's search proves first, and an encoding clingo
+refuses is graded too (``refusals``).
 """
 
 from __future__ import annotations
@@ -16,9 +19,10 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from asprilo.errors import InputError
+from asprilo.facts import OCCURS_SHAPE
 from asprilo.model import Instance, Plan
 from asprilo.reader import read_instance
 from asprilo.simulate import Violation
@@ -26,6 +30,9 @@ from asprilo.simulate import Violation
 from .ladder import Ladder, Rung
 from .registry import Encoding
 from .solving import Outcome, Phase, SolveStatus, solve
+
+if TYPE_CHECKING:
+    from .reference import Reference
 
 #: the results of one instance
 VALID, INVALID, NO_PLAN, TIME_OUT = "valid", "invalid", "no-plan", "time-out"
@@ -64,12 +71,15 @@ class Graded:
 
     @property
     def minimal(self) -> bool:
-        return self.valid and self.makespan == self.rung.minimum
+        """A valid plan of the minimal makespan (never claimed where the minimum is unknown)."""
+        return self.valid and self.rung.minimum is not None and self.makespan == self.rung.minimum
 
     @property
     def too_strong(self) -> list[int]:
-        """The refuted horizons at which a plan exists (the minimum and above)."""
-        return [horizon for horizon in self.refuted if horizon >= self.rung.minimum]
+        """The refuted horizons at which a plan exists (from the minimum, or where it is
+        unknown from the reference's plan, on)."""
+        least = self.rung.plans_from
+        return [] if least is None else [horizon for horizon in self.refuted if horizon >= least]
 
     @property
     def size(self) -> str:
@@ -114,12 +124,14 @@ class Summary:
     no_plan: int = 0
     time_outs: int = 0
     seconds: float = 0.0
+    unknown: int = 0  # instances whose minimum the reference did not prove
 
     @classmethod
     def of(cls, graded: list[Graded], seconds: float) -> Summary:
         results = [g.result for g in graded]
+        unknown = sum(g.rung.reference is not None and g.rung.minimum is None for g in graded)
         return cls(len(graded), results.count(VALID), sum(g.minimal for g in graded), results.count(INVALID),
-                   results.count(NO_PLAN), results.count(TIME_OUT), seconds)
+                   results.count(NO_PLAN), results.count(TIME_OUT), seconds, unknown)
 
     def line(self) -> str:
         """E.g. ``7/8 valid, 5/8 minimal, 1 time-out; 12.3 s``."""
@@ -131,6 +143,8 @@ class Summary:
             parts.append(f"{self.no_plan} without a plan")
         if self.time_outs:
             parts.append(f"{self.time_outs} time-out{'s' * (self.time_outs != 1)}")
+        if self.unknown:
+            parts.append(f"minimum unknown on {self.unknown}")
         return f"{', '.join(parts)}; {self.seconds:.1f} s"
 
     def as_json(self) -> dict[str, Any]:
@@ -139,33 +153,58 @@ class Summary:
 
 
 def grade_ladder(encoding: Encoding, ladder: Ladder, *, time_limit: float, horizon: int | None = None,
-                 memory_limit: int | None = None, first: int | None = None,
-                 on_start: Callable[[int, int, Rung], None] | None = None,
-                 on_phase: Callable[[Phase], None] | None = None) -> Iterator[Graded]:
+                 memory_limit: int | None = None, first: int | None = None, reference: Reference | None = None,
+                 refusals: bool = False, on_start: Callable[[int, int, Rung], None] | None = None,
+                 on_phase: Callable[[Phase], None] | None = None,
+                 on_reference_phase: Callable[[Phase], None] | None = None) -> Iterator[Graded]:
     """Grade ``encoding`` on the (``first``) instances of ``ladder``, one after the other,
     each under ``time_limit`` seconds (and ``memory_limit`` MB); ``horizon``: solve at this
-    makespan only (``-c horizon=H``).  ``on_start(step, steps, rung)`` is called before an
-    instance, ``on_phase`` while it is solved.
+    makespan only (``-c horizon=H``).  With a ``reference``, each instance's minimum is what
+    the reference's search proves first (``None`` where it proves none).
+    ``on_start(step, steps, rung)`` is called before an instance, ``on_reference_phase``
+    while the reference solves it, ``on_phase`` while the encoding does.
 
     Bad input is :class:`InputError` before the first grade: an instance of the ladder that
-    cannot be read, or an encoding that clingo refuses on the first instance (e.g. unsafe
-    variables, found when grounding); refused on a later instance only, it is that
-    instance's grade."""
+    cannot be read, a reference that clingo refuses on the first instance, or (unless
+    ``refusals``: then every refusal is a grade) an encoding that clingo refuses on the first
+    instance (e.g. unsafe variables, found when grounding); refused on a later instance
+    only, it is that instance's grade.  A model whose occurs/3 atoms are no plan is a grade."""
     rungs = ladder.rungs[:first] if first is not None else ladder.rungs
     instances = [read_instance(rung.file) for rung in rungs]
     for step, (rung, instance) in enumerate(zip(rungs, instances, strict=True), 1):
         if on_start is not None:
             on_start(step, len(rungs), rung)
+        if reference is not None:
+            rung = reference.rung(rung, instance, on_reference_phase)
         started = time.perf_counter()
         try:
             graded = grade_rung(step, rung, instance, ladder, encoding, time_limit=time_limit, horizon=horizon,
                                 memory_limit=memory_limit, on_phase=on_phase)
         except InputError as error:
-            if step == 1:
+            shape = no_plan_shape(error)
+            if step == 1 and not refusals and not shape:
                 raise
-            graded = Graded(step, rung, instance, NO_PLAN, time.perf_counter() - started,
-                            reason=f"clingo refused the encoding: {_words(str(error))}")
+            reason = shape or f"clingo refused the encoding: {_words(str(error))}"
+            graded = Graded(step, rung, instance, NO_PLAN, time.perf_counter() - started, reason=reason)
         yield graded
+
+
+def refused(ladder: Ladder, error: InputError, first: int | None = None) -> Iterator[Graded]:
+    """The grades of an encoding that clingo refuses outright (a syntax error): no plan on
+    every (``first``) instance of ``ladder``, with clingo's located message."""
+    rungs = ladder.rungs[:first] if first is not None else ladder.rungs
+    for step, rung in enumerate(rungs, 1):
+        yield Graded(step, rung, read_instance(rung.file), NO_PLAN, 0.0,
+                     reason=f"clingo refused the encoding: {_words(str(error))}")
+
+
+def no_plan_shape(error: InputError) -> str:
+    """Why a model's ``occurs/3`` atoms are no plan, when ``error`` (raised while a plan
+    was read from them) says so; else ``""``."""
+    message = error.message
+    if message.startswith((f"expected {OCCURS_SHAPE}", "the time step of occurs(")):
+        return f"its model's occurs/3 atoms are no plan: {_words(message)}"
+    return ""
 
 
 def grade_rung(step: int, rung: Rung, instance: Instance, ladder: Ladder, encoding: Encoding, *,
@@ -198,7 +237,7 @@ def _graded(step: int, rung: Rung, instance: Instance, outcome: Outcome, seconds
         errors = outcome.check.errors
         graded.result, graded.violation, graded.violations = INVALID, errors[0], len(errors)
         graded.makespan = outcome.plan.horizon if outcome.plan is not None else None
-    elif _timed_out(outcome):
+    elif timed_out(outcome):
         graded.result = TIME_OUT
         graded.reason = f"time limit ({time_limit:g} s)" + _refuted(graded)
     else:
@@ -206,7 +245,7 @@ def _graded(step: int, rung: Rung, instance: Instance, outcome: Outcome, seconds
     return graded
 
 
-def _timed_out(outcome: Outcome) -> bool:
+def timed_out(outcome: Outcome) -> bool:
     """Whether the time limit stopped the solve (rather than the memory limit, a crash, or
     an upward search that refuted every horizon it may try)."""
     if outcome.status is not SolveStatus.LIMIT:
@@ -237,7 +276,7 @@ def too_strong(graded: Graded) -> str:
     """Words on the refuted horizons at which a plan exists (none: ``""``)."""
     if not graded.too_strong:
         return ""
-    return f", yet plans exist from makespan {graded.rung.minimum} on: a constraint is too strong"
+    return f", yet plans exist from makespan {graded.rung.plans_from} on: a constraint is too strong"
 
 
 def horizons(numbers: list[int]) -> str:

@@ -13,7 +13,9 @@ A ladder is a folder with a manifest ``ladder.yml`` and the instance files it na
 ``minimum`` is the instance's minimal makespan; ``established`` says how it was found and
 ``cross-checked`` by which other methods it was confirmed (words, shown by ``--list``).
 The bundled ladders are in ``ladders/<domain>/`` next to this file (docs/GRADING.md); a
-course may write its own and pass ``--ladder FILE``.
+course may write its own and pass ``--ladder FILE``.  Graded against a model solution
+(``--reference``, :mod:`.reference`), a rung's minimum is what the reference's search proved,
+``None`` (unknown) where it proved none, and :class:`ReferenceMinimum` says what it found.
 """
 
 from __future__ import annotations
@@ -32,17 +34,56 @@ _KEYS = {"file", "minimum", "established", "cross-checked"}
 
 
 @dataclass(frozen=True)
+class ReferenceMinimum:
+    """What the reference encoding (a teacher's model solution) found on one instance.
+
+    ``minimum``: the makespan its horizon search proved minimal (``None``: unknown, and
+    ``reason`` says why in words); ``makespan``: of its plan, which the checker accepted
+    (``None``: no such plan); ``at_least``: no plan is shorter (the lower bound raised past
+    the horizons it refuted; ``None``: no plan exists at all); ``seconds``: its whole solve.
+    """
+
+    minimum: int | None
+    makespan: int | None
+    at_least: int | None
+    seconds: float
+    reason: str = ""
+
+    def words(self) -> str:
+        """How the minimum was found, or why it is unknown."""
+        if self.minimum is not None:
+            return f"proven by the reference's horizon search ({self.seconds:.1f} s)"
+        below = f"; none shorter than {self.at_least}" if self.at_least else ""
+        return f"{self.reason}{below}"
+
+    def as_json(self) -> dict[str, object]:
+        """The entry ``reference`` of an instance in ``asprilo grade --json``."""
+        return {"proven": self.minimum is not None, "makespan": self.makespan, "at_least": self.at_least,
+                "seconds": round(self.seconds, 3), "reason": self.reason or None}
+
+
+@dataclass(frozen=True)
 class Rung:
-    """One instance of a ladder and its minimal makespan."""
+    """One instance of a ladder and its minimal makespan (``None``: unknown; graded against
+    a reference, ``reference`` says what its search found)."""
 
     file: Path
-    minimum: int
+    minimum: int | None
     established: str
     cross_checked: tuple[str, ...] = ()
+    reference: ReferenceMinimum | None = None
 
     @property
     def name(self) -> str:
         return self.file.stem
+
+    @property
+    def plans_from(self) -> int | None:
+        """The least makespan known to have a plan (from it on every makespan has one): the
+        minimum, else the makespan of the reference's plan; ``None``: none known."""
+        if self.minimum is not None:
+            return self.minimum
+        return None if self.reference is None else self.reference.makespan
 
 
 @dataclass(frozen=True)
@@ -53,10 +94,13 @@ class Ladder:
     manifest: Path
     rungs: tuple[Rung, ...]
     bundled: bool = False
+    title: str = ""  # how the grader names instances that are no ladder (an exercise, a folder)
 
     @property
     def label(self) -> str:
-        """How the grader names it: ``the M ladder``, or the manifest's path."""
+        """How the grader names it: ``the M ladder``, the manifest's path, or its title."""
+        if self.title:
+            return self.title
         return f"the {self.domain.label} ladder" if self.bundled else f"the ladder {self.manifest}"
 
 
