@@ -160,3 +160,39 @@ def test_a_variant_for_other_domains_is_refused_naming_them(capsys, tmp_path):
     code = main(["check", str(CORRIDOR), str(_plan(tmp_path, (1, (1, 0), 1))), "--domain", "md", "--variant",
                  "visit-anytime"])
     assert code == 2 and capsys.readouterr().err.endswith("variant 'visit-anytime' changes domain M, not Md\n")
+
+
+@pytest.mark.parametrize("variant, instance, minimum", [
+    ("diagonal", CORNER, 2),       # two diagonal steps to (3,3), one is too few
+    ("diagonal", SQUARE, 1),       # both robots straight down at once
+    ("visit-anytime", CORRIDOR, 2),  # (2,1) -> (4,1)
+    ("energy", CORRIDOR, 2),       # two moves, energy 2: just enough
+])
+def test_the_model_solutions_reach_the_minimum_by_hand_with_plain_clingo(capsys, tmp_path, variant, instance, minimum):
+    """python -m clingo INSTANCE asprilo/variants/V-plan.lp -c horizon=H: no plan at H-1, a
+    plan at H that the checker accepts under the variant."""
+    import subprocess
+    import sys
+
+    encoding = Path(__file__).parent.parent / "asprilo" / "variants" / f"{variant}-plan.lp"
+    answers = []
+    for horizon in (minimum - 1, minimum):
+        run = subprocess.run([sys.executable, "-m", "clingo", str(instance), str(encoding), "-c", f"horizon={horizon}"],
+                             capture_output=True, text=True)
+        answers.append(run.stdout)
+    assert "UNSATISFIABLE" in answers[0].splitlines() and "SATISFIABLE" in answers[1].splitlines()
+    plan = tmp_path / "plan.txt"
+    plan.write_text(answers[1])
+    code, answer = _check(capsys, instance, plan, "--variant", variant)
+    assert (code, answer["valid"], answer["horizon"]) == (0, True, minimum)
+
+
+def test_no_robot_of_the_corridor_can_serve_its_order_without_leaving_its_side():
+    """corridor.lp under sides: the robot starts left of the middle (x = 2), the shelf is at x = 4."""
+    import subprocess
+    import sys
+
+    encoding = Path(__file__).parent.parent / "asprilo" / "variants" / "sides-plan.lp"
+    run = subprocess.run([sys.executable, "-m", "clingo", str(CORRIDOR), str(encoding), "-c", "horizon=6"],
+                         capture_output=True, text=True)
+    assert "UNSATISFIABLE" in run.stdout.splitlines()
