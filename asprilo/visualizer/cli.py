@@ -14,6 +14,7 @@ Examples:
   viz instance.lp plan.lp --export plan.gif --frames 4 --speed 4
   viz instance.lp plan.lp --export strip.png --strip 3-8      (steps 3 to 8 side by side)
   viz --solver 5000 --simulator 5001          (watch asprilo serve solver/simulator live)
+  viz instance.lp plan.lp --variant diagonal  (the rules of a variant: its moves, checks, gauges)
 
 A plan is read as check reads it: the same warnings, and a plan for another instance is
 refused in the same sentence (exit status 2).  An export of a plan that breaks rules is
@@ -30,7 +31,7 @@ import re
 import sys
 import traceback
 
-from asprilo.arguments import domain_argument
+from asprilo.arguments import add_variant_option, domain_argument, loaded_variants
 from asprilo.errors import InputError
 from asprilo.writer import check_output
 
@@ -40,6 +41,7 @@ from .state.display import INSTALL, window_problem
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("files", metavar="FILE", nargs="*", help="INSTANCE [PLAN ...]")
     parser.add_argument("--domain", type=domain_argument, help="a|b|c|m|md (default: detected)")
+    add_variant_option(parser)
     parser.add_argument("--step", type=int, metavar="K",
                         help="show the state after step K (pictures: default 0, the initial state)")
     group = parser.add_argument_group("export without a window")
@@ -89,8 +91,9 @@ def run(args: argparse.Namespace) -> int:
             raise InputError(problem)
     _load_qt()
     from .state.loading import command_line_inputs, load_scenario
+    variants = loaded_variants(args)  # before reading: the attributes they declare are data
     instance, plans = command_line_inputs(args.files)
-    scenario = load_scenario(instance, plans, args.domain) if instance else None
+    scenario = load_scenario(instance, plans, args.domain, variants) if instance else None
     if args.export:
         if scenario is None:
             raise InputError("nothing to export: give an INSTANCE file or pipe facts into viz")
@@ -141,21 +144,27 @@ def _export(args: argparse.Namespace, scenario) -> int:
         if done == total or done % 50 == 0:
             print(f"\rrendering frame {done}/{total}", end="\n" if done == total else "", file=sys.stderr)
 
-    written = render(scenario.instance, scenario.plan, args.export, scenario.domain, args.step,
+    written = render(scenario.instance, scenario.plan, args.export, _domain(args, scenario), args.step,
                      args.frames, args.speed, args.cell, progress, args.caption)
     print(f"wrote {args.export}: {written}", file=sys.stderr)
-    return _verdict(scenario)
+    return _verdict(args, scenario)
 
 
-def _verdict(scenario) -> int:
-    """After an export: a plan that breaks rules is said in ``check``'s verdict line, with its
-    exit status 1 (the picture is written all the same); a valid plan, or none (an instance
-    shown alone), is 0."""
+def _domain(args: argparse.Namespace, scenario):
+    """The domain the scenario is shown in: ``--domain`` or detected, changed by ``--variant``."""
+    from .state.loading import shown_domain
+    return shown_domain(scenario, loaded_variants(args))
+
+
+def _verdict(args: argparse.Namespace, scenario) -> int:
+    """After an export: a plan that breaks rules (the variants' too) is said in ``check``'s
+    verdict line, with its exit status 1 (the picture is written all the same); a valid plan,
+    or none (an instance shown alone), is 0."""
     if not scenario.plan_sources and not len(scenario.plan):
         return 0
     from asprilo.checker import check
     from asprilo.checker.cli import verdict
-    report = check(scenario.instance, scenario.plan, scenario.domain)
+    report = check(scenario.instance, scenario.plan, _domain(args, scenario))
     if report.valid:
         return 0
     print(f"{verdict(report, detected=scenario.domain is None)}; check INSTANCE PLAN lists them", file=sys.stderr)
@@ -165,10 +174,10 @@ def _verdict(scenario) -> int:
 def _export_strip(args: argparse.Namespace, scenario) -> int:
     from .export.strip import export_strip
     first, last = args.strip
-    written = export_strip(scenario.instance, scenario.plan, args.export, first, last, scenario.domain,
+    written = export_strip(scenario.instance, scenario.plan, args.export, first, last, _domain(args, scenario),
                            args.columns, args.cell)
     print(f"wrote {args.export}: {written}", file=sys.stderr)
-    return _verdict(scenario)
+    return _verdict(args, scenario)
 
 
 def _show(args: argparse.Namespace, scenario) -> int:
@@ -177,6 +186,7 @@ def _show(args: argparse.Namespace, scenario) -> int:
     from .window import MainWindow
     app = application()
     window = MainWindow()
+    window.state.document.follow_variants(loaded_variants(args))
     sys.excepthook = report_exceptions_to(window)
     if scenario is not None:
         window.show_scenario(scenario)

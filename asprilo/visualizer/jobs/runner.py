@@ -525,12 +525,14 @@ class JobRunner(QObject):
     def show_report(self, report) -> None:
         """The checker's ``err/3`` diagnostics in the violations panel, said as the viewer says them."""
         track = self.state.track
+        assert track is not None  # (a check needs a scenario shown)
         violations = [explain(track.timeline, error.atom) for error in report.errors]
         self.state.show_checker_report(violations)
-        replay = {v.atom for v in track.timeline.violations}  # the goal included, also without a plan
-        agree = "agrees with" if replay == {v.atom for v in violations} else "differs from"
+        shown = track.checker_violations if track.checked else track.timeline.violations  # the goal too, always
+        agree = "agrees with" if {v.atom for v in shown} == {v.atom for v in violations} else "differs from"
         verdict = "valid plan" if report.valid else f"{len(violations)} violation{'s' if len(violations) != 1 else ''}"
-        self.state.say(f"ASP checker: {verdict}; it {agree} the viewer's replay", 10000)
+        seen = f"the verdict shown ({track.domain.label})" if track.checked else "the viewer's replay"
+        self.state.say(f"ASP checker: {verdict}; it {agree} {seen}", 10000)
 
 
 def doing(phase) -> str:

@@ -60,7 +60,8 @@ class FileActions(QObject):
     def open_files(self, instance: Iterable, plans: Iterable = ()) -> bool:
         """Show an instance (files, ``-`` or sources) and its plan."""
         instance, plans = list(instance), list(plans)
-        return self._load(lambda: loading.load_scenario(instance, plans), _names(instance + plans))
+        variants = self.state.document.variants  # the window's rule variants: they must fit its domain
+        return self._load(lambda: loading.load_scenario(instance, plans, variants=variants), _names(instance + plans))
 
     def open_plan_files(self, plans: Iterable) -> bool:
         """Show a plan on the instance already open."""

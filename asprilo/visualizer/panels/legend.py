@@ -104,6 +104,9 @@ ENTRIES: list[tuple[Callable[[QGraphicsScene], object] | QColor, str]] = [
     (_violation, "red: takes part in a rule violation at the state shown"),
     (_path, "the path of a selected robot (dashed: the part already driven)"),
     (_pill, "an action under way: pick up, put down, deliver"),
+    (lambda scene: _robot(scene).set_gauge(0.5),
+     "a variant's resource (--variant energy): the part of robot 3's starting level left; an empty red bar "
+     "once it is below the least allowed"),
 ]
 
 

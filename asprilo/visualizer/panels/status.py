@@ -131,6 +131,8 @@ class StatusLine:
 
     def _show_verdict(self, step: int) -> None:
         scenario, track = self.state.document.scenario, self.state.track
+        self.verdict.setToolTip(f"the ASP checker's verdict: domain {track.domain.label} has rules the viewer's "
+                                "simulator does not know" if track is not None and track.checked else "")
         if track is None or not len(scenario.plan):
             self.verdict.setText("")
             return

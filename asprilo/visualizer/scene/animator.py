@@ -4,7 +4,8 @@ A frame costs one array interpolation and a ``setPos`` per moving item: the scen
 never rebuilt.  Pickups, putdowns and deliveries show as badges while they happen;
 objects that take part in a rule violation (or robots off the floor) are marked red in
 the states where that happens, so an impossible state is never drawn silently.  Goals are
-framed as the state nearest to the time shown has them.
+framed, and the gauge of a resource (a variant's energy: the track's first) is filled, as
+the state nearest to the time shown has them.
 """
 
 from __future__ import annotations
@@ -51,6 +52,7 @@ class Animator:
         self.highlighted: Violation | None = None
         self.goals = GoalMarks(scene, track)
         self._goal_step: int | None = None
+        self._gauge_step: int | None = None
         self.time = 0.0
         self._nearest = 0  # the state nearest to the time shown
 
@@ -69,6 +71,9 @@ class Animator:
         if self._nearest != self._goal_step:
             self._goal_step = self._nearest
             self.goals.show(self._nearest)
+        if self._nearest != self._gauge_step:
+            self._gauge_step = self._nearest
+            self._show_gauges(self._nearest)
         self._show_badges(step if fraction > 0 else None, fraction)
 
     def show_goals(self, shown: bool) -> None:
@@ -92,6 +97,8 @@ class Animator:
             self.scene.removeItem(badge)
         self._flagged, self._cell_marks, self._badges = [], [], []
         self.goals.detach()
+        for robot in self.robot_items:
+            robot.set_gauge(None)
 
     # --- the parts of a frame ------------------------------------------------------------
 
@@ -128,6 +135,17 @@ class Animator:
         self._cell_marks = [CellMark(style.cell_rect(cell)) for cell in sorted(cells)]
         for mark in self._cell_marks:
             self.scene.addItem(mark)
+
+    def _show_gauges(self, step: int) -> None:
+        """Fill each robot's gauge with its level after ``step`` (the track's first resource)."""
+        gauge = self.track.gauges[0] if self.track.gauges else None
+        for index, robot in enumerate(self.robot_items):
+            level = gauge.level(index, step) if gauge is not None else None
+            if gauge is None or level is None:
+                robot.set_gauge(None)
+                continue
+            start = gauge.level(index, 0) or 0
+            robot.set_gauge(level / start if start > 0 else 0.0, gauge.below(index, step))
 
     def _show_badges(self, segment: int | None, fraction: float) -> None:
         """Badges for the actions of step ``segment + 1`` while moving towards it."""

@@ -19,7 +19,7 @@ def look_of(goal: Goal, scene: WarehouseScene) -> GoalLook:
     if goal.stations:
         tag = f"\u2713 PS{goal.at}" if goal.reached else "\u2192" + ",".join(f"PS{s}" for s in goal.stations)
     elif goal.reached:
-        tag = f"\u2713 R{goal.by}"
+        tag = f"\u2713 R{goal.by}" if goal.by is not None else "\u2713"  # (served earlier: a variant's goal)
     else:
         tag = f"R{goal.robot}" if goal.robot is not None else ""
     return GoalLook(QColor(colour), goal.reached, tag)

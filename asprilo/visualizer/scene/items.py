@@ -16,7 +16,7 @@ from PyQt5.QtWidgets import QGraphicsEllipseItem, QGraphicsItem, QGraphicsPathIt
 
 from . import style
 from .drawing import NO_PEN, Z_CARRIED, Z_DESTINATION, Z_MARK, Z_ROBOT, Z_SHELF, Z_STATION, Label, pen, square
-from .marks import GoalLook, GoalMark
+from .marks import GaugeBar, GoalLook, GoalMark
 from .style import CELL
 
 
@@ -87,6 +87,7 @@ class RobotItem(QGraphicsEllipseItem, ObjectItem):
         self.setZValue(Z_ROBOT)
         self.label = Label(str(ident), 0.3 * CELL, style.ROBOT_TEXT, self, 0.5 * CELL)
         self.ring: QGraphicsEllipseItem | None = None
+        self.gauge: GaugeBar | None = None
         self.set_detail(True)
 
     def set_detail(self, fine: bool) -> None:
@@ -98,6 +99,15 @@ class RobotItem(QGraphicsEllipseItem, ObjectItem):
             self.flag = QGraphicsEllipseItem(square(style.ROBOT_SIZE + 0.12), self)
             self.flag.setPen(pen(style.VIOLATION, 0.09 * CELL))
         super().set_flagged(flagged)
+
+    def set_gauge(self, part: float | None, below: bool = False) -> None:
+        """Show the gauge of a resource: ``part`` of the starting level left (``None``: none)."""
+        if part is not None and self.gauge is None:
+            self.gauge = GaugeBar(self)
+        if self.gauge is not None:
+            self.gauge.setVisible(part is not None)
+            if part is not None:
+                self.gauge.fill_to(part, below)
 
     def set_selected(self, selected: bool) -> None:
         """Show the selection ring (selected robots also show their paths)."""

@@ -1,5 +1,6 @@
 """Marks on the map that are not objects: red cells of violations, goal frames and their
-tags, the pills of actions under way, the paths of selected robots."""
+tags, the pills of actions under way, the paths of selected robots, a robot's gauge (the
+level of a variant's resource, its energy say)."""
 
 from __future__ import annotations
 
@@ -87,6 +88,36 @@ class GoalMark(QGraphicsPathItem):
     def _restyle(self) -> None:
         width = (0.07 if self.fine else 0.16) * CELL
         self.setPen(pen(self.look.colour, width, Qt.SolidLine if self.look.reached else Qt.DashLine))
+
+
+class GaugeBar(QGraphicsRectItem):
+    """A thin bar under a robot's disc: the part of its starting level left, green, orange
+    when little is left, an empty red bar once the level is below the least allowed; a child
+    of the robot's item, so it moves with it."""
+
+    #: the bar's box, in cells from the robot's centre: under the disc (and its red ring), in the cell
+    BOX = (-style.ROBOT_SIZE / 2, 0.41, style.ROBOT_SIZE, 0.08)
+
+    def __init__(self, parent: QGraphicsItem):
+        x, y, width, height = (value * CELL for value in self.BOX)
+        super().__init__(QRectF(x, y, width, height), parent)
+        self.setPen(pen(QColor("#343a40"), 0.02 * CELL))
+        self.setBrush(QColor(255, 255, 255, 200))
+        self.fill = QGraphicsRectItem(self)
+        self.fill.setPen(NO_PEN)
+        self.shown: tuple[float, bool] | None = None
+
+    def fill_to(self, part: float, below: bool) -> None:
+        """``part`` (0..1) of the starting level is left; ``below``: under the least level."""
+        if self.shown == (part, below):
+            return
+        self.shown = (part, below)
+        box = self.rect()
+        part = min(max(part, 0.0), 1.0)
+        self.fill.setRect(QRectF(box.left(), box.top(), box.width() * part, box.height()))
+        self.fill.setBrush(style.DELIVERY if part > 0.25 else style.GOAL)
+        self.setBrush(style.VIOLATION if below else QColor(255, 255, 255, 200))
+        self.fill.setVisible(not below)
 
 
 class Badge(QGraphicsPathItem):

@@ -7,6 +7,7 @@ from html import escape
 from asprilo.model import Action, Cell
 from asprilo.writer import format_value
 
+from .gauges import Gauge
 from .track import Track
 
 _DIRECTIONS = {(1, 0): "right", (-1, 0): "left", (0, 1): "down", (0, -1): "up",
@@ -59,10 +60,28 @@ def robot_lines(track: Track, robot: int, step: int) -> list[str]:
     if step < track.horizon:
         rows.append(f"next (step {step + 1}): {actions_text(track.actions(robot, step + 1))}")
     rows.append(f"idle {int(track.idle[step, index])} of {step} steps")
+    rows += [gauge_text(gauge, index, robot, step, long=True) for gauge in track.gauges]
     if robot in track.instance.assignment:
         kind, goal = track.instance.assignment[robot]
         rows.append(f"assigned goal: {kind} {goal} at {cell_text(track.instance.assigned_cells()[robot])}")
     return rows
+
+
+def gauge_text(gauge: Gauge, index: int, robot: int, step: int, long: bool = False) -> str:
+    """A robot's level of a resource after ``step``: ``1``, ``-1 ⚠`` at the step it falls
+    below the least level, ``–`` when the instance gives none; ``long``: in a sentence
+    (``energy 1 after step 1 (2 at the start)``, ``…; below 0 since step 3``)."""
+    level, name = gauge.level(index, step), gauge.resource.attribute.replace("_", " ")
+    fell = gauge.ran_out(robot, step) if gauge.below(index, step) else None
+    if not long:
+        return "–" if level is None else f"{level}" + (" ⚠" if fell == step else "")
+    if level is None:
+        return f"{name}: none given (init(object(robot,{robot}),value({gauge.resource.attribute},N)))"
+    text = f"{name} {level} after step {step} ({gauge.level(index, 0)} at the start)" if step else \
+        f"{name} {level} at the start"
+    if fell is not None:
+        text += f"; below {gauge.resource.least} since step {fell}: out of {name} ⚠"
+    return text
 
 
 def destination_lines(track: Track, destination: int) -> list[str]:

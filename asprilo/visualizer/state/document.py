@@ -12,10 +12,13 @@ or a plan growing in an online session) through ``changed``.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from asprilo.domain import Domain, detect_domain
+from asprilo.errors import InputError
 from asprilo.model import Instance, Plan
 from asprilo.sources import Source
 from asprilo.writer import format_instance, format_plan, header_lines, write_text
@@ -25,6 +28,10 @@ from .edits import Edit
 from .history import Group, History, Step
 from .loading import Scenario
 from .observe import Signal
+from .rules import varied
+
+if TYPE_CHECKING:
+    from asprilo.domain.variant_file import VariantFile
 
 TOOL = "asprilo viz"
 INSTANCE, PLAN = "instance", "plan"
@@ -84,6 +91,8 @@ class Document:
         self._empty = Instance()
         self._modified = False
         self._before_draft: tuple[Plan, list[Source]] | None = None  # the plan a draft covers
+        #: the rule variants every scenario is shown under (``viz --variant``)
+        self.variants: tuple[VariantFile, ...] = ()
         self.opened = Signal()            # (keep_time: bool) another scenario, or none
         self.changed = Signal()           # (Change) an edit done or undone, or the plan grew
         self.modified_changed = Signal()  # (modified: bool)
@@ -100,9 +109,18 @@ class Document:
 
     @property
     def domain(self) -> Domain:
-        """The scenario's domain: given, or detected from instance and plan."""
+        """The scenario's domain: given, or detected from instance and plan, changed by the
+        variants (unchanged where they do not fit it: the window said so when it was opened)."""
         given = self.scenario.domain if self.scenario is not None else None
-        return given or detect_domain(self.instance, self.plan if len(self.plan) else None)
+        domain = given or detect_domain(self.instance, self.plan if len(self.plan) else None)
+        try:
+            return varied(domain, self.variants)
+        except InputError:
+            return domain
+
+    def follow_variants(self, variants: Sequence[VariantFile]) -> None:
+        """Show every scenario under the rule ``variants`` from now on (loaded variant files)."""
+        self.variants = tuple(variants)
 
     # --- opening ------------------------------------------------------------------------------
 

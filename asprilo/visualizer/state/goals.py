@@ -53,6 +53,7 @@ def _mapf_goals(track: Track, state: State) -> dict[tuple[str, int], Goal]:
                 targets.update(("shelf", shelf) for shelf in holders)
     else:
         targets.update(("destination", ident) for ident in instance.destinations)
+    served = _served_shelves(track, state)
     goals = {}
     for kind, ident in targets:
         cell = state.shelves.get(ident) if kind == "shelf" else instance.destinations[ident].at
@@ -60,8 +61,21 @@ def _mapf_goals(track: Track, state: State) -> dict[tuple[str, int], Goal]:
         robot = assigned.get((kind, ident))
         if robot is not None and by != robot:  # a labelled goal: only its robot counts
             by = None
-        goals[(kind, ident)] = Goal(kind, ident, by is not None, robot, by)
+        reached = by is not None or (robot is None and (kind, ident) in served)
+        goals[(kind, ident)] = Goal(kind, ident, reached, robot, by)
     return goals
+
+
+def _served_shelves(track: Track, state: State) -> set[tuple[str, int]]:
+    """Where the checker decides the goal (a variant's goal, say a visit at any step): the
+    ordered shelves no open order line needs any more, reached though no robot stands there."""
+    if not track.goal_checked or track.domain.goal is not DomainGoal.SHELVES:
+        return set()
+    instance, needed = track.instance, set[int]()
+    for _order, product in state.open_lines:
+        needed.update(instance.products[product].stock if product in instance.products else ())
+    return {("shelf", shelf) for product in instance.products.values() for shelf in product.stock
+            if shelf not in needed}
 
 
 def _delivery_goals(track: Track, state: State) -> dict[tuple[str, int], Goal]:

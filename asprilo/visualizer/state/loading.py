@@ -9,15 +9,21 @@ from __future__ import annotations
 import re
 import sys
 import warnings
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from asprilo.domain import Domain
+from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError, InputWarning
 from asprilo.model import Instance, Plan
 from asprilo.reader import read_instance, read_plan, require_plan_fits_instance
 from asprilo.sources import Source, SourceLike, as_sources
+
+from .rules import varied
+
+if TYPE_CHECKING:
+    from asprilo.domain.variant_file import VariantFile
 
 _INIT = re.compile(r"\binit\s*\(")
 _OCCURS = re.compile(r"\boccurs\s*\(")
@@ -51,11 +57,13 @@ class Scenario:
 
 
 def load_scenario(instance: SourceLike | Iterable[SourceLike],
-                  plans: SourceLike | Iterable[SourceLike] = (), domain: Domain | None = None) -> Scenario:
+                  plans: SourceLike | Iterable[SourceLike] = (), domain: Domain | None = None,
+                  variants: Sequence[VariantFile] = ()) -> Scenario:
     """Read an instance and its plan files; without plan files the plan is the instance
     sources' own ``occurs/3`` atoms (one file or stdin may hold both).  The plan is read as
     ``check`` reads it (:func:`asprilo.reader.require_plan_fits_instance`): a plan for another
-    instance is refused in the same sentence."""
+    instance is refused in the same sentence.  ``variants``: the rule variants it is shown
+    under, which must fit its domain (else :class:`InputError`, as ``check`` says it)."""
     instance_sources = as_sources(instance)
     plan_sources = as_sources(plans)
 
@@ -64,8 +72,19 @@ def load_scenario(instance: SourceLike | Iterable[SourceLike],
         plan_origin = plan_sources or instance_sources
         the_plan = read_plan(plan_origin)
         require_plan_fits_instance(the_plan, the_instance, plan_origin, domain)
-        return Scenario(the_instance, the_plan, instance_sources, plan_sources, domain)
+        scenario = Scenario(the_instance, the_plan, instance_sources, plan_sources, domain)
+        shown_domain(scenario, variants)
+        return scenario
     return _kept_warnings(read)
+
+
+def shown_domain(scenario: Scenario, variants: Sequence[VariantFile] = ()) -> Domain | None:
+    """The domain ``scenario`` is shown in: the one given (``None``: the one its instance and
+    plan are detected in), changed by ``variants`` (:class:`InputError` where they do not fit)."""
+    if not variants:
+        return scenario.domain
+    plan = scenario.plan if len(scenario.plan) else None
+    return varied(scenario.domain or detect_domain(scenario.instance, plan), variants)
 
 
 def add_plan(scenario: Scenario, plans: SourceLike | Iterable[SourceLike]) -> Scenario:

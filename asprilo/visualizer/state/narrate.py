@@ -24,8 +24,9 @@ from asprilo.writer import format_value
 
 from .track import Track
 
-#: a move's (DX,DY) in words (Y grows downwards)
-DIRECTION_WORDS = {(1, 0): "right", (-1, 0): "left", (0, 1): "down", (0, -1): "up"}
+#: a move's (DX,DY) in words (Y grows downwards; the diagonal ones for a variant's moves)
+DIRECTION_WORDS = {(1, 0): "right", (-1, 0): "left", (0, 1): "down", (0, -1): "up",
+                   (1, 1): "down-right", (-1, 1): "down-left", (1, -1): "up-right", (-1, -1): "up-left"}
 #: a step with at most this many acting objects names them all; one with more names two
 LISTED = 3
 #: broken rules said in full after the actions (the others counted)

@@ -2,7 +2,9 @@
 
 ``Track`` answers everything the viewer asks about time: where each robot and shelf is
 after step t (and in between, interpolated), who carries what, which action a robot does
-at a step, how long it has been idle, and which rules the plan breaks when.
+at a step, how long it has been idle, the levels of the robots' resources (a variant's
+energy), and which rules the plan breaks when: the simulator's findings, or the ASP
+checker's where the domain has rules the simulator does not know (:mod:`.rules`).
 """
 
 from __future__ import annotations
@@ -15,12 +17,19 @@ from asprilo.domain import Domain
 from asprilo.model import Action, Cell, Instance, Plan
 from asprilo.simulate import State, Violation, simulate
 
+from . import rules
+from .gauges import Gauge, measure
+
 
 class Track:
     """States 0..horizon of ``plan`` on ``instance`` (state t = the state after step t).
 
     ``unfinished``: the plan is not complete (none yet, or still growing in an online
     session), so the goal is not checked at its last step.
+
+    ``checked``: the violations are the ASP checker's (``checker_violations``, all of them),
+    since the simulator does not know every rule of the domain; ``goal_checked``: the open
+    order lines of a state are those the checker calls unfilled had the plan ended there.
     """
 
     def __init__(self, instance: Instance, plan: Plan, domain: Domain | None = None, unfinished: bool = False):
@@ -29,9 +38,14 @@ class Track:
         self.timeline = simulate(instance, plan, domain)
         self.domain: Domain = self.timeline.domain
         self.horizon: int = self.timeline.horizon
-        self.violations: list[Violation] = [v for v in self.timeline.violations
-                                            if not (unfinished and v.module == "goal")]
+        self.checked = not rules.simulator_knows(self.domain)
+        self.checker_violations: list[Violation] = (rules.checker_violations(instance, plan, self.domain)
+                                                    if self.checked else [])
+        found = self.checker_violations if self.checked else self.timeline.violations
+        self.violations: list[Violation] = [v for v in found if not (unfinished and self._goal(v))]
         self.states: list[State] = [self.timeline.state(t) for t in range(self.horizon + 1)]
+        self.goal_checked = self.checked and not rules.goal_known(self.domain)
+        self._lines_checked: set[int] = set()
 
         initial = self.states[0]
         self.robot_ids: list[int] = sorted(set(instance.robots) | set(initial.robots))
@@ -92,7 +106,32 @@ class Track:
     # --- questions per step -----------------------------------------------------------------
 
     def state(self, step: int) -> State:
-        return self.states[min(max(step, 0), self.horizon)]
+        step = min(max(step, 0), self.horizon)
+        state = self.states[step]
+        if self.goal_checked and step not in self._lines_checked:
+            self._lines_checked.add(step)
+            state.open_lines = self._unfilled(step, state.open_lines)
+        return state
+
+    def _goal(self, violation: Violation) -> bool:
+        """Whether ``violation`` is about the goal (the checker's, or a variant's about orders)."""
+        return violation.module == "goal" or (self.checked and rules.about_orders(self.domain, violation))
+
+    def _unfilled(self, step: int, replayed: dict[tuple[int, int], int | None]) -> dict[tuple[int, int], int | None]:
+        """The order lines the checker calls unfilled had the plan ended at ``step``, with the
+        units the replay says they miss (those requested where the replay has them filled)."""
+        found = self.checker_violations if step >= self.horizon else \
+            rules.checker_violations(self.instance, rules.plan_until(self.plan, step), self.domain)
+        unfilled = rules.unfilled_lines(self.instance, self.domain, found)
+        return {(order.id, product): replayed.get((order.id, product), units)
+                for order in self.instance.orders.values()
+                for product, units in order.lines.items() if (order.id, product) in unfilled}
+
+    @cached_property
+    def gauges(self) -> tuple[Gauge, ...]:
+        """The levels of the domain's resources (a variant's energy), one gauge each."""
+        carries = [state.carries for state in self.states]  # (the replay's: no check of the goal)
+        return tuple(measure(resource, self.timeline, self.robot_ids, carries) for resource in self.domain.resources)
 
     def actions(self, robot: int, step: int) -> list[Action]:
         """What ``robot`` does at time step ``step``: nothing (it waits), one action, or

@@ -102,7 +102,7 @@ class ViewerState:
             return None
         # without a plan (yet) the goal is no problem: only the instance's own are shown
         unfinished = scenario.unfinished or not len(scenario.plan)
-        return Track(scenario.instance, scenario.plan, scenario.domain, unfinished)
+        return Track(scenario.instance, scenario.plan, self.document.domain, unfinished)
 
     def _opened(self, keep_time: bool) -> None:
         self.track = self._track()
