@@ -188,3 +188,17 @@ def test_a_stopped_generation_keeps_the_instances_it_made(tmp_path):
     assert 3 <= len(made) < 100000
     assert all(path.read_text().rstrip().endswith(").") for path in made)  # each one whole
     assert not list(out.glob(".*"))  # no half-written temporary file left
+
+
+@pytest.mark.parametrize("stop", [signal.SIGTERM, signal.SIGINT, signal.SIGHUP])
+def test_the_viewer_window_ends_on_a_stop_signal(tmp_path, stop):
+    """Qt's event loop ran no Python: the window ignored Ctrl-C, SIGTERM and SIGHUP until
+    SIGKILL.  A signal that comes before the handlers are in place ends it as the default
+    action does; one that comes after, as Ctrl-C (exit status 130)."""
+    env = {**os.environ, "QT_QPA_PLATFORM": "offscreen"}
+    process = subprocess.Popen([sys.executable, "-m", "asprilo.cli", "viz", str(SMALL_A),
+                                str(EXAMPLES / "asprilo/dom-a/small/outcome.txt")], cwd=tmp_path, env=env,
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    time.sleep(3)  # most of the time the window is up by then; either way it must end
+    os.kill(process.pid, stop)
+    assert process.wait(END) in (130, -stop)

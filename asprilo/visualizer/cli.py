@@ -25,11 +25,14 @@ the window shows the verdict in its status bar (exit status 0 when it closes).
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import os
 import re
+import signal
 import sys
 import traceback
+from collections.abc import Iterator
 
 from asprilo.arguments import add_variant_option, domain_argument, loaded_variants
 from asprilo.errors import InputError
@@ -199,9 +202,34 @@ def _show(args: argparse.Namespace, scenario) -> int:
     window.show()
     if args.solver is not None:
         window.live.connect_to(args.host, args.solver, args.simulator)
-    code = app.exec_()
+    with _quitting_on_interrupts(app) as interrupted:
+        code = app.exec_()
     wait_for_jobs()  # a cancelled generation may still run
-    return code
+    return 130 if interrupted else code
+
+
+@contextlib.contextmanager
+def _quitting_on_interrupts(app) -> Iterator[list[int]]:
+    """Ctrl-C ends the viewer, and so do SIGTERM and SIGHUP (the command line hands them to
+    the Ctrl-C handler): the event loop quits, the yielded list gets the signal.  Qt's event
+    loop runs no Python while it waits, so a timer gives Python a moment to see a signal."""
+    from PyQt5.QtCore import QTimer
+
+    interrupted: list[int] = []
+
+    def stop(number: int, _frame) -> None:
+        interrupted.append(number)
+        app.quit()
+
+    previous = signal.signal(signal.SIGINT, stop)
+    timer = QTimer()
+    timer.timeout.connect(lambda: None)
+    timer.start(200)
+    try:
+        yield interrupted
+    finally:
+        timer.stop()
+        signal.signal(signal.SIGINT, previous)
 
 
 def report_exceptions_to(window):
