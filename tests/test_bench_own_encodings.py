@@ -190,7 +190,7 @@ def test_an_option_clingo_refuses_is_refused_at_the_options(tmp_path, capsys):
      "results, tables and files)"),
     ("  mine: {file: enc/mine.lp}\n", "6: encodings.mine: needs 'files': the encoding's files, relative to the suite"),
     ("  mine: {files: [enc/mine.lp], colour: red}\n",
-     "6: encodings.mine.colour: unknown key (known: files, constants, options)"),
+     "6: encodings.mine.colour: unknown key (known: files, constants, options, stage)"),
     ("  mine:\n    files: [enc/mine.lp]\n    constants: {horizon: 3}\n",
      "8: encodings.mine.constants.horizon: the runs are at each instance's minimal makespan: a suite sets no horizon"),
     ("  mine:\n    files: [enc/mine.lp]\n    constants:\n      lanes: 2\n      need: 1 +\n",

@@ -71,7 +71,7 @@ SUITE_HEAD = "name: t\ninstances:\n  x: {files: [a]}\nruns:\n"
      "4: instances.x.first: must be a positive number of files per folder"),
     (SUITE_HEAD + "  - domain: m\n    sets: [y]\n", "6: runs[0].sets: no instance set 'y'"),
     (SUITE_HEAD + "  - domain: m\n    colour: red\n",
-     "6: runs[0].colour: unknown key (known: domain, encoding, assign, sets, method)"),
+     "6: runs[0].colour: unknown key (known: domain, encoding, assign, sets, method, variant)"),
     (SUITE_HEAD + "  - {domain: m}\ninstances: {}\n", "6: duplicate key 'instances'"),
     ("name: t\nname: u\n", "2: duplicate key 'name'"),
     ("name: t\ninstances:\n  x: {files: [a]}\n  x: {files: [b]}\n", "4: duplicate key 'x'"),

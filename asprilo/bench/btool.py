@@ -82,6 +82,11 @@ def read_assignment_cache(path: Path) -> dict[str, list[str]]:
 def export(suite: Suite, folder: str | Path, runner: Runner, jobs: int = 1) -> Path:
     """Write the btool set-up for ``suite`` into ``folder``; returns the runscript's path."""
     folder = Path(folder).resolve()
+    files_given = sorted({name for spec in suite.runs for name in spec.variants if Path(name).is_absolute()})
+    if files_given:
+        raise InputError(f"export-btool carries the built-in variants only, by name; a variant file "
+                         f"({files_given[0]}) is not copied: make it a built-in one, or run the suite with "
+                         "asprilo bench", str(suite.path))
     instances = runner.instances()
     known = read_makespans(runner.folder / "makespans.json", runner.stream)
     runner.assignments = read_assignments(runner.folder / ASSIGNMENTS)
@@ -139,14 +144,16 @@ def _copy_encoding(own: OwnEncoding, folder: Path) -> None:
     the same places relative to each other) and describe it in encodings/<name>.json (its
     files relative to that file, its constants and options: JSON, so that no word of them
     passes through a shell or btool's XML)."""
-    program = _included(own.files)
+    program = _included((*own.files, *own.stage))
     root = Path(os.path.commonpath([file.parent for file in program]))
     target = folder / "encodings" / own.name
     for file in program:
         write_bytes(target / file.relative_to(root), file.read_bytes(), [file])
-    files = [f"{own.name}/{Path(file).resolve().relative_to(root).as_posix()}" for file in own.files]
+    files, stage = ([f"{own.name}/{Path(file).resolve().relative_to(root).as_posix()}" for file in group]
+                    for group in (own.files, own.stage))
     write_text(folder / own_description(own.name),
-               json.dumps({**own.job(), "files": files, "style": own.style}, indent=1) + "\n")
+               json.dumps({**own.job(), "files": files, "style": own.style, **({"stage": stage} if stage else {})},
+                          indent=1) + "\n")
 
 
 def _copy_instances(instances: list[SuiteInstance], folder: Path, known: dict,
@@ -213,7 +220,10 @@ def _arguments(spec: RunSpec) -> str:
     if spec.anytime:
         return f"--domain {spec.domain.value} --method anytime"
     own = f" --own-encoding {own_description(spec.encoding)}" if spec.own is not None else ""
-    return f"--domain {spec.domain.value} --encoding {spec.encoding}{own}" + (" --assign" if spec.assign else "")
+    domain = spec.domain.value
+    if spec.variants and spec.base is not None:  # built-in variants by name (export refuses variant files)
+        domain = spec.base.value + "".join(f" --variant {name}" for name in spec.variants)
+    return f"--domain {domain} --encoding {spec.encoding}{own}" + (" --assign" if spec.assign else "")
 
 
 # --- reading btool eval's output ---------------------------------------------------------

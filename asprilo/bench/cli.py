@@ -51,7 +51,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--time-limit", type=float, metavar="S", help="seconds per run (default: the suite's)")
     parser.add_argument("--memory-limit", type=int, metavar="MB", help="MB per run (default: the suite's)")
     parser.add_argument("--domain", type=domain_argument, action="append", metavar="D",
-                        help="only the runs of this domain (a|b|c|m|md; may be repeated)")
+                        help="only the runs of this domain (a|b|c|m|md, its variants included; may be repeated)")
     parser.add_argument("--restart", action="store_true",
                         help="discard the output folder's results (e.g. to run again with other limits)")
     shown = parser.add_argument_group("the report (also after a run)")
@@ -167,7 +167,7 @@ def _export(suite_file: str, folder: Path, args: argparse.Namespace) -> int:
 
 def _runner(suite, folder: Path, args: argparse.Namespace) -> Runner:
     if args.domain:
-        suite.runs = [spec for spec in suite.runs if spec.domain in args.domain]
+        suite.runs = [spec for spec in suite.runs if (spec.base or spec.domain) in args.domain]
         if not suite.runs:
             raise InputError(f"the suite has no runs of domain {', '.join(d.label for d in args.domain)}",
                              str(suite.path))

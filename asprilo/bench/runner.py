@@ -77,6 +77,8 @@ def new_record(instance: SuiteInstance, spec: RunSpec, horizon: int | None, time
               "set": instance.set, "instance": instance.name, "robots": instance.robots,
               "domain": spec.domain.value, "label": spec.label, "encoding": spec.encoding,
               "assign": spec.assign, "time_limit": time_limit, "horizon": horizon}
+    if spec.variants:
+        record["variants"] = [Path(name).stem for name in spec.variants]
     if spec.anytime:
         record["method"] = "anytime"
     elif horizon is None:
@@ -88,7 +90,7 @@ def new_record(instance: SuiteInstance, spec: RunSpec, horizon: int | None, time
 def run_job(path: Path, spec: RunSpec, horizon: int, assignment: list[str] | None = None) -> dict:
     """A run at ``horizon``; with assignment, along ``assignment`` (the facts its makespan search
     followed) when known, else along one computed in the run."""
-    job = {"kind": "run", "instance": str(path), "domain": spec.domain.value, "encoding": spec.encoding,
+    job = {"kind": "run", "instance": str(path), **spec.domain_job(), "encoding": spec.encoding,
            "assign": spec.assign, "horizon": horizon}
     if spec.own is not None:  # the files, constants and options: the child makes the encoding again
         job["own"] = spec.own.job()
@@ -358,12 +360,13 @@ class Runner:
             for spec in self.suite.runs
             if not spec.anytime and spec.runs_on(instance.set)
             and needs_search(known.get(instance.name, {}), self.assignments.get(instance.name, {}), spec)))
+        named = {spec.label: spec.domain_job() for spec in self.suite.runs}  # with the variants of a label
         if todo:
             progress = BenchProgress(len(todo), "makespans", self.stream)
 
             def compute(item):
-                instance, domain, assign, label = item
-                search = run_limited({"kind": "makespan", "instance": str(instance.path), "domain": domain.value,
+                instance, _domain, assign, label = item
+                search = run_limited({"kind": "makespan", "instance": str(instance.path), **named[label],
                                       "assign": assign}, self.suite.makespan_time_limit, self.memory_limit)
                 status = makespan_status(search)
                 why = "" if status == SOLVED else search_failure(search)
@@ -420,7 +423,7 @@ class Runner:
             return {**record, "status": ERROR, "time": 0.0,
                     "error": f"no minimal makespan to run at: its search failed ({why})"}
         if spec.anytime:
-            job = {"kind": "anytime", "instance": str(instance.path), "domain": spec.domain.value}
+            job = {"kind": "anytime", "instance": str(instance.path), **spec.domain_job()}
             return complete_anytime(record, instance.path, run_limited(job, self.time_limit, self.memory_limit))
         if horizon is None:
             return record

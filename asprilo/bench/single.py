@@ -5,6 +5,7 @@
     python -m asprilo.bench.single --domain m --encoding mine --own-encoding encodings/mine.json
                                    [--root DIR] ... INSTANCE
     python -m asprilo.bench.single --domain a --method anytime --time-limit S INSTANCE
+    python -m asprilo.bench.single --domain m --variant diagonal --encoding diagonal --time-limit S INSTANCE
 
 An encoding of the suite's own is described by a JSON file that the export wrote (its
 files, relative to that file, its constants and options; ``--own-encoding`` is relative to
@@ -47,7 +48,7 @@ def minimal_makespan(instance: Path, spec: RunSpec, time_limit: float) -> tuple[
         print(f"{instance.name}: finding the minimal makespan for {spec.label} (at most {time_limit:g} s)",
               file=sys.stderr, flush=True)
         started = time.perf_counter()
-        report = run({"kind": "makespan", "instance": str(instance), "domain": spec.domain.value,
+        report = run({"kind": "makespan", "instance": str(instance), **spec.domain_job(),
                       "assign": spec.assign, "time_limit": time_limit})
         search = LimitedRun(DONE, time.perf_counter() - started, report)
         known = {**read_makespan_cache(cache),  # another run may have cached another label meanwhile
@@ -72,10 +73,18 @@ def main(argv: list[str] | None = None) -> int:
                         help="the JSON description of the suite's own encoding --encoding (relative to --root)")
     parser.add_argument("--root", type=Path, default=Path("."), metavar="DIR",
                         help="the folder --own-encoding is relative to (the export folder)")
+    parser.add_argument("--variant", action="append", default=[], metavar="NAME",
+                        help="a built-in rule variant of the domain (repeat to compose)")
     args = parser.parse_args(argv)
     if args.method == "anytime":
         return _anytime(args)
-    spec = RunSpec(Domain.parse(args.domain), args.encoding, args.assign, own=_own(args))
+    base = Domain.parse(args.domain)
+    domain = base
+    if args.variant:  # loaded before any instance is read: their attributes are data
+        from asprilo.domain.variants import with_variants
+        domain = with_variants(base, args.variant)
+    spec = RunSpec(domain, args.encoding, args.assign, own=_own(args), variants=tuple(args.variant),
+                   base=base if args.variant else None)
     horizon, assignment = minimal_makespan(args.instance, spec, args.makespan_time_limit)
     robots = len(read_instance(args.instance).robots)
     record = new_record(SuiteInstance(args.instance.parent.name, args.instance, args.instance.name, robots),
@@ -102,7 +111,8 @@ def _own(args: argparse.Namespace) -> OwnEncoding | None:
     try:
         description = json.loads(path.read_text(encoding="utf-8"))
         files = [str((path.parent / file).absolute()) for file in description["files"]]
-        return OwnEncoding.from_job(args.encoding, {**description, "files": files})
+        stage = [str((path.parent / file).absolute()) for file in description.get("stage", ())]
+        return OwnEncoding.from_job(args.encoding, {**description, "files": files, "stage": stage})
     except (OSError, ValueError, KeyError, TypeError) as error:
         raise SystemExit(f"error: {path}: not the description of an encoding ({error})") from None
 

@@ -8,6 +8,7 @@ A suite is a YAML file::
     makespan_time_limit: 600  # seconds to find an instance's minimal makespan (A/B/C)
     encodings:                # encodings of one's own, by name (optional)
       mine: {files: [enc/mine.lp, enc/goal.lp], constants: {lanes: 2}, options: ["--configuration=crafty"]}
+      staged: {files: [enc/plan.lp], stage: [enc/assign.lp]}  # a first stage (solve --stage)
     instances:                # named sets, in report order
       small: {batch: paper-m.yml, select: 1x2x4}   # a gen batch file and the part of its output to use
       tiny:  {files: ["../examples/encodings-repo/x2_y2*.lp"]}  # or existing files (patterns)
@@ -16,8 +17,13 @@ A suite is a YAML file::
       - {domain: m, encoding: [plain, split, clingcon, dl, mine], assign: [false, true]}
       - {domain: [c, b], encoding: [plain, mine], assign: [false, true], sets: [tiny]}
       - {domain: [a, m], method: anytime}   # the anytime planner for the whole time limit
+      - {domain: m, variant: diagonal}      # under a rule variant: its model solution, checked by its rules
 
-A run entry with ``sets`` runs on the instances of those sets only.  ``method: anytime``
+A run entry with ``sets`` runs on the instances of those sets only.  ``variant: NAME`` (a
+built-in variant, or a variant file relative to the suite; a list composes them in order, as
+``--variant`` repeated does) runs and checks under the varied domain (``M+diagonal``): its
+minimal makespans are searched with the variant's model solution (the default encoding of
+such a run), and the report names the runs after the varied domain.  ``method: anytime``
 runs the anytime planner (``asprilo solve --method anytime``) instead of an encoding at the
 minimal makespan: its encoding is ``anytime``, and it is reported by time to the first plan
 and by the makespan it reached over its lower bound.
@@ -28,7 +34,10 @@ at each instance's minimal makespan like the reference encodings (a program with
 is solved as it is).  A run names an encoding by its name: a reference encoding of its
 domain, or one of ``encodings``.  Everything is checked when the suite is read, before the
 first run: an unknown name, a missing file, a file clingo cannot parse, a program for
-clingcon 3, an option clingo refuses, a constant that is no term.
+clingcon 3, an option clingo refuses, a constant that is no term.  An encoding's ``stage``
+(files) is a first stage, as ``solve --encoding FILE... --stage FILE...`` runs it: its run is
+at the instance's minimal makespan too, which a plan along the stage's answer may not reach
+(the record then says that there was no plan at that makespan).
 
 Paths are relative to the suite file.  A pattern of ``files`` walks folders (``**``, or a
 wildcard in a folder's name) only below the suite's folder, and ``**`` follows no symbolic
@@ -52,8 +61,13 @@ import clingo
 from asprilo.domain import Domain
 from asprilo.encodings import Encoding, encoding_names
 from asprilo.encodings.own import own_encoding
+from asprilo.encodings.registry import default_encoding
 from asprilo.errors import InputError
 from asprilo.yamlfile import YamlList, YamlMapping, line_of, load_yaml, printable, shown
+
+from .files import existing_files, pattern_start
+
+__all__ = ["InstanceSet", "OwnEncoding", "RunSpec", "Suite", "existing_files", "load_suite", "pattern_start"]
 
 
 @dataclass(frozen=True)
@@ -91,25 +105,31 @@ class OwnEncoding:
     constants: tuple[tuple[str, str], ...] = ()
     options: tuple[str, ...] = ()
     style: str = ""
+    stage: tuple[str, ...] = ()  # the files of a first stage (solve --stage), absolute
 
     def job(self) -> dict:
         """What a run's job carries (JSON)."""
         return {"files": list(self.files), "constants": [list(pair) for pair in self.constants],
-                "options": list(self.options)}
+                "options": list(self.options), **({"stage": list(self.stage)} if self.stage else {})}
 
     @classmethod
     def from_job(cls, name: str, job: dict) -> OwnEncoding:
         return cls(name, tuple(job["files"]), tuple((str(n), str(v)) for n, v in job.get("constants", ())),
-                   tuple(job.get("options", ())))
+                   tuple(job.get("options", ())), stage=tuple(job.get("stage", ())))
 
     def encoding(self) -> Encoding:
         """The encoding, its style recognised (bad input: :class:`InputError`)."""
         return own_encoding(self.files, self.constants, self.options)
 
+    def stage_encoding(self) -> Encoding | None:
+        """The first stage (``None``: none), with the encoding's constants."""
+        from asprilo.encodings.choice import stage_encoding
+        return stage_encoding(self.stage, self.constants) if self.stage else None
+
     def describe(self) -> str:
         """E.g. ``mine: /x/enc/mine.lp, /x/enc/goal.lp; single-shot with a horizon constant; -c lanes=2``."""
         parts = [", ".join(self.files), self.style, " ".join(f"-c {n}={v}" for n, v in self.constants),
-                 " ".join(self.options)]
+                 " ".join(self.options), f"first stage {', '.join(self.stage)}" if self.stage else ""]
         return f"{self.name}: " + "; ".join(part for part in parts if part)
 
 
@@ -121,6 +141,15 @@ class RunSpec:
     sets: tuple[str, ...] | None = None  # the instance sets it runs on (None: all)
     method: str = "asp"                  # asp: an encoding at the minimal makespan; anytime
     own: OwnEncoding | None = None       # the suite's own encoding of that name (None: a reference one)
+    variants: tuple[str, ...] = ()       # the rule variants (names, or absolute paths of files) of ``domain``
+    base: Domain | None = None           # the domain they change (None: no variants)
+
+    def domain_job(self) -> dict:
+        """How a job names the run's domain: its name, and with variants the base and the variants
+        (a fresh process makes the varied domain again from them)."""
+        if not self.variants or self.base is None:
+            return {"domain": self.domain.value}
+        return {"domain": self.domain.value, "base": self.base.value, "variants": list(self.variants)}
 
     @property
     def anytime(self) -> bool:
@@ -148,8 +177,8 @@ class Suite:
 
 
 SUITE_KEYS = ("name", "time_limit", "memory_limit", "makespan_time_limit", "encodings", "instances", "runs")
-RUN_KEYS = ("domain", "encoding", "assign", "sets", "method")
-ENCODING_KEYS = ("files", "constants", "options")
+RUN_KEYS = ("domain", "encoding", "assign", "sets", "method", "variant")
+ENCODING_KEYS = ("files", "constants", "options", "stage")
 METHODS = ("asp", "anytime")
 #: an encoding's name: it names runs in results, tables, file names and btool settings
 ENCODING_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]*")
@@ -157,8 +186,6 @@ ENCODING_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]*")
 CONSTANT_NAME = re.compile(r"_*[a-z][A-Za-z0-9_']*")
 #: the most seconds a time limit may be (a year; a waiting thread takes no more than about 292 years)
 MOST_SECONDS = 365 * 24 * 3600
-#: what makes a part of a ``files`` pattern a wildcard (as in :mod:`glob`)
-_WILDCARD = re.compile(r"[*?[]")
 
 
 def _listed(value: Any) -> list:
@@ -265,16 +292,22 @@ class _SuiteFile:
             encoding = own_encoding([path for path, _line in files], constants, options)
         except InputError as error:
             raise self.refused(where, error, entry, files) from None
-        return OwnEncoding(name, tuple(str(path.absolute()) for path, _line in files), constants, options,
-                           encoding.summary)
+        stage = self.encoding_files(where, entry, "stage") if "stage" in entry else []
+        own = OwnEncoding(name, tuple(str(path.absolute()) for path, _line in files), constants, options,
+                          encoding.summary, tuple(str(path.absolute()) for path, _line in stage))
+        try:
+            own.stage_encoding()
+        except InputError as error:
+            raise self.refused(where, error, entry, stage, "stage") from None
+        return own
 
-    def encoding_files(self, where: str, entry: YamlMapping) -> list[tuple[Path, int]]:
-        """The files (relative to the suite), each with its line."""
-        value = entry["files"]
+    def encoding_files(self, where: str, entry: YamlMapping, key: str = "files") -> list[tuple[Path, int]]:
+        """The files (relative to the suite) of ``key``, each with its line."""
+        value = entry[key]
         items = value if isinstance(value, YamlList) else [value]
-        lines = value.item_lines if isinstance(value, YamlList) else [entry.line_of("files")]
+        lines = value.item_lines if isinstance(value, YamlList) else [entry.line_of(key)]
         if not items or not all(isinstance(item, str) and item for item in items):
-            raise self.fail(f"{where}.files", "must be a file or a list of files", entry.line_of("files"))
+            raise self.fail(f"{where}.{key}", "must be a file or a list of files", entry.line_of(key))
         return [(self.path.parent / item, line) for item, line in zip(items, lines, strict=True)]
 
     def constants(self, where: str, entry: YamlMapping) -> tuple[tuple[str, str], ...]:
@@ -314,14 +347,16 @@ class _SuiteFile:
         return tuple(items)
 
     def refused(self, where: str, error: InputError, entry: YamlMapping,
-                files: list[tuple[Path, int]]) -> InputError:
+                files: list[tuple[Path, int]], key: str = "files") -> InputError:
         """What :func:`own_encoding` refused, at the line of the entry at fault: the file it
-        names (its item of ``files``), the options (no file named), else ``files``."""
+        names (its item of ``files``, or of ``stage``), the options (no file named), else ``files``."""
         if error.file is not None:
             for number, (path, line) in enumerate(files):
                 if Path(error.file).resolve() == path.resolve():
-                    return self.fail(f"{where}.files[{number}]", str(error), line)
-            return self.fail(f"{where}.files", str(error), entry.line_of("files"))
+                    return self.fail(f"{where}.{key}[{number}]", str(error), line)
+            return self.fail(f"{where}.{key}", str(error), entry.line_of(key))
+        if key == "stage":
+            return self.fail(f"{where}.stage", str(error), entry.line_of("stage"))
         if "options" in entry:
             return self.fail(f"{where}.options", str(error), entry.line_of("options"))
         return self.fail(where, str(error), entry.line)
@@ -343,31 +378,81 @@ class _SuiteFile:
             raise self.fail(where, "needs at least 'domain'", line)
         self.known_keys(entry, f"{where}.", RUN_KEYS)
         try:
-            domains = [Domain.parse(d) for d in _listed(entry["domain"])]
+            bases = [Domain.parse(d) for d in _listed(entry["domain"])]
         except InputError as error:
             raise self.fail(f"{where}.domain", error.message, entry.line_of("domain")) from None
-        encodings = [str(e) for e in _listed(entry.get("encoding", "plain"))]
+        variants = self.variants(where, entry)
+        domains = [self.varied(where, entry, base, variants) for base in bases]
         assigns = _listed(entry.get("assign", False))
         if not all(isinstance(a, bool) for a in assigns):
             raise self.fail(f"{where}.assign", "must be true, false or a list of them", entry.line_of("assign"))
-        sets = None
-        if "sets" in entry:
-            sets = tuple(str(name) for name in _listed(entry["sets"]))
-            unknown = [name for name in sets if name not in set_names]
-            if unknown:
-                raise self.fail(f"{where}.sets", f"no instance set '{unknown[0]}'", entry.line_of("sets"))
+        sets = self.run_sets(where, entry, set_names)
         method = str(entry.get("method", "asp"))
         if method not in METHODS:
             raise self.fail(f"{where}.method", f"unknown method '{method}' (choose {' or '.join(METHODS)})",
                             entry.line_of("method"))
+        chosen = dict(zip(domains, bases, strict=True)) if variants else {}
         if method == "anytime":
             if "encoding" in entry or True in assigns:
                 raise self.fail(where, "method anytime takes no encoding and no assignment", line)
+            if variants:
+                raise self.fail(f"{where}.variant", "the anytime planner knows only SPEC.md's rules, not a "
+                                                    "variant's: run the variant's model solution (method asp)",
+                                entry.line_of("variant"))
             return [RunSpec(d, "anytime", False, sets, method) for d in domains]
         if "encoding" in entry:
-            self.known_encodings(f"{where}.encoding", entry, domains, encodings, own)
-        return [RunSpec(d, e, a, sets, method, own.get(e))
-                for d, e, a in itertools.product(domains, encodings, assigns)]
+            named = [str(e) for e in _listed(entry["encoding"])]
+            self.known_encodings(f"{where}.encoding", entry, domains, named, own)
+            pairs = [(d, e) for d in domains for e in named]
+        else:  # each domain's default: plain, or a variant's model solution
+            pairs = [(d, default_encoding(d).name) for d in domains]
+        return [RunSpec(d, e, a, sets, method, own.get(e), variants, chosen.get(d))
+                for (d, e), a in itertools.product(pairs, assigns)]
+
+    def run_sets(self, where: str, entry: YamlMapping, set_names: set[str]) -> tuple[str, ...] | None:
+        """The instance sets a run entry names (``None``: all)."""
+        if "sets" not in entry:
+            return None
+        sets = tuple(str(name) for name in _listed(entry["sets"]))
+        unknown = [name for name in sets if name not in set_names]
+        if unknown:
+            raise self.fail(f"{where}.sets", f"no instance set '{unknown[0]}'", entry.line_of("sets"))
+        return sets
+
+    def variants(self, where: str, entry: YamlMapping) -> tuple[str, ...]:
+        """The variants of a run (built-in names, or files relative to the suite made absolute),
+        each loaded once here: their declared attributes are data from now on."""
+        if "variant" not in entry:
+            return ()
+        from asprilo.domain.variants import load_variant
+
+        names = []
+        for name in _listed(entry["variant"]):
+            if not isinstance(name, str) or not name:
+                raise self.fail(f"{where}.variant", "names a built-in variant or a variant file (NAME.yml), or a "
+                                                    "list of them", entry.line_of("variant"))
+            given = self.path.parent / name if Path(name).suffix or len(Path(name).parts) > 1 else None
+            value = str(given.resolve()) if given is not None else name
+            try:
+                load_variant(value)
+            except InputError as error:
+                raise self.fail(f"{where}.variant", error.message, entry.line_of("variant")) from None
+            names.append(value)
+        return tuple(names)
+
+    def varied(self, where: str, entry: YamlMapping, base: Domain, variants: tuple[str, ...]) -> Domain:
+        """``base`` changed by ``variants`` (registered); a variant that does not fit it, or a
+        varied domain whose minimal makespans no model solution can search, is refused."""
+        if not variants:
+            return base
+        from asprilo.domain.variants import with_variants
+
+        try:
+            domain = with_variants(base, variants)
+            default_encoding(domain)  # the makespans are searched with it
+        except InputError as error:
+            raise self.fail(f"{where}.variant", error.message, entry.line_of("variant")) from None
+        return domain
 
     def known_encodings(self, where: str, entry: YamlMapping, domains: list[Domain], encodings: list[str],
                         own: dict[str, OwnEncoding]) -> None:
@@ -389,60 +474,3 @@ def load_suite(path: str | Path) -> Suite:
     """Read and check a suite file; any problem is an :class:`InputError` naming the file and line."""
     path = Path(path)
     return _SuiteFile(path).suite(load_yaml(path))
-
-
-def pattern_start(folder: Path, pattern: str) -> tuple[Path, str]:
-    """Where a ``files`` pattern of a suite in ``folder`` starts (its parts before the first
-    wildcard, relative to ``folder``) and the rest of it (``""``: a file named as it is).  A
-    pattern that would walk folders outside ``folder`` (``/**/*.lp``, ``../*/*.lp``) or go up
-    after a wildcard is an :class:`InputError`: only below the suite's folder may a pattern
-    walk folders; elsewhere only a file name may hold wildcards."""
-    parts = Path(pattern).parts
-    fixed = next((number for number, part in enumerate(parts) if _WILDCARD.search(part)), len(parts))
-    start, rest = folder.joinpath(*parts[:fixed]), parts[fixed:]
-    if not rest:
-        return start, ""
-    if ".." in rest:
-        raise InputError(f"{shown(pattern)}: '..' after a wildcard (a pattern walks only below the suite's folder)")
-    walks = len(rest) > 1 or rest[0] == "**"
-    if walks and not _below(start, folder):
-        raise InputError(f"{shown(pattern)} walks folders outside the suite's folder: only below it may a pattern "
-                         f"walk folders (** or a wildcard in a folder's name); elsewhere only a file name may hold "
-                         f"wildcards")
-    return start, "/".join(rest)
-
-
-def _below(path: Path, folder: Path) -> bool:
-    """Whether ``path`` is ``folder`` or lies below it (links followed)."""
-    try:
-        path.resolve().relative_to(folder.resolve())
-    except (ValueError, OSError, RuntimeError):  # outside; or a link loop
-        return False
-    return True
-
-
-def existing_files(suite: Suite, instance_set: InstanceSet) -> list[Path]:
-    """The files a ``files:`` set names, sorted; a pattern that matches no regular file is an
-    error.  Patterns walk folders only below the suite's folder (:func:`pattern_start`), and
-    ``**`` follows no symbolic link (as :meth:`pathlib.Path.glob` has it: :func:`glob.glob`
-    follows links back up for ever)."""
-    found: list[Path] = []
-    folder = suite.path.parent
-    for pattern in instance_set.files:
-        try:
-            start, rest = pattern_start(folder, pattern)
-        except InputError as error:
-            raise InputError(f"instances.{printable(instance_set.name)}.files: {error.message}",
-                             str(suite.path)) from None
-        if not rest:
-            matches = [start] if start.exists() else []
-        else:
-            hidden = rest.startswith(".") or "/." in rest  # the pattern names hidden files or folders
-            matches = sorted((path for path in start.glob(rest) if path.is_file()
-                              and (hidden or not any(part.startswith(".") for part in path.relative_to(start).parts))),
-                             key=str)
-        if not matches:
-            raise InputError(f"instances.{printable(instance_set.name)}: no file matches {shown(pattern)}",
-                             str(suite.path))
-        found += matches
-    return found

@@ -9,6 +9,11 @@ statistics, the plan, and the process's own peak memory.  Jobs:
   of a reference encoding by name, or of the suite's own (``own``: its files, constants and
   options, from which the encoding is made here);
 - ``{"kind": "anytime", ...}``: one run of the anytime planner for the whole time limit.
+
+A job names its domain (``"domain"``); a varied one also by its base and its variants
+(``"base"``, ``"variants"``: names or variant files), from which this process makes it
+again (loading the variants before it reads the instance: their attributes are data).  An
+encoding of the suite's own may have a first stage (``own["stage"]``: its files).
 """
 
 from __future__ import annotations
@@ -27,27 +32,48 @@ def _encoding(job: dict):
     return OwnEncoding.from_job(job["encoding"], job["own"]).encoding()
 
 
+def _stage(job: dict):
+    """The first stage of the suite's own encoding of the run (``None``: none)."""
+    if "own" not in job or not job["own"].get("stage"):
+        return None
+    from .suite import OwnEncoding
+    return OwnEncoding.from_job(job["encoding"], job["own"]).stage_encoding()
+
+
+def job_domain(job: dict):
+    """The job's domain: by its name, or made again from its base and variants."""
+    from asprilo.domain import Domain
+
+    if not job.get("variants"):
+        return Domain.parse(job["domain"])
+    from asprilo.domain.variants import load_variant, with_variants
+    return with_variants(Domain.parse(job["base"]), [load_variant(name) for name in job["variants"]])
+
+
 def run(job: dict, report=None) -> dict:
     """Do one job and return its report (a JSON object; ``report``: the child process's
     channel for progress messages, unused)."""
     from asprilo.encodings import solve
+    from asprilo.encodings.solving import find_method
     from asprilo.writer import format_plan
 
     started = time.perf_counter()
+    domain = job_domain(job)
     if job["kind"] == "makespan":
-        flow = job["domain"] in ("m", "md") and not job.get("assign")
-        # with a task assignment, the horizon of the runs is the shortest plan along it
-        outcome = solve(job["instance"], domain=job["domain"], encoding=job.get("encoding", "plain"),
+        # max-flow where it honours the domain's rules; with a task assignment, the horizon of
+        # the runs is the shortest plan along it
+        flow = find_method("flow").honours(domain) and not job.get("assign")
+        outcome = solve(job["instance"], domain=domain, encoding=job.get("encoding"),
                         assign=job.get("assign", False), time_limit=job["time_limit"],
                         method="flow" if flow else "asp", tighten=False)
     elif job["kind"] == "anytime":
-        outcome = solve(job["instance"], domain=job["domain"], method="anytime", time_limit=job["time_limit"])
+        outcome = solve(job["instance"], domain=domain, method="anytime", time_limit=job["time_limit"])
     else:
         encoding = _encoding(job)
         fixed = not isinstance(encoding, str) and encoding.fixed  # solved as it is: no horizon to give
-        outcome = solve(job["instance"], domain=job["domain"], encoding=encoding,
+        outcome = solve(job["instance"], domain=domain, encoding=encoding,
                         horizon=None if fixed else job["horizon"], assign=job.get("assign", False),
-                        time_limit=job["time_limit"], assignment=job.get("assignment"))
+                        time_limit=job["time_limit"], assignment=job.get("assignment"), stage=_stage(job))
     seconds = time.perf_counter() - started
     return {
         "status": outcome.status.value,

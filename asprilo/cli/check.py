@@ -2,9 +2,10 @@
 ``--watch``, the student's edit-run loop in a terminal.
 
 ``check INSTANCE PLAN --watch`` checks, then checks again whenever the instance or the plan
-is saved; with ``--encoding FILE`` (repeated, with ``-c`` and clingo's options, as ``asprilo
-solve`` reads them) it solves with that encoding instead, again whenever the instance or an
-encoding file (or a file one ``#include``\\ s) is saved, and checks the plan found.  Each run
+is saved; with ``--encoding FILE...`` (several files after one flag, or the flag repeated,
+with ``-c`` and clingo's options, as ``asprilo solve`` reads them) it solves with that
+encoding instead, again whenever the instance or an encoding file (or a file one
+``#include``\\ s) is saved, and checks the plan found.  Each run
 prints a line with the time and what changed, then the violations (the first few) and the
 verdict.  Bad input in a watched file is one line and the watch goes on; Ctrl-C ends it
 (exit status 130).  The watch lives here, above the tools, because with ``--encoding`` it
@@ -54,9 +55,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
     group = parser.add_argument_group("watching", "check --watch: check (or solve and check) again on every save")
     group.add_argument("--watch", action="store_true",
                        help="check again whenever the instance or the plan (or an --encoding file) is saved")
-    group.add_argument("--encoding", action="append", metavar="NAME|FILE",
-                       help="with --watch: solve with this encoding (a file of your own, repeat for several; "
-                            "or a reference encoding by name) and check the plan found")
+    group.add_argument("--encoding", action="extend", nargs="+", metavar="NAME|FILE",
+                       help="with --watch: solve with this encoding (the files of your own, --encoding a.lp b.lp "
+                            "or the flag repeated, after INSTANCE and PLAN; or a reference encoding by name) and "
+                            "check the plan found")
     group.add_argument("-c", "--const", action="append", default=[], metavar="NAME=VALUE",
                        help="with --encoding: a constant for your encoding, as clingo's -c")
     group.add_argument("--horizon", type=int, metavar="H", help="with --encoding: solve at this makespan only")

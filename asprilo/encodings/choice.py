@@ -1,6 +1,7 @@
 """Which encoding the command line names: a reference encoding by name, or files of one's
 own with ``-c NAME=VALUE`` constants and clingo's options -- the one reading that
-``asprilo solve`` and ``asprilo grade`` share."""
+``asprilo solve`` and ``asprilo grade`` share; and the first stage of a two-stage encoding
+(``--stage FILE...``)."""
 
 from __future__ import annotations
 
@@ -42,6 +43,21 @@ def choose_encoding(values: Sequence[str], const: Sequence[str], options: Sequen
         return encoding, horizon
     horizon = _horizon_constant(given.pop("horizon"), horizon)
     return replace(encoding, constants=tuple(given.items())), horizon
+
+
+def stage_encoding(files: Sequence[str | Path], constants: Sequence[tuple[str, str]] = ()) -> Encoding:
+    """The first stage of a two-stage encoding (``solve --stage FILE...``): its files, solved
+    once with the instance and ``constants`` (the encoding's ``-c`` values); its style
+    recognised as an encoding's (a theory too).  Bad input: :class:`InputError` (an incremental
+    program, whose parts a single solve would not run, among others)."""
+    if not files:
+        raise InputError("--stage names the files of the first stage (e.g. --stage assign.lp)")
+    stage = own_encoding([Path(file) for file in files], [(name, value) for name, value in constants
+                                                           if name != "horizon"])
+    if stage.incremental:
+        raise InputError("the first stage (--stage) is solved once, with the instance: it has step(t)/check(t) "
+                         "parts, which only a search over horizons runs", str(stage.program))
+    return replace(stage, name=f"stage {stage.name}", summary=f"first stage, solved once ({stage.summary})")
 
 
 def is_encoding_file(value: str) -> bool:

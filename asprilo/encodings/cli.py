@@ -11,18 +11,27 @@ never lost (time limit, Ctrl-C, SIGTERM).  M/Md with anonymous goals: max-flow, 
 summary goes to stderr.  On a terminal a line redrawn twice a second says what the searches
 do (phase, horizon, conflicts, best plan so far, elapsed and remaining time).
 
---encoding FILE (repeated for several files) runs your own encoding: single-shot with a
-horizon constant, incremental (#include <incmode>, #program step(t)/check(t) and query(t)),
-or with &sum/&diff theory atoms (clingcon / clingo-dl); the summary says which style was
-recognised.  -c NAME=VALUE and clingo's own options (--name=value, e.g.
---configuration=crafty) go to clingo.  Exit status: 0 a valid plan found (proven minimal or
-not: the summary and --json say which), 1 no plan within the limits or a plan that breaks
-the rules (the violations are listed), 2 bad input.
+--encoding FILE... (one flag, several files, as clingo takes them; or the flag repeated)
+runs your own encoding: single-shot with a horizon constant, incremental (#include <incmode>,
+#program step(t)/check(t) and query(t)), or with &sum/&diff theory atoms (clingcon /
+clingo-dl); the summary says which style was recognised.  -c NAME=VALUE and clingo's own
+options (--name=value, e.g. --configuration=crafty) go to clingo.  --stage FILE... adds a
+first stage (e.g. a task assignment of your own): solved once with the instance and the same
+constants, the shown atoms of its first answer become facts of the encoding, as
+"clingo stage.lp inst.lp | clingo - plan.lp inst.lp" would give them.  Exit status: 0 a valid
+plan found (proven minimal or not: the summary and --json say which), 1 no plan within the
+limits or a plan that breaks the rules (the violations are listed), 2 bad input.
+
+--variant NAME|FILE changes the rules (docs/VARIANTS.md): the plan is checked under them,
+and without --encoding the search runs the variant's model solution (max-flow and the anytime
+planner know only SPEC.md's rules; the summary says which methods serve the variant).
 
 Examples:
   asprilo solve instance.lp
   asprilo solve instance.lp --encoding clingcon --time-limit 60 -o plan.lp
-  asprilo solve instance.lp --encoding my.lp --encoding goal.lp -c lanes=2
+  asprilo solve instance.lp --encoding my.lp goal.lp -c lanes=2
+  asprilo solve instance.lp --encoding plan.lp --stage assign.lp
+  asprilo solve instance.lp --variant diagonal
   asprilo solve instance.lp --horizon 12 --domain b
   asprilo solve instance.lp --assign
   asprilo solve m-instance.lp --method flow
@@ -43,23 +52,32 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import TextIO
 
-from asprilo.arguments import domain_argument, megabytes_argument, seconds_argument
+from asprilo.arguments import (
+    add_variant_option,
+    chosen_domain,
+    domain_argument,
+    loaded_variants,
+    megabytes_argument,
+    seconds_argument,
+)
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
-from asprilo.model import Instance
-from asprilo.reader import plan_misfits, read_instance
-from asprilo.writer import check_output, format_action, format_plan, write_text
+from asprilo.reader import read_instance
+from asprilo.writer import check_output, format_plan, write_text
 
 from .anytime import DEFAULT_SECONDS as ANYTIME_SECONDS
-from .choice import choose_encoding
-from .registry import Encoding, reference_encodings
-from .solving import Attempt, Outcome, Phase, method_names, solve
+from .choice import choose_encoding, is_encoding_file, stage_encoding
+from .registry import Encoding, default_encoding, reference_encodings
+from .solving import Attempt, Phase, method_names, solve
+from .solving.methods import methods_words
+from .summary import SHOWN_VIOLATIONS, SHOWN_WARNINGS, report, summary
+from .summary import verdict as _verdict
+
+__all__ = ["CLINGO_OPTIONS", "DEFAULT_TIME_LIMIT", "SHOWN_VIOLATIONS", "SHOWN_WARNINGS", "SearchProgress",
+           "_verdict", "chosen_encoding", "configure", "report", "run"]
 
 #: options asprilo does not know are clingo's (the command line passes them on)
 CLINGO_OPTIONS = True
-#: the most violations the summary lists of a plan that breaks the rules, and of clingo's warnings
-SHOWN_VIOLATIONS, SHOWN_WARNINGS = 20, 5
-
 #: seconds ``asprilo solve`` may take unless told otherwise (the anytime method: its own default)
 DEFAULT_TIME_LIMIT = 300.0
 
@@ -67,9 +85,15 @@ DEFAULT_TIME_LIMIT = 300.0
 def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("instance", metavar="INSTANCE", nargs="?", help="instance file (- = stdin)")
     parser.add_argument("--domain", type=domain_argument, help="a|b|c|m|md (default: detected)")
-    parser.add_argument("--encoding", action="append", metavar="NAME|FILE",
-                        help="a reference encoding by name (default: plain; --list shows them), or a file "
-                             "of your own encoding (repeat for several files)")
+    parser.add_argument("--encoding", action="extend", nargs="+", metavar="NAME|FILE",
+                        help="a reference encoding by name (default: plain; --list shows them), or the files "
+                             "of your own encoding (--encoding a.lp b.lp, or the flag repeated; give the "
+                             "instance before it)")
+    parser.add_argument("--stage", action="extend", nargs="+", metavar="FILE",
+                        help="a first stage of your own (e.g. a task assignment), solved once with the instance "
+                             "and the same -c constants: the shown atoms of its first answer become facts of "
+                             "the encoding")
+    add_variant_option(parser)
     parser.add_argument("-c", "--const", action="append", default=[], metavar="NAME=VALUE",
                         help="a constant for your encoding, as clingo's -c (-c horizon=H solves at H only)")
     parser.add_argument("--horizon", type=int, metavar="H", help="solve at this makespan only")
@@ -95,33 +119,71 @@ def configure(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     if args.list:
         return _list_encodings()
-    if args.instance is None:
-        raise InputError("no instance given (asprilo solve INSTANCE)")
+    args.instance = _instance(args)
     if args.output == "-":
         args.output = None  # standard output, as without -o
-    inputs = [args.instance, *(name for name in args.encoding or () if Path(name).is_file())]
+    files = [name for name in [*(args.encoding or ()), *(args.stage or ())] if Path(name).is_file()]
+    inputs = [args.instance, *files]
     check_output(args.output, inputs, standard_output="-o -")
     method, time_limit = _method_and_time_limit(args)
+    loaded_variants(args)  # before reading: the attributes they declare are data
     instance = read_instance(args.instance)
-    domain = args.domain or detect_domain(instance)
+    detected = detect_domain(instance)
+    domain = chosen_domain(args, detected) or detected
     encoding, horizon = chosen_encoding(args, domain)
+    stage = None
+    if args.stage:
+        stage = stage_encoding(args.stage, encoding.constants if encoding is not None else ())
+    if args.encoding is None and encoding is not None and method in ("auto", "asp"):
+        said = methods_words(domain, encoding)  # a domain the other methods do not serve: which do
+        if said:
+            print(said, file=sys.stderr)
     progress = SearchProgress(sys.stderr, time_limit)
     cancel = threading.Event()
     try:
         with _stopping_on_interrupt(cancel):
             outcome = solve(instance, domain, encoding=encoding, horizon=horizon, assign=args.assign,
                             time_limit=time_limit, method=method, isolate=True, memory_limit=args.memory_limit,
-                            on_progress=progress.attempt, on_phase=progress.phase, cancel=cancel)
+                            on_progress=progress.attempt, on_phase=progress.phase, cancel=cancel, stage=stage)
     finally:
         progress.close()
     if outcome.plan is not None and outcome.found and args.output:
         write_text(args.output, format_plan(outcome.plan), inputs)
-    _summary(outcome, encoding, hint=args.method == "asp" and horizon is None, instance=instance)
+    summary(outcome, encoding, hint=args.method == "asp" and horizon is None, instance=instance)
     if args.json:
         print(json.dumps(report(outcome), indent=2))
     elif outcome.found and not args.output:
         sys.stdout.write(format_plan(outcome.plan))
     return 0 if outcome.found else 1
+
+
+def _instance(args: argparse.Namespace) -> str:
+    """The instance the command line names.  ``--encoding`` and ``--stage`` take every file
+    that follows them, so an instance given after them is taken too: said so (a reference
+    encoding, named alone, leaves the file after it to be the instance)."""
+    if args.instance is not None:
+        return args.instance
+    values = args.encoding or []
+    if len(values) == 2 and not is_encoding_file(values[0]):
+        args.encoding = values[:1]
+        return values[1]
+    taken = [(flag, names) for flag, names in (("--encoding", args.encoding), ("--stage", args.stage)) if names]
+    if not taken:
+        raise InputError("no instance given (asprilo solve INSTANCE)")
+    said = "; ".join(f"{flag} took {', '.join(names)}" for flag, names in taken)
+    looks = [name for _flag, names in taken for name in names if _looks_like_instance(name)]
+    hint = f" ({looks[-1]} looks like an instance: it has init/2 facts)" if looks else ""
+    raise InputError(f"no instance given: {said}, every file after the flag{hint}; give the instance first: "
+                     "asprilo solve INSTANCE --encoding FILE...")
+
+
+def _looks_like_instance(name: str) -> bool:
+    """Whether the file ``name`` holds an instance's facts (``init(object(``) in its first 64 kB."""
+    try:
+        with open(name, encoding="utf-8", errors="replace") as stream:
+            return "init(object(" in stream.read(65536)
+    except OSError:
+        return False
 
 
 def _list_encodings() -> int:
@@ -141,11 +203,18 @@ def _method_and_time_limit(args: argparse.Namespace) -> tuple[str, float]:
     return method, ANYTIME_SECONDS if method == "anytime" else DEFAULT_TIME_LIMIT
 
 
-def chosen_encoding(args: argparse.Namespace, domain: Domain) -> tuple[Encoding, int | None]:
-    """The encoding the options name, and the horizon asked for (``--horizon``, or
-    ``-c horizon=H`` for a single-shot encoding of one's own)."""
-    return choose_encoding(args.encoding or ["plain"], args.const, getattr(args, "clingo_options", None) or (),
-                           domain, args.horizon)
+def chosen_encoding(args: argparse.Namespace, domain: Domain) -> tuple[Encoding | None, int | None]:
+    """The encoding the options name (none named: the domain's default, ``plain`` or a
+    variant's model solution; ``None`` where it has none), and the horizon asked for
+    (``--horizon``, or ``-c horizon=H`` for a single-shot encoding of one's own)."""
+    values = args.encoding
+    if not values:
+        if not domain.encodings:
+            if args.const:
+                raise InputError("-c sets constants of your own encoding (--encoding FILE)")
+            return None, args.horizon
+        values = [default_encoding(domain).name]
+    return choose_encoding(values, args.const, getattr(args, "clingo_options", None) or (), domain, args.horizon)
 
 
 class SearchProgress:
@@ -273,142 +342,3 @@ def _stopping_on_interrupt(cancel: threading.Event) -> Iterator[None]:
         signal.signal(signal.SIGINT, previous if previous is not None else signal.SIG_DFL)
 
 
-def _summary(outcome: Outcome, encoding: Encoding | None = None, hint: bool = False,
-             instance: Instance | None = None) -> None:
-    """The summary on stderr (``hint``: a search forced to method asp that ran out of time
-    points to the default; ``instance``: a plan of the user's own encoding that does not fit
-    it is said so in one sentence before its violations)."""
-    lines = [f"domain {outcome.domain.label}, method {outcome.method}, encoding {outcome.encoding}, "
-             f"lower bound {outcome.lower_bound:g}"]
-    if encoding is not None and encoding.own and outcome.method == "asp":
-        lines.append(f"your encoding ({', '.join(str(file) for file in encoding.files)}): {encoding.summary}")
-        lines += [f"  assumed: {note}" for note in encoding.assumed]
-        lines += [f"  clingo: {' '.join(warning.split())}" for warning in outcome.warnings[:SHOWN_WARNINGS]]
-    if outcome.assignment is not None:
-        assignment = outcome.assignment
-        state = assignment.origin if assignment.origin != "optimised" else (
-            f"{'optimal' if assignment.optimal else 'best found'}, cost {assignment.cost}")
-        lines.append(f"assignment ({state}): " + " ".join(assignment.facts))
-    lines += _misfit(outcome, encoding, instance) + _verdict(outcome)
-    if hint and outcome.status.value == "limit":
-        lines.append("for a plan fast (not proven minimal), leave out --method asp: the default runs the "
-                     "anytime planner beside the exact search")
-    lines.append(_figures(outcome))
-    print("\n".join(lines), file=sys.stderr)
-
-
-def _misfit(outcome: Outcome, encoding: Encoding | None, instance: Instance | None) -> list[str]:
-    """One sentence for an invalid plan of the user's own encoding made for another instance
-    or domain (robots the instance lacks, actions no domain knows, actions of another domain)."""
-    if outcome.found or outcome.plan is None or instance is None or encoding is None or not encoding.own:
-        return []
-    said = plan_misfits(outcome.plan, instance, outcome.domain)
-    return [f"your encoding's plan does not fit the instance: {'; '.join(said)}"] if said else []
-
-
-#: who found the plan the answer holds (method auto), in words
-_FOUND_BY = {"asp": "the exact search", "anytime": "the anytime planner"}
-
-
-def _verdict(outcome: Outcome) -> list[str]:
-    """What was found: the plan (proven minimal, or with the bound proven and the gap), the
-    violations of a plan that breaks the rules, or why there is none; and what was tried
-    and proven on the way, where that is not said by "proven minimal"."""
-    if outcome.found:
-        by = f"; found by {_FOUND_BY[outcome.found_by]}" if outcome.found_by in _FOUND_BY else ""
-        line = f"plan: horizon {outcome.horizon} ({_proof(outcome)}), {len(outcome.plan)} actions, checked: valid{by}"
-        ended = [f"the search ended: {outcome.message}"] if outcome.message and not outcome.minimal else []
-        return [line] + ([] if outcome.minimal else _tried(outcome)) + ended
-    if outcome.check is not None and not outcome.check.valid:
-        errors = outcome.check.errors
-        lines = [error.message for error in errors[:SHOWN_VIOLATIONS]]
-        if len(errors) > SHOWN_VIOLATIONS:
-            lines.append(f"... and {len(errors) - SHOWN_VIOLATIONS} more (asprilo check lists them all)")
-        return lines + [f"no valid plan: the plan of makespan {outcome.plan.horizon} breaks the rules "
-                        f"({len(errors)} violation{'s' * (len(errors) != 1)})"]
-    lines = [{"none": "no plan exists", "limit": "no plan within the limits", "cancelled": "cancelled",
-              "invalid": "no valid plan"}[outcome.status.value] + (f": {outcome.message}" if outcome.message else "")]
-    if outcome.status.value in ("limit", "cancelled"):
-        lines += _tried(outcome)
-    return lines
-
-
-def _proof(outcome: Outcome) -> str:
-    """``proven minimal``, or the bound proven and the gap."""
-    if outcome.minimal:
-        return "proven minimal"
-    bound, gap = outcome.proven_bound, outcome.gap
-    if not bound or bound == float("inf") or gap is None:
-        return "not proven minimal"
-    return (f"not proven minimal: no plan is shorter than {bound:g}, gap {gap:g} step{'s' * (gap != 1)}, "
-            f"{100 * gap / bound:.0f}%")
-
-
-def _tried(outcome: Outcome) -> list[str]:
-    """What was tried and proven: the horizons refuted (for the problem, and those refuted only
-    along the task assignment), the horizons left undecided, the anytime planner's plans."""
-    lines = []
-    if outcome.refuted:
-        lines.append(f"refuted horizons {_spans(outcome.refuted)}: no plan is shorter than {outcome.proven_bound:g}")
-    along = [horizon for horizon in outcome.refuted_along if horizon not in outcome.refuted]
-    if along:
-        lines.append(f"no plan along the task assignment at horizon{'s' * (len(along) > 1)} {_spans(along)} "
-                     "(refuted along the assignment only, not for the problem)")
-    undecided = sorted({a.horizon for a in outcome.horizons_tried if a.result == "unknown"} - set(outcome.refuted))
-    if undecided:
-        lines.append(f"undecided: horizon{'s' * (len(undecided) > 1)} {_spans(undecided)}")
-    plans = [a.horizon for a in outcome.horizons_tried if a.result == "improved"]
-    if plans and outcome.method == "auto":
-        shown = str(plans[0]) if len(plans) == 1 else f"{plans[0]} -> {min(plans)}"
-        lines.append(f"anytime planner: {len(plans)} plan{'s' * (len(plans) > 1)}, makespan {shown}")
-    return lines
-
-
-def _figures(outcome: Outcome) -> str:
-    """The method's statistics in one line."""
-    stats = outcome.stats
-    if outcome.method == "flow":
-        return f"max-flow {stats['solve_time']:.2f} s"
-    if outcome.method == "anytime":
-        return (f"first plan {stats.get('first_plan_seconds', 0):.2f} s, {len(outcome.history)} plans reported, "
-                f"{stats.get('neighbourhoods', 0)} neighbourhoods tried")
-    figures = (f"ground {stats.get('ground_time', 0):.2f} s, solve {stats.get('solve_time', 0):.2f} s, "
-               f"rules {stats.get('rules', 0)}, atoms {stats.get('atoms', 0)}, choices {stats.get('choices', 0)}, "
-               f"conflicts {stats.get('conflicts', 0)}")
-    return f"exact search: {figures}" if outcome.method == "auto" else figures
-
-
-def report(outcome: Outcome) -> dict:
-    """The outcome as plain data (``--json``)."""
-    finite = outcome.proven_bound != float("inf")
-    return {
-        "status": outcome.status.value,
-        "domain": outcome.domain.value,
-        "method": outcome.method,
-        "encoding": outcome.encoding,
-        "horizon": outcome.horizon,
-        "minimal": outcome.minimal,
-        "lower_bound": outcome.lower_bound if outcome.lower_bound != float("inf") else None,
-        "horizons_tried": [attempt.as_json() for attempt in outcome.horizons_tried],
-        "refuted": outcome.refuted,
-        "refuted_along_assignment": outcome.refuted_along,
-        "proven_bound": outcome.proven_bound if finite else None,
-        "gap": outcome.gap if finite else None,
-        "stats": outcome.stats,
-        "assignment": outcome.assignment.facts if outcome.assignment is not None else None,
-        "plan": [format_action(action) for action in outcome.plan.actions] if outcome.found else None,
-        "message": outcome.message,
-        **({"found_by": outcome.found_by} if outcome.method == "auto" else {}),
-        **({"history": outcome.history} if outcome.method in ("anytime", "auto") else {}),
-    }
-
-
-def _spans(horizons: list[int]) -> str:
-    """``[3, 4, 5, 8]`` -> ``"3-5, 8"``."""
-    spans: list[list[int]] = []
-    for horizon in horizons:
-        if spans and horizon == spans[-1][1] + 1:
-            spans[-1][1] = horizon
-        else:
-            spans.append([horizon, horizon])
-    return ", ".join(str(a) if a == b else f"{a}-{b}" for a, b in spans)

@@ -78,3 +78,22 @@ def find_encoding(domain: Domain, name: str = "plain") -> Encoding:
             return _encoding(domain, reference)
     known = ", ".join(encoding_names(domain))
     raise InputError(f"no encoding '{name}' for domain {domain.label} (choose one of {known})")
+
+
+def default_encoding(domain: Domain) -> Encoding:
+    """The encoding a search runs when none is named: ``plain`` where the domain has it, else
+    its first (a varied domain's: the variant's model solution); bad input where it has none,
+    naming the variant and what to do."""
+    if not domain.encodings:
+        raise InputError(f"no encoding solves {domain.label}: {no_encoding_words(domain)}; give your own encoding to "
+                         "solve under its rules: --encoding FILE")
+    names = [reference.name for reference in domain.encodings]
+    return find_encoding(domain, "plain" if "plain" in names else names[0])
+
+
+def no_encoding_words(domain: Domain) -> str:
+    """Why ``domain`` has no encoding, in words (it is a variant without a model solution)."""
+    if domain.variants:
+        base = domain.label.split("+")[0]
+        return f"variant '{domain.variants[-1]}' names no model solution for {base} (its file's 'encodings:')"
+    return f"domain {domain.label} names no encoding"

@@ -13,7 +13,7 @@ import threading
 from collections.abc import Callable
 from dataclasses import replace
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from asprilo.checker import check
 from asprilo.domain import Domain, detect_domain
@@ -21,7 +21,7 @@ from asprilo.model import Instance
 from asprilo.reader import read_instance
 from asprilo.solver import Statistics
 
-from ..registry import Encoding, find_encoding
+from ..registry import Encoding, default_encoding, find_encoding
 from .bounds import LowerBounds, lower_bounds
 from .method import Method
 from .methods import method_for, resolve
@@ -46,7 +46,8 @@ def solve(instance: SolveRequest | Instance | str | Path, domain: Domain | str |
     a path) with the request's fields as keywords (:func:`request_for`).
 
     ``domain``: a|b|c|m|md or a :class:`Domain` (default: detected).  ``method``: ``asp``
-    (default: the ``encoding``, by default ``plain``, over growing horizons), ``flow`` (the
+    (default: the ``encoding``, by default ``plain``, or the domain's own where it has no
+    ``plain``: a variant's model solution, over growing horizons), ``flow`` (the
     exact max-flow solver of M/Md), ``anytime`` (a checked plan fast, then better ones until
     ``time_limit``, default 60 s, or the lower bound) or ``auto`` (the command's default: the
     horizon search and the anytime planner at once, each in a child process, the best plan
@@ -73,15 +74,21 @@ def request_for(instance: Instance | str | Path, domain: Domain | str | None = N
     if not isinstance(instance, Instance):
         instance = read_instance(instance)
     domain = detect_domain(instance) if domain is None else Domain.parse(domain)
-    encoding = options.pop("encoding", "plain")
-    facts = options.pop("assignment", None)
-    assign = options.pop("assign", False) or facts is not None
-    request = SolveRequest(instance, domain, assign=assign, **options)
+    fields: dict[str, Any] = dict(options)  # the request's other fields, as given
+    encoding = fields.pop("encoding", None)
+    facts = fields.pop("assignment", None)
+    assign = fields.pop("assign", False) or facts is not None
+    stage = fields.pop("stage", None)
+    if stage is not None and not isinstance(stage, Encoding):
+        from ..choice import stage_encoding
+        stage = stage_encoding(stage, encoding.constants if isinstance(encoding, Encoding) else ())
+    given = encoding if isinstance(encoding, Encoding) else None  # a method's check may look at it
+    request = SolveRequest(instance, domain, assign=assign, stage=stage, encoding=given, **fields)
     method = method_for(request)
     if facts is not None:
         request = replace(request, assignment=given_assignment(instance, domain, facts))
-    if method.encoded:
-        request = replace(request, encoding=encoding if isinstance(encoding, Encoding)
+    if method.encoded and given is None:
+        request = replace(request, encoding=default_encoding(domain) if encoding is None
                           else find_encoding(domain, encoding))
     return request
 

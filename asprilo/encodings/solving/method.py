@@ -6,12 +6,19 @@ A method has a name (``asprilo solve --method NAME``), checks the requests it is
 under a :class:`.Watch`.  The request it runs carries the lower bounds; the front end
 checks the plan it returns (unless the method did) and runs it in a child process when
 asked.  A new method is a subclass registered in the table of :mod:`.methods`.
+
+A method says which rules its plans follow (:meth:`Method.honours`): those that run a logic
+program follow the domain's own encodings (or the caller's); max-flow and the anytime planner
+are written in Python for SPEC.md's rules and honour only domains with exactly those rules
+(:func:`spec_rules`), not a rule variant nor a domain registered with a checker concern more.
 """
 
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
 from typing import ClassVar
+
+from asprilo.domain import Domain
 
 from .outcome import Outcome
 from .request import SolveRequest
@@ -23,12 +30,19 @@ class Method(ABC):
 
     #: the name requests use (``SolveRequest.method``)
     name: ClassVar[str]
+    #: the method in words (``the exact search``)
+    words: ClassVar[str] = ""
     #: whether it runs a logic program (``SolveRequest.encoding``, resolved by name when the
     #: caller gives a name)
     encoded: ClassVar[bool] = False
     #: whether it runs its parts in child processes itself (the front end then never runs it
     #: in a child, ``isolate`` or not)
     isolates_itself: ClassVar[bool] = False
+
+    def honours(self, domain: Domain) -> bool:
+        """Whether the plans of this method follow ``domain``'s rules (by default they do: a
+        method that runs a logic program runs the domain's own encoding or the caller's)."""
+        return True
 
     def check(self, request: SolveRequest) -> None:
         """Raise :class:`~asprilo.errors.InputError` if this method cannot serve ``request``
@@ -51,3 +65,26 @@ class Method(ABC):
     @abstractmethod
     def run(self, request: SolveRequest, watch: Watch) -> Outcome:
         """Solve ``request`` (checked, with its lower bounds) within ``watch``'s limits."""
+
+
+def spec_rules(domain: Domain) -> bool:
+    """Whether ``domain``'s rules are those of a built-in domain (SPEC.md): its moves, its
+    checker concerns and their facts and constants, its actions, deliveries and goal are those
+    of A, B, C, M or Md.  A domain registered at run time under another name with the same
+    rules has them; a rule variant (``M+diagonal``) or a domain with a checker concern more
+    (docs/EXTENDING.md's Mc) has not, whatever its name."""
+    from asprilo.domain import a, b, c, m, md
+    from asprilo.domain.variants import is_standard
+
+    return is_standard(domain) and any(
+        (domain.checker, domain.constants, domain.actions, domain.delivery, domain.goal, domain.work)
+        == (builtin.checker, builtin.constants, builtin.actions, builtin.delivery, builtin.goal, builtin.work)
+        for builtin in (a.A, b.B, c.C, m.M, md.MD))
+
+
+def unserved_words(domain: Domain) -> str:
+    """Why the methods written for SPEC.md's rules do not serve ``domain``, in words."""
+    if domain.variants:
+        names = ", ".join(f"'{name}'" for name in domain.variants)
+        return f"the rules of variant{'s' * (len(domain.variants) > 1)} {names}"
+    return f"the rules of domain {domain.label} (its checker concerns are not those of a built-in domain)"

@@ -40,6 +40,8 @@ class Outcome:
     history: list[dict[str, Any]] = field(default_factory=list)  # anytime, auto: the plans reported
     warnings: list[str] = field(default_factory=list)  # clingo's warnings on a user's encoding
     found_by: str = ""  # method auto: the method whose plan is the answer (asp or anytime)
+    stage: str = ""  # the files of a first stage (``--stage``), in words; "" without one
+    staged: list[str] | None = None  # the atoms of its first answer, as text (None: it had no answer)
 
     @property
     def found(self) -> bool:

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TypedDict
 
 import clingo
@@ -37,6 +38,13 @@ class SolveRequest:
     (seconds) and ``memory_limit`` (MB, with ``isolate``) bound the whole solve; ``isolate``
     runs it in a child process, so that the limits hold while clingo grounds.  ``bounds``:
     the lower bounds, when the caller has them.
+
+    ``stage``: a first stage of a two-stage encoding (the exact search only), e.g. a task
+    assignment of one's own: a program solved once with the instance and the encoding's
+    constants (and the horizon, when one is given); the shown atoms of its first answer become
+    facts of the encoding at every horizon, as ``clingo stage.lp inst.lp | clingo - plan.lp
+    inst.lp`` pipes them (:mod:`.stage`).  A horizon refuted then is refuted along that answer
+    only.  Make it with :func:`asprilo.encodings.choice.stage_encoding`.
     """
 
     instance: Instance
@@ -52,6 +60,7 @@ class SolveRequest:
     memory_limit: int | None = None
     isolate: bool = False
     bounds: LowerBounds | None = None
+    stage: Encoding | None = None
 
     @property
     def lower_bound(self) -> float:
@@ -64,10 +73,12 @@ class SolveRequest:
 class SolveOptions(TypedDict, total=False):
     """The keywords of :func:`~asprilo.encodings.solve` that make its request, as the
     caller gives them: ``encoding`` by name (or an :class:`Encoding`) and ``assignment`` as
-    ``assign`` facts (an earlier outcome's ``assignment.facts``)."""
+    ``assign`` facts (an earlier outcome's ``assignment.facts``); ``encoding`` ``None``: the
+    domain's default (:func:`~asprilo.encodings.registry.default_encoding`); ``stage`` as an
+    :class:`Encoding` or its files."""
 
     method: str
-    encoding: str | Encoding
+    encoding: str | Encoding | None
     horizon: int | None
     max_horizon: int | None
     assign: bool
@@ -77,6 +88,7 @@ class SolveOptions(TypedDict, total=False):
     memory_limit: int | None
     isolate: bool
     bounds: LowerBounds | None
+    stage: Encoding | Sequence[str | Path] | None
 
 
 def given_assignment(instance: Instance, domain: Domain, facts: Sequence[str]) -> Assignment:

@@ -10,9 +10,11 @@ to the table.
 
 from __future__ import annotations
 
+from asprilo.domain import Domain
 from asprilo.errors import InputError
 
-from ..method import Method
+from ...registry import Encoding
+from ..method import Method, spec_rules, unserved_words
 from ..request import SolveRequest
 from .anytime import Anytime
 from .auto import Auto, resolve
@@ -48,4 +50,25 @@ def method_for(request: SolveRequest) -> Method:
     return method
 
 
-__all__ = ["METHODS", "Method", "find_method", "method_for", "method_names", "resolve"]
+def methods_words(domain: Domain, encoding: Encoding | None = None) -> str:
+    """Which methods serve ``domain`` (those that honour its rules) and which do not, in one
+    sentence, with the ``encoding`` the exact search runs; ``""`` for a domain with SPEC.md's
+    rules (where each method serves the domains it was written for)."""
+    if spec_rules(domain):
+        return ""
+    methods = [method for method in METHODS.values() if method.name != "auto"]
+    unserved = [method.words for method in methods if not method.honours(domain)]
+    if not unserved:
+        return ""
+    served = [method.words for method in methods if method.honours(domain)]
+    said = f"{domain.label}: {' and '.join(unserved)} know only SPEC.md's rules, not {unserved_words(domain)}"
+    if encoding is None:
+        return f"{said}; no method serves it without an encoding: give yours (--encoding FILE)"
+    if encoding.name in domain.variants:
+        runs = f"the model solution of variant '{encoding.name}'"
+    else:
+        runs = "your encoding" if encoding.own else f"the encoding '{encoding.name}'"
+    return f"{said}; {' and '.join(served)} serve{'s' * (len(served) == 1)} it, with {runs}"
+
+
+__all__ = ["METHODS", "Method", "find_method", "method_for", "method_names", "methods_words", "resolve"]

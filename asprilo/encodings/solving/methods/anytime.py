@@ -3,9 +3,10 @@
 
 from __future__ import annotations
 
+from asprilo.domain import Domain
 from asprilo.errors import InputError
 
-from ..method import Method
+from ..method import Method, spec_rules, unserved_words
 from ..outcome import Outcome
 from ..request import SolveRequest
 from ..status import SolveStatus
@@ -16,10 +17,21 @@ class Anytime(Method):
     """Plans of falling makespan until the time limit or the lower bound (``--method anytime``)."""
 
     name = "anytime"
+    words = "the anytime planner"
+
+    def honours(self, domain: Domain) -> bool:
+        """The rules of SPEC.md (the planner moves robots in four directions, knows no rule more)."""
+        return spec_rules(domain)
 
     def check(self, request: SolveRequest) -> None:
         if request.horizon is not None:
             raise InputError("the anytime method searches the makespan itself; leave out --horizon")
+        if not self.honours(request.domain):
+            raise InputError(f"the anytime planner knows only SPEC.md's rules, not "
+                             f"{unserved_words(request.domain)}; leave out --method (the exact search runs the "
+                             f"domain's own encoding) or give your own with --encoding FILE")
+        if request.stage is not None:
+            raise InputError("--stage goes with an encoding: the anytime planner runs none")
 
     def time_limit(self, request: SolveRequest) -> float | None:
         """The request's, or the planner's default (it needs one to share out its time)."""

@@ -15,9 +15,12 @@ never lost, whatever stops a child later.
 
 Where one method answers at once and exactly, ``auto`` is that method (:func:`resolve`): the
 max-flow solver for M/Md with anonymous goals, the horizon search for a given horizon or an
-encoding without one.  The alternatives measured (benchmarks/RESULTS.md, "A plan always"):
-the two in turns in one process, and the anytime plan's makespan as the exact search's
-largest horizon.
+encoding without one.  Where the anytime planner and max-flow do not honour the domain's
+rules (a rule variant, a domain with a checker concern of its own: :meth:`Method.honours`),
+``auto`` is the horizon search with the domain's own encoding (a variant's model solution),
+and bad input where the domain has none.  The alternatives measured (benchmarks/RESULTS.md,
+"A plan always"): the two in turns in one process, and the anytime plan's makespan as the
+exact search's largest horizon.
 """
 
 from __future__ import annotations
@@ -30,16 +33,19 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Any
 
 from asprilo.bounds import INFINITE
-from asprilo.domain import Bound, Job
+from asprilo.domain import Bound
+from asprilo.errors import InputError
 
-from ...registry import Encoding, find_encoding
+from ...registry import Encoding, default_encoding, no_encoding_words
 from ..bounds import AwaitedBounds, LowerBounds
-from ..method import Method
+from ..method import Method, unserved_words
 from ..outcome import Outcome, proven_bound
 from ..request import SolveRequest
 from ..status import IMPROVED, Attempt, Phase, SolveStatus, Totals
 from ..watch import Watch
+from .anytime import Anytime
 from .exact import UNREACHABLE
+from .flow import MaxFlow
 
 if TYPE_CHECKING:
     from asprilo.isolation import Child, Isolated
@@ -62,8 +68,11 @@ def resolve(request: SolveRequest) -> SolveRequest:
     if request.horizon is not None or (encoding is not None and encoding.fixed):
         return replace(request, method=EXACT)
     own = encoding is not None and encoding.own
-    if request.domain.work is Job.GOALS and not request.instance.assignment and not request.assign and not own:
+    plain = not request.instance.assignment and not request.assign and not own and request.stage is None
+    if plain and MaxFlow().honours(request.domain):
         return replace(request, method="flow")
+    if request.stage is not None or not Anytime().honours(request.domain):
+        return replace(request, method=EXACT)
     return request
 
 
@@ -72,8 +81,19 @@ class Auto(Method):
     default)."""
 
     name = AUTO
+    words = "the exact search beside the anytime planner"
     encoded = True
     isolates_itself = True
+
+    def check(self, request: SolveRequest) -> None:
+        """A domain none of whose methods serves without an encoding of its own (a variant
+        without a model solution) is bad input: said naming the variant and what to do."""
+        domain = request.domain
+        if request.encoding is None and not domain.encodings and not MaxFlow().honours(domain) \
+                and not Anytime().honours(domain):
+            raise InputError(f"no method of solve serves {domain.label}: max-flow and the anytime planner know only "
+                             f"SPEC.md's rules, not {unserved_words(domain)}, and {no_encoding_words(domain)}; "
+                             "give your own encoding to solve under its rules: --encoding FILE")
 
     def label(self, request: SolveRequest) -> str:
         return _encoding(request).name
@@ -83,7 +103,7 @@ class Auto(Method):
 
 
 def _encoding(request: SolveRequest) -> Encoding:
-    return request.encoding if request.encoding is not None else find_encoding(request.domain)
+    return request.encoding if request.encoding is not None else default_encoding(request.domain)
 
 
 class Portfolio:

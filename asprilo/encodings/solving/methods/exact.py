@@ -17,11 +17,12 @@ from __future__ import annotations
 import time
 
 from asprilo.bounds import INFINITE
+from asprilo.domain import Domain, domains
 from asprilo.errors import InputError
 from asprilo.solver import Result, Solver, Status
 
-from ...registry import Encoding, find_encoding
-from ..method import Method
+from ...registry import Encoding, default_encoding
+from ..method import Method, spec_rules
 from ..outcome import Outcome
 from ..request import SolveRequest
 from ..status import Attempt, SolveStatus
@@ -44,20 +45,64 @@ class HorizonSearch:
         self.program = Program(request.instance, request.domain, encoding, watch)
         self.outcome = Outcome(SolveStatus.LIMIT, request.domain, ExactSearch.name, encoding.name)
         self.outcome.lower_bound = request.lower_bound
+        self.gave_up = False  # every horizon up to the last was refuted
+        #: whether a horizon the encoding refutes has no plan under the domain's rules (not so
+        #: for the model solution of a variant composed after one that relaxes the rules)
+        self.sound = refutes_for(request.domain, encoding)
 
     def run(self) -> Outcome:
-        """The search without a task assignment."""
+        """The search without a task assignment (after the first stage, where there is one)."""
         outcome, bound = self.outcome, self.request.lower_bound
-        if self.program.encoding.fixed:
-            return self.once()
-        if self.unreachable():
+        fixed = self.program.encoding.fixed  # solved once, as it is, whatever the bound
+        if (not fixed and self.unreachable()) or not self.staged():
             return outcome
+        if fixed:
+            return self.once()
         first = int(bound) if self.request.horizon is None else self.request.horizon
-        self.upward(first, self.last_horizon(first))
+        last = self.last_horizon(first)
+        self.upward(first, last)
         if outcome.plan is not None:
             outcome.horizon = outcome.plan.horizon
-            outcome.minimal = outcome.horizon <= bound or self.searched_up()
+            searched = self.searched_up()
+            if self.program.staged is not None:  # refuted along the first stage's answer only
+                outcome.minimal, outcome.minimal_along_assignment = outcome.horizon <= bound, searched
+            else:
+                outcome.minimal = outcome.horizon <= bound or (searched and self.sound)
+        elif outcome.status is SolveStatus.NONE and self.program.staged is not None:
+            outcome.message = (f"no plan at horizon {last} along the first stage's answer (not refuted for the "
+                               "problem)")
+        elif outcome.status is SolveStatus.NONE and not self.sound:
+            outcome.message = (f"no plan at horizon {last} for the encoding '{self.program.encoding.name}', which "
+                               f"states the rules of its variant alone (not refuted under {self.request.domain.label})")
+        elif outcome.status is SolveStatus.LIMIT and self.gave_up and not spec_rules(self.request.domain):
+            # under rules of its own (a variant that confines robots, say), the bound cannot say
+            # that no plan exists: where the search stopped is said instead
+            outcome.message = (f"the encoding '{self.program.encoding.name}' has no plan up to horizon {last}, where "
+                               f"the search stops (the lower bound plus the floor's cells, the robots and twice the "
+                               f"order lines): longer plans are not tried")
         return outcome
+
+    def staged(self) -> bool:
+        """Solve the first stage, if the request has one, and give its atoms to the program;
+        whether the search goes on (a stage without an answer ends it, said in words)."""
+        stage = self.request.stage
+        if stage is None:
+            return True
+        from ..stage import solve_stage, stage_words
+
+        answer = solve_stage(stage, self.program.facts, self.watch, self.request.horizon)
+        self.program.warnings += [f"first stage: {warning}" for warning in answer.warnings]
+        self.outcome.warnings = self.program.warnings
+        self.outcome.stage = ", ".join(str(file) for file in stage.files)
+        if answer.status is Status.SAT:
+            self.program.staged, self.outcome.staged = answer.symbols, answer.facts
+            return True
+        self.outcome.message = stage_words(stage, answer)
+        if answer.status is Status.UNSAT:
+            self.outcome.status = SolveStatus.NONE
+        else:
+            self.outcome.status = SolveStatus.CANCELLED if self.watch.cancelled else SolveStatus.LIMIT
+        return False
 
     def once(self) -> Outcome:
         """A program without a horizon: grounded and solved once, as it is."""
@@ -114,7 +159,7 @@ class HorizonSearch:
 
     def record(self, attempt: Attempt) -> None:
         """Keep and report one try (tried along the task assignment when the program follows one)."""
-        attempt.along = self.program.assignment is not None
+        attempt.along = self.program.assignment is not None or self.program.staged is not None or not self.sound
         self.outcome.horizons_tried.append(attempt)
         self.outcome.warnings = self.program.warnings
         self.watch.progress(attempt)
@@ -191,15 +236,33 @@ class HorizonSearch:
         """Every horizon up to the last refuted: an upward search ran out of horizons."""
         if self.request.horizon is None:
             self.outcome.status = SolveStatus.LIMIT
+            self.gave_up = True
+
+
+def refutes_for(domain: Domain, encoding: Encoding) -> bool:
+    """Whether a horizon ``encoding`` has no plan for has none under ``domain``'s rules.  So for
+    a domain's own encodings and a user's (their claim), but for the model solution of a
+    variant composed after others (``M+diagonal+sides`` runs ``sides``' solution, which knows
+    four moves only) just where those others only restrict the rules: the domain before the
+    last variant keeps its base's bound."""
+    variants = domain.variants
+    if len(variants) < 2 or encoding.own or encoding.name != variants[-1] or domain.bound is not None:
+        return True
+    name = domain.value.rsplit("+", 1)[0]  # registered when the variants were applied in turn
+    before = next((known for known in domains() if known.value == name), None)
+    return before is not None and before.bound is not None
 
 
 class ExactSearch(Method):
     """The minimal makespan by a logic program over growing horizons (``--method asp``)."""
 
     name = "asp"
+    words = "the exact search"
     encoded = True
 
     def check(self, request: SolveRequest) -> None:
+        if request.stage is not None and request.assign:
+            raise InputError("--stage and --assign each give the plan an assignment: give one of them")
         encoding = request.encoding
         if encoding is not None and encoding.fixed and request.horizon is not None:
             raise InputError(f"the encoding {encoding.name} has no horizon constant and no step(t) parts: "
@@ -217,4 +280,4 @@ class ExactSearch(Method):
 
 
 def _encoding(request: SolveRequest) -> Encoding:
-    return request.encoding if request.encoding is not None else find_encoding(request.domain)
+    return request.encoding if request.encoding is not None else default_encoding(request.domain)

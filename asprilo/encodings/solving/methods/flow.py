@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-from asprilo.domain import Job
+from asprilo.domain import Domain, Job
 from asprilo.errors import InputError
 from asprilo.solver import Statistics
 
-from ..method import Method
+from ..method import Method, spec_rules, unserved_words
 from ..outcome import Outcome
 from ..request import SolveRequest
 from ..status import SolveStatus
@@ -21,10 +21,21 @@ class MaxFlow(Method):
     """The minimal makespan of anonymous robots as maximum flow over time (``--method flow``)."""
 
     name = "flow"
+    words = "max-flow"
+
+    def honours(self, domain: Domain) -> bool:
+        """M and Md as SPEC.md has them: robots move in four directions to goal cells."""
+        return domain.work is Job.GOALS and spec_rules(domain)
 
     def check(self, request: SolveRequest) -> None:
         if request.domain.work is not Job.GOALS:
             raise InputError(f"the flow method solves domains M and Md only, not {request.domain.label}")
+        if not self.honours(request.domain):
+            raise InputError(f"the flow method knows only SPEC.md's rules of M and Md, not "
+                             f"{unserved_words(request.domain)}; leave out --method (the exact search runs the "
+                             f"domain's own encoding) or give your own with --encoding FILE")
+        if request.stage is not None:
+            raise InputError("--stage goes with an encoding: the flow method runs none")
         if request.instance.assignment:
             raise InputError("the instance assigns goals to robots; the flow method solves anonymous "
                              "goals only (use --method asp)")

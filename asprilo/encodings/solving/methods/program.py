@@ -2,7 +2,8 @@
 search solves (:class:`Program`), and the plan of a model (:func:`name_robots`).
 
 Besides the encoding and the instance facts, the program gets what the encodings can use
-but need not compute: the task assignment it follows, ``ruled_out/2`` hints for M/Md with
+but need not compute: the task assignment it follows, the atoms of a first stage's answer
+(``--stage``, as symbols: :mod:`..stage`), ``ruled_out/2`` hints for M/Md with
 many robots, floor distances to the stations for A/B/C (``to_station/3``) and the delivery
 schedule of the scheduling relaxation as ``hint_serve/3`` (a horizon with hints is searched
 in turns with and without them).  Any :class:`~asprilo.encodings.Encoding` works here, a
@@ -25,6 +26,7 @@ from asprilo.writer import format_instance
 from ...assignment import Assignment
 from ...bounds import unusable_goals
 from ...registry import Encoding, find_encoding
+from ..stage import add_symbols
 from ..watch import Watch
 
 #: M/Md instances with this many robots get ruled_out/2 hints (they ground big programs faster)
@@ -45,7 +47,8 @@ class Program:
     attached to ``watch``, or step by step for an incremental encoding.
 
     ``assignment``, when set, is the task assignment the program follows (its facts are
-    loaded with the instance).
+    loaded with the instance); ``staged``, when set, the atoms of the first stage's answer
+    (loaded as facts, whatever the encoding).
     """
 
     def __init__(self, instance: Instance, domain: Domain, encoding: Encoding, watch: Watch):
@@ -53,6 +56,7 @@ class Program:
         self.floor = Floor(instance.cells)
         self.facts = format_instance(instance, [])
         self.assignment: Assignment | None = None
+        self.staged: list[clingo.Symbol] | None = None
         self._distances: str | None = None
         #: clingo's warnings on a user's encoding (each once, e.g. an atom no rule derives)
         self.warnings: list[str] = []
@@ -154,6 +158,8 @@ class Program:
         """Load the instance, what the encoding may use, and the encoding; whether the
         program has search hints."""
         solver.add(self.facts)
+        if self.staged is not None:
+            add_symbols(solver, self.staged)
         if self.encoding.own:
             self._load_own(solver)
             return False
