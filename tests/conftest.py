@@ -24,6 +24,21 @@ def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
 
 
 @pytest.fixture(autouse=True)
+def registries_as_found():
+    """A variant loaded or a domain registered in a test is known to this process only for that
+    test: the registries of domains and object kinds are put back as they were."""
+    from asprilo import objects
+    from asprilo.domain import descriptor
+
+    kinds, domains = dict(objects.KINDS), dict(descriptor._REGISTRY)
+    yield
+    objects.KINDS.clear()
+    objects.KINDS.update(kinds)
+    descriptor._REGISTRY.clear()
+    descriptor._REGISTRY.update(domains)
+
+
+@pytest.fixture(autouse=True)
 def qt_objects_deleted_between_tests():
     """After each test, the widgets it closed are deleted and its Python garbage collected, here:
     not later, in the middle of another test (a window deleted while the next test walks its

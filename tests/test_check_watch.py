@@ -335,3 +335,24 @@ def test_the_help_says_how_to_watch(arguments, capsys):
         main(["check", *arguments])
     text = capsys.readouterr().out
     assert "check INSTANCE PLAN --watch" in text and "--violations N" in text and "--encoding" in text
+
+
+def test_the_watch_checks_under_the_variants_given(tmp_path):
+    """tests/variants/corridor.lp (robot 1 at (2,1), energy 2): a detour of four moves runs out
+    at step 3 under --variant energy, and is valid without it (the energy fact then ignored)."""
+    from asprilo.domain.variants import load_variant
+
+    corridor = Path(__file__).parent / "variants" / "corridor.lp"
+    plan = tmp_path / "detour.lp"
+    plan.write_text("".join(f"occurs(object(robot,1),action(move,({dx},0)),{step}).\n"
+                            for step, dx in enumerate((-1, 1, 1, 1), 1)))
+    verdicts = []
+    for variants in ([], [load_variant("energy")]):
+        out = io.StringIO()
+        rerun = PlanCheck(corridor, plan, None, 5, out)
+        rerun.variants = variants
+        rerun([])
+        verdicts.append([line for line in out.getvalue().splitlines()[1:] if not line.startswith("warning")])
+    assert verdicts == [["valid plan (domain M (detected), horizon 4)"],
+                        ["step 3: robot 1 runs out of energy: its level would be -1",
+                         "invalid plan: 1 violation (domain M+energy (detected), horizon 4)"]]

@@ -23,20 +23,6 @@ HERE = Path(__file__).parent / "variants"
 CORNER, SQUARE, CORRIDOR = HERE / "corner.lp", HERE / "square.lp", HERE / "corridor.lp"
 
 
-@pytest.fixture(autouse=True)
-def _as_built_in():
-    """A variant's domain and attributes are known in the process that loaded it: each test
-    starts afresh, and leaves the registries as it found them."""
-    from asprilo import objects
-    from asprilo.domain import descriptor
-    kinds, domains = dict(objects.KINDS), dict(descriptor._REGISTRY)
-    yield
-    objects.KINDS.clear()
-    objects.KINDS.update(kinds)
-    descriptor._REGISTRY.clear()
-    descriptor._REGISTRY.update(domains)
-
-
 def _plan(tmp_path: Path, *moves: tuple[int, tuple[int, int], int]) -> Path:
     path = tmp_path / "plan.lp"
     path.write_text("".join(f"occurs(object(robot,{robot}),action(move,({dx},{dy})),{step}).\n"

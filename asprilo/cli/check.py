@@ -126,12 +126,15 @@ def _watched(args: argparse.Namespace, clingo_options: list[str]) -> Rerun:
         raise InputError("--watch watches files: standard input (-) is never saved")
     from .reruns import EncodingSolve, PlanCheck
     shown = SHOWN_VIOLATIONS if args.violations is None else args.violations
+    variants = loaded_variants(args)  # before the first run reads the instance
     if not args.encoding:
         if args.plan is None:
             raise InputError("no plan given (check INSTANCE PLAN --watch, or --encoding FILE to solve)")
         _refuse_solve_options(args, clingo_options, "--encoding")
         _require_files([args.instance, args.plan])
-        return PlanCheck(Path(args.instance), Path(args.plan), args.domain, shown)
+        checking = PlanCheck(Path(args.instance), Path(args.plan), args.domain, shown)
+        checking.variants = variants
+        return checking
     from asprilo.encodings.choice import is_encoding_file
     from asprilo.encodings.own import program_files
     from asprilo.writer import check_output
@@ -141,6 +144,7 @@ def _watched(args: argparse.Namespace, clingo_options: list[str]) -> Rerun:
     solver = EncodingSolve(Path(args.instance), None if args.plan is None else Path(args.plan), args.domain, shown,
                            args.encoding, args.const, clingo_options, args.horizon,
                            args.time_limit or WATCH_TIME_LIMIT)
+    solver.variants = variants
     solver.validate()
     return solver
 

@@ -20,6 +20,7 @@ from asprilo.checker import Report, check
 from asprilo.checker import cli as checker_cli
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError, InputWarning
+from asprilo.model import Instance, Plan
 from asprilo.reader import read_instance, read_instance_and_plan
 from asprilo.writer import format_plan, write_text
 
@@ -44,6 +45,15 @@ class Rerun:
     def __init__(self, instance: Path, domain: Domain | None, shown: int, out: TextIO | None = None):
         self.instance, self.domain, self.shown = instance, domain, shown
         self.out = out if out is not None else sys.stdout
+        self.variants: list = []  # the --variant files (loaded), applied on every run
+
+    def domain_for(self, instance: Instance, plan: Plan | None = None) -> Domain | None:
+        """The domain of a run: ``--domain`` or the one detected, changed by the variants
+        (``None``, to be detected by the check, when neither is given)."""
+        if not self.variants:
+            return self.domain
+        from asprilo.domain.variants import with_variants
+        return with_variants(self.domain or detect_domain(instance, plan), self.variants)
 
     def paths(self) -> list[Path]:
         raise NotImplementedError
@@ -89,7 +99,7 @@ class PlanCheck(Rerun):
             warnings.simplefilter("always", InputWarning)
             try:
                 instance, plan = read_instance_and_plan(str(self.instance), str(self.plan), domain=self.domain)
-                report = check(instance, plan, self.domain)
+                report = check(instance, plan, self.domain_for(instance, plan))
             except InputError as error:
                 self.say([heading, *_warned(caught), f"error: {error}"])
                 return
@@ -128,7 +138,7 @@ class EncodingSolve(Rerun):
             with warnings.catch_warnings():  # the first run says them
                 warnings.simplefilter("ignore", InputWarning)
                 instance = read_instance(str(self.instance))
-            self.choose(self.domain or detect_domain(instance))
+            self.choose(self.domain_for(instance) or detect_domain(instance))
         except InputError as error:
             if error.file is None:
                 raise
@@ -153,7 +163,7 @@ class EncodingSolve(Rerun):
     def _lines(self, cancel: threading.Event) -> list[str]:
         from asprilo.encodings import solve
         instance = read_instance(str(self.instance))
-        domain = self.domain or detect_domain(instance)
+        domain = self.domain_for(instance) or detect_domain(instance)
         encoding, horizon = self.choose(domain)
         progress = Progress(self.err)
         try:
