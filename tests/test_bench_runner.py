@@ -272,3 +272,22 @@ def test_a_makespan_with_assignment_is_known_only_with_its_assignment():
     assert needs_search({"C_a": 14}, {}, assigned)  # its runs could not follow the same assignment
     assert not needs_search({"C_a": 14}, facts, assigned)
     assert not needs_search({"C_a": None}, {}, assigned)  # not found: nothing to follow
+
+
+def test_a_resumed_run_finds_its_records_however_the_suite_path_is_spelled(tmp_path, monkeypatch):
+    """The suite names its instance relative to itself; run once as ``suite.yml`` from its folder
+    and once by its absolute path from elsewhere, the one run is recorded once (it was run again:
+    the keys held the instance's path as spelled through the suite's path)."""
+    monkeypatch.setattr(runner_module, "run_limited", off_the_floor)
+    folder = tmp_path / "course"
+    folder.mkdir()
+    shutil.copy(TINY, folder / "tiny.lp")
+    (folder / "suite.yml").write_text("name: t\ntime_limit: 30\nmemory_limit: 2048\n"
+                                      "instances: {tiny: {files: [tiny.lp]}}\nruns: [{domain: m}]\n")
+    monkeypatch.chdir(folder)
+    first = Runner(load_suite("suite.yml"), tmp_path / "out").run()
+    monkeypatch.chdir(tmp_path)
+    again = Runner(load_suite(str(folder / "suite.yml")), tmp_path / "out").run()
+    assert [record["instance"] for record in first] == ["tiny.lp"]
+    assert [record["key"] for record in again] == [first[0]["key"]]
+    assert len((tmp_path / "out" / "results.jsonl").read_text().splitlines()) == 1

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import contextlib
 import json
+import os
 import sys
 import threading
 import time
@@ -340,16 +341,25 @@ class Runner:
                                      f"{instance_set.select!r}", str(self.suite.path))
             else:
                 paths = instance_set.pick(existing_files(self.suite, instance_set))
+            absolute = any(Path(pattern).is_absolute() for pattern in instance_set.files)
             for path in paths:
-                try:
-                    name = str(path.resolve().relative_to(self.folder.resolve()))
-                except ValueError:
-                    name = str(path)
-                found.append(SuiteInstance(instance_set.name, path, name, len(read_instance(path).robots)))
+                found.append(SuiteInstance(instance_set.name, path, self._name(path, absolute),
+                                           len(read_instance(path).robots)))
         return found
 
     # --- minimal makespans ---------------------------------------------------------------
 
+
+    def _name(self, path: Path, absolute: bool) -> str:
+        """An instance's name in keys and reports, the same however the suite's path is spelled
+        (a resumed run finds its records): its path relative to the output folder when it lies
+        there (generated), else relative to the suite's folder, or resolved where the suite
+        names its files by absolute paths (``absolute``)."""
+        resolved = path.resolve()
+        try:
+            return str(resolved.relative_to(self.folder.resolve()))
+        except ValueError:
+            return str(resolved) if absolute else os.path.relpath(resolved, self.suite.path.resolve().parent)
     def makespans(self, instances: list[SuiteInstance]) -> dict[str, dict[str, int | None]]:
         """Minimal makespan of every instance for every domain (and assignment) the runs use."""
         path = self.folder / MAKESPANS
