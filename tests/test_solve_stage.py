@@ -189,3 +189,14 @@ def test_the_stage_file_must_exist(capsys, tmp_path):
     assert capsys.readouterr().err == f"error: {tmp_path / 'missing.lp'}: no such file\n"
     with pytest.raises(InputError, match="--stage names the files of the first stage"):
         stage_encoding([])
+
+
+def test_grade_runs_a_two_stage_encoding_with_its_first_stage(capsys):
+    """The grader hands the stage on as solve does: along the stage's answer the plan has
+    makespan 4, the instance's minimum (plain M, by the reference) is 1."""
+    code = main(["grade", str(PLAN), "--stage", str(ASSIGN), "--domain", "m", "--instances", str(M_PASS), "--json"])
+    entry = json.loads(capsys.readouterr().out)["instances"][0]
+    assert (code, entry["result"], entry["makespan"], entry["minimum"], entry["minimal"]) == (0, "valid", 4, 1, False)
+    code = main(["grade", str(PLAN), "--domain", "m", "--instances", str(M_PASS), "--json"])
+    entry = json.loads(capsys.readouterr().out)["instances"][0]
+    assert (entry["makespan"], entry["minimal"]) == (1, True)  # without the stage nothing ties the robots

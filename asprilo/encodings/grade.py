@@ -56,7 +56,7 @@ from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
 from asprilo.reader import read_instance
 
-from .choice import choose_encoding
+from .choice import choose_encoding, stage_encoding
 from .exercise import Exercise, instance_files, instance_ladder, read_exercise
 from .grading import JSON_VERSION, VALID, VERDICTS, Graded, Summary, grade_ladder, horizons, refused, too_strong
 from .ladder import Ladder, Rung, bundled_ladder, read_ladder
@@ -85,6 +85,10 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print the grades as JSON (docs/GRADING.md)")
     parser.add_argument("--list", action="store_true", help="list the ladder's instances and their minima, and exit")
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress on stderr")
+    parser.add_argument("--stage", action="extend", nargs="+", metavar="FILE",
+                        help="a first stage of the encoding (e.g. a task assignment), solved once with each instance "
+                             "and the same -c constants: the shown atoms of its first answer become facts of the "
+                             "encoding (as asprilo solve --stage)")
     add_variant_option(parser)
     group = parser.add_argument_group("against a model solution", "the minima from a teacher's encoding, the "
                                       "plans checked under the exercise's rules (docs/GRADING.md)")
@@ -127,15 +131,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     if not args.encoding:
         raise InputError("no encoding given (asprilo grade ENCODING... --domain D)")
-    refusal: InputError | None = None
-    horizon: int | None = None
-    try:
-        encoding, horizon = choose_encoding(args.encoding, args.const, getattr(args, "clingo_options", None) or (),
-                                            ladder.domain)
-    except InputError as error:
-        if reference is None or not _in_encoding(error):
-            raise
-        encoding, refusal = _refused_encoding(args.encoding), error
+    encoding, horizon, stage, refusal = _graded_encoding(args, ladder, reference)
     progress = _Progress(sys.stderr, quiet=args.quiet)
     out = sys.stdout
     started = time.perf_counter()
@@ -144,7 +140,7 @@ def run(args: argparse.Namespace) -> int:
     if refusal is not None:
         grades = refused(ladder, refusal, args.first)
     else:
-        grades = grade_ladder(encoding, ladder, time_limit=time_limit, horizon=horizon,
+        grades = grade_ladder(encoding, ladder, time_limit=time_limit, horizon=horizon, stage=stage,
                               memory_limit=args.memory_limit, first=args.first, reference=reference,
                               refusals=reference is not None, on_start=progress.start, on_phase=progress.phase,
                               on_reference_phase=progress.reference_phase)
@@ -166,6 +162,20 @@ def run(args: argparse.Namespace) -> int:
         _say(out, summary.line())
     return 0 if summary.valid == summary.instances else 1
 
+
+def _graded_encoding(args: argparse.Namespace, ladder: Ladder, reference: Reference | None
+                     ) -> tuple[Encoding, int | None, Encoding | None, InputError | None]:
+    """The encoding graded, its horizon (``-c horizon=H``) and first stage (``--stage``); against
+    a reference, an encoding clingo refuses is graded (the refusal comes back) rather than an error."""
+    try:
+        encoding, horizon = choose_encoding(args.encoding, args.const, getattr(args, "clingo_options", None) or (),
+                                            ladder.domain)
+        stage = stage_encoding(args.stage, encoding.constants) if args.stage else None
+    except InputError as error:
+        if reference is None or not _in_encoding(error):
+            raise
+        return _refused_encoding(args.encoding), None, None, error
+    return encoding, horizon, stage, None
 
 def _setup(args: argparse.Namespace) -> _Setup:
     """The ladder, or the instances with the reference that computes their minima."""

@@ -153,13 +153,15 @@ class Summary:
 
 
 def grade_ladder(encoding: Encoding, ladder: Ladder, *, time_limit: float, horizon: int | None = None,
-                 memory_limit: int | None = None, first: int | None = None, reference: Reference | None = None,
-                 refusals: bool = False, on_start: Callable[[int, int, Rung], None] | None = None,
+                 stage: Encoding | None = None, memory_limit: int | None = None, first: int | None = None,
+                 reference: Reference | None = None, refusals: bool = False,
+                 on_start: Callable[[int, int, Rung], None] | None = None,
                  on_phase: Callable[[Phase], None] | None = None,
                  on_reference_phase: Callable[[Phase], None] | None = None) -> Iterator[Graded]:
     """Grade ``encoding`` on the (``first``) instances of ``ladder``, one after the other,
     each under ``time_limit`` seconds (and ``memory_limit`` MB); ``horizon``: solve at this
-    makespan only (``-c horizon=H``).  With a ``reference``, each instance's minimum is what
+    makespan only (``-c horizon=H``); ``stage``: a first stage solved once per instance, whose
+    first answer's atoms the encoding reads (``--stage``).  With a ``reference``, each instance's minimum is what
     the reference's search proves first (``None`` where it proves none).
     ``on_start(step, steps, rung)`` is called before an instance, ``on_reference_phase``
     while the reference solves it, ``on_phase`` while the encoding does.
@@ -179,7 +181,7 @@ def grade_ladder(encoding: Encoding, ladder: Ladder, *, time_limit: float, horiz
         started = time.perf_counter()
         try:
             graded = grade_rung(step, rung, instance, ladder, encoding, time_limit=time_limit, horizon=horizon,
-                                memory_limit=memory_limit, on_phase=on_phase)
+                                stage=stage, memory_limit=memory_limit, on_phase=on_phase)
         except InputError as error:
             shape = no_plan_shape(error)
             if step == 1 and not refusals and not shape:
@@ -208,14 +210,15 @@ def no_plan_shape(error: InputError) -> str:
 
 
 def grade_rung(step: int, rung: Rung, instance: Instance, ladder: Ladder, encoding: Encoding, *,
-               time_limit: float, horizon: int | None = None, memory_limit: int | None = None,
+               time_limit: float, horizon: int | None = None, stage: Encoding | None = None,
+               memory_limit: int | None = None,
                on_phase: Callable[[Phase], None] | None = None) -> Graded:
     """Grade ``encoding`` on one instance of ``ladder`` (``instance``: the rung's file, read);
     an encoding that clingo refuses is :class:`InputError`."""
     started = time.perf_counter()
     try:
         outcome = solve(instance, ladder.domain, encoding=encoding, horizon=horizon, time_limit=time_limit,
-                        memory_limit=memory_limit, isolate=True, on_phase=on_phase)
+                        memory_limit=memory_limit, isolate=True, on_phase=on_phase, stage=stage)
     except InputError:
         raise
     except Exception as error:  # whatever the encoding does, it is graded, never a crash of the grader
