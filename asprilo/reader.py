@@ -1,34 +1,23 @@
 """Read instances and plans (SPEC.md §2-3) from files, strings or stdin: parsed into terms
-(:mod:`asprilo.parse`, no clingo), taken apart by the shapes of :mod:`asprilo.facts`."""
+(:mod:`asprilo.parse`, no clingo), taken apart by the shapes of :mod:`asprilo.facts`; an
+instance built by :mod:`asprilo.instance_builder`, a plan here."""
 
 from __future__ import annotations
 
 import warnings
-from collections.abc import Callable, Iterable, Sequence
-from itertools import chain
+from collections.abc import Iterable, Sequence
 from typing import Any
 
 import clingo
 
 from .domain import Domain, detect_domain, domains
 from .errors import InputError, InputWarning
-from .facts import (
-    OCCURS_SHAPE,
-    action_of,
-    assign_args,
-    assign_terms,
-    format_action,
-    format_value,
-    init_fact,
-    init_terms,
-    shape_error,
-    value_of,
-)
+from .facts import OCCURS_SHAPE, action_of, format_action, shape_error, value_of
+from .instance_builder import INSTANCE_NAMES, build_instance, instance_from_atoms, shown_value, where
 from .limits import Limits, current, require_plan_fits
-from .model import Action, Destination, Instance, Order, Plan, Product, Robot, Shelf
-from .objects import BUILTIN_ATTRIBUTES, KINDS, ObjectKind, placed_kinds
-from .parse import Fn, shown, text_of
-from .sources import ScannedFact, Source, SourceLike, as_sources, line_of, load_facts, locate
+from .model import Action, Instance, Plan
+from .parse import shown
+from .sources import ScannedFact, Source, SourceLike, as_sources, load_facts, locate
 
 #: value_of is the tools' way to read single terms
 __all__ = ["instance_from_atoms", "plan_from_atoms", "read_instance", "read_instance_and_plan", "read_plan",
@@ -43,7 +32,7 @@ def read_instance(inputs: SourceLike | Iterable[SourceLike], limits: Limits | No
     """
     limits = limits or current()
     sources = as_sources(inputs, limits)
-    return _build_instance(sources, load_facts(sources, limits, _INSTANCE_NAMES), [], limits)
+    return build_instance(sources, load_facts(sources, limits, INSTANCE_NAMES), [], limits)
 
 
 def read_plan(inputs: SourceLike | Iterable[SourceLike], limits: Limits | None = None) -> Plan:
@@ -82,270 +71,6 @@ def require_plan_fits_instance(plan: Plan, instance: Instance, sources: Sequence
     except InputError as error:
         raise error.at(sources[0].name if len(sources) == 1 else None) from None
     _warn_foreign_actions(plan, domain or detect_domain(instance, plan), sources)
-
-
-# --- instances ---------------------------------------------------------------------------
-
-#: the atoms an instance and a plan are read from (others are ignored), with their arities
-_INSTANCE_NAMES = {"init", "assign"}
-_ARITY = {"init": 2, "assign": 2, "occurs": 3}
-
-
-def _wrong_arity(name: str, arity: int) -> str:
-    return f"{name}/{arity} ({name} has {_ARITY[name]} arguments)"
-
-
-class _InstanceBuilder:
-    """Collects ``init/2`` facts, rejecting unknown shapes and conflicting duplicates.
-
-    Each fact comes with its origin, used only to say where a bad fact stands.
-    """
-
-    def __init__(self, sources: Sequence[Source], limits: Limits):
-        self.sources = sources
-        self.limits = limits
-        self.unknown: dict[str, Any] = {}  # what is not known -> the origin of its first fact
-        self.instance = Instance()
-        self.seen: dict[tuple, tuple[Any, Any]] = {}
-        self.grid: dict[str, int] = {}
-        self.goals: dict[int, tuple[str, int]] = {}
-        #: how the kinds that are more than placed are read
-        self._readers: dict[str, Callable[[int, str, Any, Any], None]] = {
-            "robot": self._robot, "product": self._product, "order": self._order, "grid": self._grid}
-
-    def fail(self, message: str, origin: Any) -> InputError:
-        return InputError(message, *_where(origin, self.sources))
-
-    def single(self, key: tuple, value: Any, origin: Any, what: str) -> None:
-        """Record a value that may be stated once only (a duplicate must be identical)."""
-        first = self.seen.get(key)
-        if first is not None and first[0] != value:
-            raise self.fail(f"{what}: {_shown(first[0])} and {_shown(value)}", origin)
-        self.seen[key] = (value, origin)
-
-    def add(self, kind: Any, ident: Any, attribute: Any, value: Any, origin: Any) -> None:
-        known = KINDS.get(kind)
-        if known is None or attribute not in known.attributes:
-            what = f"object type '{_shown(kind)}'" if known is None else f"attribute '{_shown(attribute)}' of {kind}"
-            self.unknown.setdefault(what, origin)
-            self.instance.other_facts.append(
-                init_fact(format_value(kind), format_value(ident), format_value(attribute), value))
-            return
-        expected = known.attributes[attribute]
-        if not isinstance(ident, int):
-            raise self.fail(f"{kind} id must be an integer, got {_shown(ident)}", origin)
-        if not expected.shape(value):
-            raise self.fail(f"{kind} {ident}: value of '{attribute}' must be {expected.description}, "
-                            f"got {_shown(value)}", origin)
-        if attribute not in BUILTIN_ATTRIBUTES.get(kind, known.attributes):
-            self._declared(kind, ident, attribute, value, origin)
-        elif known.placed:
-            self._placed(known, ident, value, origin)
-        else:
-            self._readers[kind](ident, attribute, value, origin)
-
-    def check_cells(self) -> None:
-        """Every cell within the ``coordinate`` limit (checked once all are read: fast)."""
-        limit, instance = self.limits.coordinate, self.instance
-        for kind in placed_kinds():
-            cells = {robot.id: robot.at for robot in instance.robots.values()} if kind.name == "robot" \
-                else kind.cells(instance)
-            if max(map(abs, chain.from_iterable(cells.values())), default=0) > limit:
-                ident, cell = next((i, c) for i, c in cells.items() if max(map(abs, c)) > limit)
-                what = self.limits.exceeded("coordinate", f"{kind.words} {ident} at {format_value(cell)}").message
-                raise self.fail(what, self.seen[(kind.words, ident, "at")][1])
-
-    def warn_unknown(self) -> None:
-        """One warning naming everything unknown (at the place of the first such fact)."""
-        if self.unknown:
-            names = ", ".join(self.unknown)
-            file, line = _where(next(iter(self.unknown.values())), self.sources)
-            message = str(InputError(f"ignored (and kept when written): {names}", file, line))
-            warnings.warn(InputWarning(message), stacklevel=4)
-
-    def add_atom(self, atom: Fn, origin: Any) -> None:
-        """An ``init`` or ``assign`` atom as read that is no plain instance fact: a wrong shape
-        is refused, a wrong arity ignored with a warning (the atom kept when written)."""
-        if atom.negative:
-            return  # -init(..) is another atom, as in clingo
-        if len(atom.args) != _ARITY[atom.name]:
-            self.unknown.setdefault(_wrong_arity(atom.name, len(atom.args)), origin)
-            self.instance.other_facts.append(text_of(atom) + ".")
-            return
-        if atom.name == "init":
-            raise shape_error(atom).at(*_where(origin, self.sources))
-        try:
-            ident, kind, goal = assign_args(atom)
-        except InputError as error:
-            raise error.at(*_where(origin, self.sources)) from None
-        self._assign(ident, kind, goal, origin)
-
-    def add_other_symbol(self, atom: clingo.Symbol) -> None:
-        """An ``init`` or ``assign`` atom (a clingo symbol) of another arity."""
-        self.unknown.setdefault(_wrong_arity(atom.name, len(atom.arguments)), atom)
-        self.instance.other_facts.append(f"{atom}.")
-
-    def add_symbol(self, atom: clingo.Symbol) -> None:
-        """Add an ``init/2`` atom of any shape (the slow path for unusual terms)."""
-        try:
-            terms = init_terms(atom)
-        except InputError as error:
-            raise error.at(*_where(atom, self.sources)) from None
-        self.add(*terms, atom)
-
-    def assign(self, atom: clingo.Symbol) -> None:
-        """Add a labelled goal ``assign(robot(R),shelf(S))`` or ``assign(robot(R),destination(D))``."""
-        try:
-            ident, kind, goal = assign_terms(atom)
-        except InputError as error:
-            raise error.at(*_where(atom, self.sources)) from None
-        self._assign(ident, kind, goal, atom)
-
-    def _assign(self, ident: int, kind: str, goal: int, origin: Any) -> None:
-        self.single(("assign", ident), f"{kind}({goal})", origin, f"robot {ident} is assigned two goals")
-        self.goals[ident] = (kind, goal)
-
-    # the placed kinds, and one method for each other kind -----------------------------------
-
-    def _placed(self, kind: ObjectKind, ident: int, value: Any, origin: Any) -> None:
-        self.single((kind.words, ident, "at"), value, origin, f"{kind.words} {ident} is at two places")
-        kind.place(self.instance, ident, value)
-
-    def _declared(self, kind: str, ident: int, attribute: str, value: Any, origin: Any) -> None:
-        """An attribute a variant declares (:func:`asprilo.objects.register_attribute`)."""
-        self.single((kind, ident, attribute), value, origin, f"{kind} {ident} has two values of {attribute}")
-        self.instance.attributes.setdefault((kind, ident), {})[attribute] = value
-
-    def _robot(self, ident: int, attribute: str, value: Any, origin: Any) -> None:
-        robot = self.instance.robots.get(ident)
-        if robot is None:
-            # no cell yet: the robot's at fact may come later (finish() requires one)
-            robot = self.instance.robots[ident] = Robot(ident, None)  # type: ignore[arg-type]
-        if attribute == "at":
-            self.single(("robot", ident, "at"), value, origin, f"robot {ident} is at two places")
-            robot.at = value
-        else:
-            self.single(("robot", ident, "carries"), value, origin, f"robot {ident} carries two shelves")
-            robot.carries = value
-
-    def _product(self, ident: int, _attribute: str, value: Any, origin: Any) -> None:
-        shelf, units = value if isinstance(value, tuple) else (value, None)
-        self.single(("product", ident, shelf), units, origin,
-                    f"product {ident} has two quantities on shelf {shelf}")
-        product = self.instance.products.get(ident)
-        if product is None:
-            product = self.instance.products[ident] = Product(ident)
-        product.stock[shelf] = units
-
-    def _order(self, ident: int, attribute: str, value: Any, origin: Any) -> None:
-        order = self.instance.orders.get(ident)
-        if order is None:
-            order = self.instance.orders[ident] = Order(ident)
-        if attribute == "pickingStation":
-            self.single(("order", ident, "station"), value, origin,
-                        f"order {ident} names two picking stations")
-            order.station = value
-            return
-        product, units = value if isinstance(value, tuple) else (value, None)
-        self.single(("order", ident, product), units, origin,
-                    f"order {ident} has two quantities for product {product}")
-        order.lines[product] = units
-
-    def _grid(self, _ident: int, attribute: str, value: Any, origin: Any) -> None:
-        if value < 1:
-            raise self.fail(f"grid {attribute} must be at least 1, got {value}", origin)
-        if value > self.limits.coordinate:
-            raise self.fail(self.limits.exceeded("coordinate", f"grid {attribute} {value}").message, origin)
-        self.single(("grid", attribute), value, origin, f"grid has two values of {attribute}")
-        self.grid[attribute] = value
-
-    def finish(self) -> Instance:
-        instance = self.instance
-        for robot in instance.robots.values():
-            if robot.at is None:
-                raise self.fail(f"robot {robot.id} has no position (no value(at,(X,Y)))",
-                                self.seen[("robot", robot.id, "carries")][1])
-        self.check_cells()
-        if self.grid:
-            self._expand_grid()
-        tables: dict[str, dict[int, Shelf] | dict[int, Destination]] = {
-            "shelf": instance.shelves, "destination": instance.destinations}
-        for ident, (kind, goal) in self.goals.items():
-            origin = self.seen[("assign", ident)][1]
-            if ident not in instance.robots:
-                raise self.fail(f"assign names robot {ident}, which the instance lacks", origin)
-            if goal not in tables[kind]:
-                raise self.fail(f"assign names {kind} {goal}, which the instance lacks", origin)
-            instance.assignment[ident] = (kind, goal)
-        return instance
-
-    def _expand_grid(self) -> None:
-        if len(self.grid) != 2:
-            missing = "ysize" if "xsize" in self.grid else "xsize"
-            origin = next(origin for key, (_v, origin) in self.seen.items() if key[0] == "grid")
-            raise self.fail(f"grid gives no {missing}", origin)
-        width, height = self.grid["xsize"], self.grid["ysize"]
-        nodes = self.instance.nodes
-        if width * height + len(nodes) > self.limits.facts:
-            origin = self.seen[("grid", "xsize")][1]
-            raise self.fail(self.limits.exceeded("facts", f"a grid of {width}x{height} nodes").message, origin)
-        taken = set(nodes.values())
-        next_id = max(nodes) + 1 if nodes else None
-        for y in range(1, height + 1):
-            for x in range(1, width + 1):
-                if (x, y) in taken:
-                    continue
-                if next_id is None:
-                    nodes[(y - 1) * width + x] = (x, y)
-                else:
-                    nodes[next_id] = (x, y)
-                    next_id += 1
-
-
-def _where(origin: Any, sources: Sequence[Source]) -> tuple[str | None, int | None]:
-    if isinstance(origin, clingo.Symbol):
-        return locate(sources, origin)
-    return line_of(*origin)
-
-
-def _shown(value: Any) -> str:
-    """A value as read, fit for a message (shortened, no control character raw)."""
-    return shown(format_value(value), 60)
-
-
-def _no_facts(what: str, sources: Sequence[Source]) -> InputError:
-    names = ", ".join(source.name for source in sources) or None
-    return InputError(f"no {what} found", names)
-
-
-def _build_instance(sources: Sequence[Source], facts: list[ScannedFact], atoms: list[clingo.Symbol],
-                    limits: Limits | None = None) -> Instance:
-    builder = _InstanceBuilder(sources, limits or current())
-    add = builder.add
-    for kind, args, origin in facts:
-        if kind == "init":
-            kind, ident, attribute, value = args
-            add(kind, ident, attribute, value, origin)
-        elif kind == "atom" and args.name in _INSTANCE_NAMES:
-            builder.add_atom(args, origin)
-    for atom in atoms:
-        if atom.match("init", 2):
-            builder.add_symbol(atom)
-        elif atom.match("assign", 2):
-            builder.assign(atom)
-        elif atom.type == clingo.SymbolType.Function and atom.positive and atom.name in _INSTANCE_NAMES:
-            builder.add_other_symbol(atom)
-    if not builder.seen:
-        raise _no_facts("instance facts (expected init(object(..),value(..)) facts)", sources)
-    instance = builder.finish()
-    builder.warn_unknown()
-    return instance
-
-
-def instance_from_atoms(atoms: Iterable[clingo.Symbol], sources: Sequence[Source] = (),
-                        limits: Limits | None = None) -> Instance:
-    """Build an :class:`Instance` from ground ``init/2`` and ``assign/2`` atoms; others are ignored."""
-    return _build_instance(sources, [], list(atoms), limits)
 
 
 # --- plans -------------------------------------------------------------------------------
@@ -423,7 +148,7 @@ class _PlanMistakes:
                 (f" and {more} more" if more > 0 else "")
             found.append((f"ignored: {listed} (a plan is made of occurs/3 atoms)", next(iter(self.other.values()))))
         for message, origin in sorted(found, key=lambda item: self._order(item[1])):
-            warnings.warn(InputWarning(str(InputError(message, *_where(origin, self.sources)))), stacklevel=5)
+            warnings.warn(InputWarning(str(InputError(message, *where(origin, self.sources)))), stacklevel=5)
 
     def _order(self, origin: Any) -> tuple[int, int]:
         """Where an origin stands: (source, offset) for facts as read, else in the order found."""
@@ -447,11 +172,11 @@ def _build_plan(sources: Sequence[Source], facts: list[ScannedFact], atoms: list
             actions.append(Action(args[4], args[1], args[2], args[3], args[0]))
             origins.append(origin)
             mistakes.action(args[0], args[2], origin)
-        elif kind == "init" or (kind == "atom" and args.name in _INSTANCE_NAMES):
+        elif kind == "init" or (kind == "atom" and args.name in INSTANCE_NAMES):
             mistakes.with_instance = True
         elif kind == "atom" and not args.negative:
             if args.name == "occurs" and len(args.args) == 3:
-                raise shape_error(args).at(*_where(origin, sources))
+                raise shape_error(args).at(*where(origin, sources))
             mistakes.atom(args.name, len(args.args), origin)
     for atom in atoms:  # a solver's answer: only occurs/N of another arity is said
         if atom.match("occurs", 3):
@@ -463,7 +188,7 @@ def _build_plan(sources: Sequence[Source], facts: list[ScannedFact], atoms: list
     far = next((i for i, action in enumerate(actions) if abs(action.step) > limits.robot_steps), None)
     if far is not None:
         what = limits.exceeded("robot_steps", f"an action at step {actions[far].step:,}").message
-        raise InputError(what, *_where(origins[far], sources))
+        raise InputError(what, *where(origins[far], sources))
     mistakes.warn()
     return Plan(actions)
 
@@ -497,7 +222,7 @@ def plan_misfits(plan: Plan, instance: Instance, domain: Domain | None = None) -
     robots = list(dict.fromkeys(action.robot for action in plan.actions
                                 if action.kind == "robot" and action.robot not in instance.robots))
     if robots:
-        names = ", ".join(_shown(robot) for robot in robots[:_NAMED_AT_MOST]) + \
+        names = ", ".join(shown_value(robot) for robot in robots[:_NAMED_AT_MOST]) + \
             (f" and {len(robots) - _NAMED_AT_MOST} more" if len(robots) > _NAMED_AT_MOST else "")
         said.append(f"it moves robot{'s' * (len(robots) > 1)} {names}, but the instance has {_robots_of(instance)}")
     known = _known_actions()
@@ -524,7 +249,7 @@ def require_known_robots(plan: Plan, instance: Instance, sources: Sequence[Sourc
     """Reject a plan whose actions name a robot the instance does not have."""
     for action in plan.actions:
         if action.kind == "robot" and action.robot not in instance.robots:
-            raise InputError(f"the plan moves robot {_shown(action.robot)}, but the instance has "
+            raise InputError(f"the plan moves robot {shown_value(action.robot)}, but the instance has "
                              f"{_robots_of(instance)} (plan and instance do not fit)",
                              *locate(sources, format_action(action)))
 
