@@ -10,7 +10,6 @@ in a row break the rule at step 4; with a rest after every third move the plan t
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 from helpers import ROOT
 
