@@ -26,32 +26,6 @@ VARIANTS = ROOT / "tests" / "variants"
 OWN = ROOT / "tests" / "encodings"
 
 
-@pytest.fixture(autouse=True)
-def _domains_as_before():
-    """The varied domains a test registers (``--variant``, a suite's ``variant:``) are forgotten
-    after it: the registry holds what it held before."""
-    from asprilo.domain import domains, register, unregister
-
-    before = list(domains())
-    yield
-    for domain in domains():
-        if domain not in before:
-            unregister(domain)
-    for domain in before:
-        if domain not in domains():
-            register(domain)
-
-
-@pytest.fixture(autouse=True)
-def _kinds_as_built_in():
-    """A variant's attributes (energy) are known in the process that loaded it."""
-    from asprilo import objects
-    kinds = dict(objects.KINDS)
-    yield
-    objects.KINDS.clear()
-    objects.KINDS.update(kinds)
-
-
 def _suite(folder: Path, body: str) -> Path:
     path = folder / "suite.yml"
     path.write_text("name: rules\ntime_limit: 60\nmemory_limit: 2048\nmakespan_time_limit: 60\n" + body)

@@ -29,22 +29,6 @@ PLAN, ASSIGN = OWN / "stage-plan.lp", OWN / "stage-assign.lp"
 TARGETS = ["target(1,(3,1))", "target(2,(2,1))"]
 
 
-@pytest.fixture(autouse=True)
-def _domains_as_before():
-    """The varied domains a test registers (``--variant``, a suite's ``variant:``) are forgotten
-    after it: the registry holds what it held before."""
-    from asprilo.domain import domains, register, unregister
-
-    before = list(domains())
-    yield
-    for domain in domains():
-        if domain not in before:
-            unregister(domain)
-    for domain in before:
-        if domain not in domains():
-            register(domain)
-
-
 def _solve(capsys, *arguments) -> tuple[int, dict, str]:
     code = main(["solve", *map(str, arguments)])
     captured = capsys.readouterr()

@@ -38,33 +38,6 @@ CORNER, CORRIDOR = HERE / "corner.lp", HERE / "corridor.lp"
 EXTENDING = ROOT / "docs" / "extending"
 
 
-@pytest.fixture(autouse=True)
-def _domains_as_before():
-    """The varied domains a test registers (``--variant``, a suite's ``variant:``) are forgotten
-    after it: the registry holds what it held before."""
-    from asprilo.domain import domains, register, unregister
-
-    before = list(domains())
-    yield
-    for domain in domains():
-        if domain not in before:
-            unregister(domain)
-    for domain in before:
-        if domain not in domains():
-            register(domain)
-
-
-@pytest.fixture(autouse=True)
-def _kinds_as_built_in():
-    """A variant's attributes (energy) and a kind registered here are known in the process
-    that registered them: each test starts afresh."""
-    from asprilo import objects
-    kinds = dict(objects.KINDS)
-    yield
-    objects.KINDS.clear()
-    objects.KINDS.update(kinds)
-
-
 def _solve(capsys, *arguments) -> tuple[int, dict, str]:
     code = main(["solve", *map(str, arguments), "--json"])
     captured = capsys.readouterr()

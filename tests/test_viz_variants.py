@@ -53,16 +53,6 @@ DETOUR = ((1, (-1, 0), 1), (1, (1, 0), 2), (1, (1, 0), 3), (1, (1, 0), 4))
 VISIT = ((1, (1, 0), 1), (1, (1, 0), 2), (1, (-1, 0), 3))
 
 
-@pytest.fixture(autouse=True)
-def _kinds_as_built_in():
-    """A variant's attributes are known in the process that loaded it: each test starts afresh."""
-    from asprilo import objects
-    kinds = dict(objects.KINDS)
-    yield
-    objects.KINDS.clear()
-    objects.KINDS.update(kinds)
-
-
 @pytest.fixture
 def window(qtbot, tmp_path_factory, monkeypatch):
     window = shown_window(qtbot, tmp_path_factory, (1366, 768))
