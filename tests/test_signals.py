@@ -202,3 +202,12 @@ def test_the_viewer_window_ends_on_a_stop_signal(tmp_path, stop):
     time.sleep(3)  # most of the time the window is up by then; either way it must end
     os.kill(process.pid, stop)
     assert process.wait(END) in (130, -stop)
+
+
+@pytest.mark.parametrize("stop", [signal.SIGTERM, signal.SIGHUP])
+def test_a_stopped_server_ends_and_says_so(tmp_path, stop):
+    command = Command(["serve", "solver", "--port", "0"], tmp_path)
+    command.wait_until(lambda: any("listening on" in line for line in command.output), "listening")
+    os.kill(command.process.pid, stop)
+    code, _out, err = command.end()
+    assert (code, err) == (0, "asprilo serve solver: stopped\n")
