@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field, replace
 
 from asprilo.isolation import run_isolated
@@ -62,7 +62,7 @@ def estimated_size(plan: GenerationPlan) -> int:
 
 
 def generate_one(plan: GenerationPlan, seed: int, number: int = 1, command: str | None = None,
-                 on_stage=None) -> Generated:
+                 on_stage: Callable[[str], None] | None = None) -> Generated:
     """Generate instance ``number`` of a checked plan (raises GenerationFailed)."""
     generator = Generator(plan, instance_seed(seed, number), on_stage)
     instance = assemble(plan, generator.run())
@@ -72,17 +72,25 @@ def generate_one(plan: GenerationPlan, seed: int, number: int = 1, command: str 
     return Generated(instance, header, number, seed, stages)
 
 
-def generate_limited(plan: GenerationPlan, seed: int, number: int = 1, command: str | None = None) -> Generated:
+def generate_limited(plan: GenerationPlan, seed: int, number: int = 1, command: str | None = None,
+                     on_stage: Callable[[str], None] | None = None) -> Generated:
     """:func:`generate_one` in a child process (:func:`asprilo.isolation.run_isolated`) that is
     stopped when -w runs out, also while clingo grounds (which the time limit of the
     generator itself cannot interrupt), and cannot use more memory than the limit ``gen-mb``;
-    either ends as :class:`GenerationFailed` naming the stage it was in."""
+    either ends as :class:`GenerationFailed` naming the stage it was in.  ``on_stage`` is
+    told each stage as it starts (for progress)."""
     if estimated_size(plan) <= IN_PROCESS:
-        return generate_one(plan, seed, number, command)
+        return generate_one(plan, seed, number, command, on_stage)
     limits = current()
     stages: list[str] = []
+
+    def entered(stage: str) -> None:
+        stages.append(stage)
+        if on_stage is not None:
+            on_stage(stage)
+
     outcome = run_isolated(_generate_in_child, (plan, seed, number, command), time_limit=plan.time_limit + GRACE,
-                           memory_mb=limits.gen_mb, on_message=stages.append)
+                           memory_mb=limits.gen_mb, on_message=entered)
     stage = stages[-1] if stages else "floor"
     if outcome.status == "done":
         return outcome.value

@@ -5,6 +5,7 @@ defaults, and whether the totals fit together (checked before any solving).
 from __future__ import annotations
 
 import math
+from collections import Counter
 from typing import Any
 
 from asprilo.domain import Domain
@@ -66,11 +67,15 @@ def inventory(r: dict[str, Any], existing: Instance, shelves: int) -> dict[str, 
     fixed_pairs = sum(len(p.stock) for p in existing.products.values())
     spr_max = min(r["spr_max"] if r["spr_max"] >= 1 else shelves, shelves)
     prs_max = min(r["prs_max"] if r["prs_max"] >= 1 else product_total, product_total)
-    least = max(new * r["spr_min"], shelves * r["prs_min"] - fixed_pairs)
-    most = min(new * spr_max, shelves * prs_max - fixed_pairs)
+    # a shelf takes each new product once, up to prs_max with the template's products on it
+    loads = Counter(shelf for product in existing.products.values() for shelf in product.stock)
+    loads = [loads[shelf] for shelf in existing.shelves] + [0] * (shelves - len(existing.shelves))
+    deficit = [max(0, r["prs_min"] - load) for load in loads]
+    least = max(new * r["spr_min"], sum(deficit))
+    most = min(new * spr_max, sum(min(max(0, prs_max - load), new) for load in loads))
     ranges_text = (f"-P {product_total}, -s {shelves}, --sprmin/--sprmax {r['spr_min']}/{r['spr_max']}, "
                    f"--prsmin/--prsmax {r['prs_min']}/{r['prs_max']}")
-    if new and least > most:
+    if new and (least > most or max(deficit, default=0) > new):
         raise InputError(f"the products do not fit on the shelves: {ranges_text}")
     if not new:
         least = most = 0
@@ -103,6 +108,10 @@ def _check_products(r: dict[str, Any], existing: Instance, shelves: int, product
         raise InputError(f"--prsmin {r['prs_min']} exceeds the number of products (-P {product_total})")
     if not new and units:
         raise InputError(f"-u {r['units']}: there are no new products (-P) to hold the units")
+    loads = Counter(shelf for product in existing.products.values() for shelf in product.stock)
+    shelf, load = max(loads.items(), key=lambda item: (item[1], -item[0]), default=(0, 0))
+    if 1 <= r["prs_max"] < load:  # (the fullest shelf)
+        raise InputError(f"--prsmax {r['prs_max']}: shelf {shelf} of the template holds {load} products already")
 
 
 def _fit_units(r: dict[str, Any], units: int, pairs: tuple[int, int], pus_max: int, fixed_units: int,
@@ -150,3 +159,24 @@ def _check_orders(r: dict[str, Any], stock: dict[str, Any], existing: Instance, 
     if new * r["ol_min"] + fixed > units:
         raise InputError(f"-o {order_total} orders with --olmin {r['ol_min']} lines each ask for "
                          f"more units than the shelves hold ({units}, -u)")
+    _check_serving(r, stock, existing, order_total, new)
+
+
+def _check_serving(r: dict[str, Any], stock: dict[str, Any], existing: Instance, order_total: int,
+                   new: int) -> None:
+    """An order asks for a product once, so a product serves at most one line of each new
+    order: a new one as many as its units (spr_max x pus_max at most), a template's one as
+    many as the units its orders leave."""
+    most = stock["spr_max"] * stock["pus_max"]
+    serve = len(stock["products"]) * min(most, new)
+    if stock["units"] is not None:
+        serve = min(serve, stock["units"])
+    asked = Counter(p for o in existing.orders.values() for p in o.lines)
+    for product in existing.products.values():
+        left = sum(1 if units is None else units for units in product.stock.values()) - asked[product.id]
+        serve += min(max(left, 0), new)
+    need = new * r["ol_min"]
+    if need > serve:
+        raise InputError(f"-o {order_total} orders with --olmin {r['ol_min']} lines each need {need} lines on "
+                         f"different products, but the products serve at most {serve} (an order asks for a "
+                         f"product once; a new product holds at most {most} units, --sprmax x --pusmax)")

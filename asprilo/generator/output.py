@@ -61,12 +61,18 @@ def check_output_folder(folder: str | Path, flag: str) -> None:
         raise InputError(f"cannot write to the output folder ({flag}): permission denied", str(folder))
 
 
+#: the generator's stages in the heartbeat's words
+STAGE_WORDS = {"stations": "picking stations", "stock": "products on shelves", "units": "units on shelves",
+               "lines": "order lines", "quantities": "order quantities", "one-shot": "one-shot solve"}
+
+
 class WriteProgress:
     """A progress bar on stderr: redrawn in place on a terminal, a line per tenth otherwise.
 
     On a terminal, an instance that takes a while to make is said every second as well (a
-    heartbeat: ``making N003... 4 s``); :meth:`working` names the instance being made,
-    :meth:`close` ends the heartbeat."""
+    heartbeat: ``making N003 (products on shelves)... 4 s``); :meth:`working` names the
+    instance being made, :meth:`stage` the generator's stage, :meth:`close` ends the
+    heartbeat."""
 
     WIDTH = 30
     #: seconds between two heartbeats, and how long an instance is made before the first
@@ -82,6 +88,7 @@ class WriteProgress:
         self._lock = threading.Lock()
         self._current: str | None = None  # the instance being made, and since when
         self._since = 0.0
+        self._stage: str | None = None     # the stage it is in
         self._beating = False              # a heartbeat line is shown
         self._stopped = threading.Event()
         self._ticker: threading.Thread | None = None
@@ -89,10 +96,15 @@ class WriteProgress:
     def working(self, label: str) -> None:
         """``label`` is being made now (on a terminal the heartbeat starts)."""
         with self._lock:
-            self._current, self._since = label, time.perf_counter()
+            self._current, self._since, self._stage = label, time.perf_counter(), None
         if self.beats and self._ticker is None:
             self._ticker = threading.Thread(target=self._beat_on, daemon=True)
             self._ticker.start()
+
+    def stage(self, name: str) -> None:
+        """The instance being made is in the generator's stage ``name`` now (pipeline.STAGES)."""
+        with self._lock:
+            self._stage = STAGE_WORDS.get(name, name)
 
     def advance(self, label: str = "") -> None:
         with self._lock:
@@ -119,7 +131,8 @@ class WriteProgress:
             if not self.beats or self._current is None or seconds < self.BEAT:
                 return
             done = f"{self.done}/{self.total} " if self.total >= 2 else ""
-            self.stream.write(f"\r\033[K{done}making {self._current}... {seconds:.0f} s")
+            stage = f" ({self._stage})" if self._stage else ""
+            self.stream.write(f"\r\033[K{done}making {self._current}{stage}... {seconds:.0f} s")
             self.stream.flush()
             self._beating = True
 

@@ -8,8 +8,9 @@ stage works in rounds (place K objects, fix them, place K more, ...).  In one-sh
 part is grounded first (``oneshot.lp`` hands each stage's choices on) and solved once.
 
 The solver makes every choice.  The programs rank the candidates by seeded pseudo-random
-keys (``random.lp``); the driver only passes the seed, the chances of the coin flips and, for
-large warehouses, a random sample of candidate pairs.
+keys (``random.lp``); the driver only passes the seed, the chances of the coin flips, bounds
+worked out from what is placed so far (``demand.py``: what the orders need) and, for large
+warehouses, a random sample of candidate pairs.
 """
 
 from __future__ import annotations
@@ -27,13 +28,14 @@ from asprilo.model import Cell, Instance
 from asprilo.solver import Solver
 from asprilo.writer import format_instance
 
+from .demand import cover_first, line_bounds, line_tiers, served, shelf_supply_need, shelf_tiers, unit_supply_need
 from .plan import GenerationPlan
 from .sampling import rng, sample_options
 
 HERE = Path(__file__).resolve().parent
 _NUMBER = re.compile(r"-?\d+")
 PROGRAMS = ("random.lp", "floor.lp", "structured.lp", "open_layout.lp", "template.lp", "stations.lp",
-            "robots.lp", "shelves.lp", "reachable.lp", "products.lp", "orders.lp", "oneshot.lp")
+            "robots.lp", "shelves.lp", "reachable.lp", "products.lp", "supply.lp", "orders.lp", "oneshot.lp")
 STAGES = ("floor", "stations", "robots", "shelves", "stock", "units", "lines", "quantities")
 
 #: Candidate (product, shelf) or (order, product) pairs of a round above which the driver
@@ -97,9 +99,12 @@ class World:
 
 @dataclass
 class StageReport:
+    """What a stage took: rounds, seconds and the solver's conflicts (its search)."""
+
     stage: str
     rounds: int = 0
     seconds: float = 0.0
+    conflicts: int = 0
 
 
 def _chance(probability: float) -> int:
@@ -202,6 +207,7 @@ class Generator:
         shelves = self._all_shelves()
         ids = list(plan.products)
         spread_chance = _geometric(target / len(ids) - plan.spr_min)  # shelves beyond spr_min
+        fill = shelf_tiers(plan, most + len(self._all_stock()), len(shelves))
         done = 0
         for chunk in self._chunks(ids):
             later = len(ids) - ids.index(chunk[-1]) - 1
@@ -209,15 +215,18 @@ class Generator:
             shelf_min = 0 if later else plan.prs_min
 
             def attempt(per_product: int | None, chunk=chunk, bounds=bounds,
-                        shelf_min=shelf_min) -> list[str] | None:
+                        shelf_min=shelf_min, later=later) -> list[str] | None:
                 round_ = self._round("stock")
                 facts = ""
                 if per_product:
                     facts = "".join(f"sample(stock,{round_},{p},({x},{y})).\n"
                                     for p, (x, y) in sample_options(chunk, shelves, per_product, self._samples))
-                part = ("stock", [round_, chunk[0], chunk[-1], int(bool(per_product)), shelf_min, *bounds,
-                                  spread_chance])
-                return self._step("stock", round_, [part], "pass_stock", facts)
+                parts = [("stock", [round_, chunk[0], chunk[-1], int(bool(per_product)), shelf_min, *bounds,
+                                    fill, spread_chance])]
+                need = shelf_supply_need(plan, self._shelf_counts(), len(chunk), later, self._served_elsewhere())
+                if need:
+                    parts.append(("shelf_supply", [round_, chunk[0], chunk[-1], len(plan.orders), need]))
+                return self._step("stock", round_, parts, "pass_stock", facts)
 
             chosen = self._sampled_or_all(attempt, len(chunk), plan.shelf_total, plan.spr_max)
             done += len(chosen or ())
@@ -229,8 +238,23 @@ class Generator:
         mean = (plan.units - pairs * plan.pus_min) / pairs if plan.units is not None and pairs else 1.0
         total = plan.units if plan.units is not None else -1
         round_ = self._round("units")
-        part = ("units", [round_, plan.products[0], plan.products[-1], total, _geometric(mean)])
-        self._step("units", round_, [part], "pass_units")
+        parts = [("units", [round_, plan.products[0], plan.products[-1], total, _geometric(mean)])]
+        need = unit_supply_need(plan, self._shelf_counts(), self._served_elsewhere())
+        if need:
+            parts.append(("supply", [round_, plan.products[0], plan.products[-1], len(plan.orders), need]))
+        self._step("units", round_, parts, "pass_units")
+
+    def _shelf_counts(self) -> dict[int, int]:
+        """How many shelves each new product of the earlier stock rounds lies on."""
+        counts: dict[int, int] = {}
+        for product, _shelf in self.world.stock:
+            counts[product] = counts.get(product, 0) + 1
+        return counts
+
+    def _served_elsewhere(self) -> int:
+        """Lines of the new orders that the template's products can serve."""
+        return served((units for product, units in self._room().items() if product not in self.plan.products),
+                      len(self.plan.orders))
 
     def _lines(self) -> None:
         plan = self.plan
@@ -241,26 +265,56 @@ class Generator:
         chunks = self._chunks(list(plan.orders))
         for index, chunk in enumerate(chunks):
             final = int(index == len(chunks) - 1)
+            later = sum(len(c) for c in chunks[index + 1:])
 
-            def attempt(per_order: int | None, chunk=chunk, final=final) -> list[str] | None:
+            def attempt(per_order: int | None, chunk=chunk, final=final, later=later) -> list[str] | None:
                 round_ = self._round("lines")
-                facts = ""
+                room = self._room()
+                facts = "".join(f"room({round_},{p},{n}).\n" for p, n in room.items())
                 if per_order:
-                    facts = "".join(f"sample(line,{round_},{o},{p}).\n"
-                                    for o, p in sample_options(chunk, products, per_order, self._samples))
-                part = ("lines", [round_, chunk[0], chunk[-1], int(bool(per_order)), final, lines_chance])
+                    facts += "".join(f"sample(line,{round_},{o},{p}).\n"
+                                     for o, p in sample_options(chunk, products, per_order, self._samples))
+                unordered = len(room) - len(self._ordered()) if plan.order_all else 0
+                bounds = line_bounds(plan, room, len(chunk), later, unordered)
+                spread = line_tiers(plan, room, len(chunk), bounds[1])
+                cover = int(cover_first(plan, room, len(chunk), later, unordered))
+                part = ("lines", [round_, chunk[0], chunk[-1], int(bool(per_order)), final, *bounds, spread, cover,
+                                  lines_chance])
                 return self._step("lines", round_, [part], "pass_lines", facts)
 
             self._sampled_or_all(attempt, len(chunk), len(products), plan.ol_max)
 
+    def _held(self) -> dict[int, int]:
+        """The units of every product on the shelves (in one-shot mode, where they are not
+        known yet, the most a product can have)."""
+        plan = self.plan
+        if plan.one_shot:
+            return dict.fromkeys(self._all_products(), plan.spr_max * plan.pus_max)
+        held = dict.fromkeys(self._all_products(), 0)
+        for (product, _shelf), units in self._all_stock().items():
+            held[product] += units
+        return held
+
+    def _asked(self) -> list[tuple[int, int]]:
+        """Every order line so far: its product and the units it asks for (a new line one at
+        least: its quantity comes later)."""
+        template = self.plan.template
+        asked = [(p, q or 1) for o in template.orders.values() for p, q in o.lines.items()] if template else []
+        return asked + [(p, 1) for _order, p in self.world.lines]
+
+    def _ordered(self) -> set[int]:
+        return {product for product, _units in self._asked()}
+
+    def _room(self) -> dict[int, int]:
+        """The units of every product that no order line asks for yet."""
+        room = self._held()
+        for product, units in self._asked():
+            room[product] = room.get(product, 0) - units
+        return room
+
     def _quantities(self) -> None:
         plan = self.plan
-        held: dict[int, int] = {}
-        if plan.one_shot:  # the units are not known yet: the most a product can have
-            held = dict.fromkeys(self._all_products(), plan.spr_max * plan.pus_max)
-        else:
-            for (product, _shelf), units in self._all_stock().items():
-                held[product] = held.get(product, 0) + units
+        held = self._held()
         round_ = self._round("quantities")
         part = ("quantities", [round_, plan.orders[0], plan.orders[-1], _chance(MORE_UNITS)])
         self._step("quantities", round_, [part], facts="".join(f"held({p},{n}).\n" for p, n in held.items()))
@@ -286,9 +340,11 @@ class Generator:
                 self.solver.ground([(pass_part, [])])
             report.seconds += time.perf_counter() - started
             return None
+        conflicts = self.solver.stats.conflicts
         result = self.solver.solve(time_limit=self._remaining(stage))
         self.solver.release_external(active)
         report.seconds += time.perf_counter() - started
+        report.conflicts += self.solver.stats.conflicts - conflicts
         if not result.satisfiable:
             raise GenerationFailed(stage, result.timed_out)
         # new_X(Round,Args) -> the fact X(Args)

@@ -132,7 +132,7 @@ def _generate(job: Job, plan: GenerationPlan, progress: WriteProgress, verbose: 
             continue
         progress.working(f"N{number:03d}" if options.console else f"{job.directory}: N{number:03d}")
         try:
-            item = generate_limited(plan, options.seed, number, command)  # -w and gen-mb hold, grounding too
+            item = generate_limited(plan, options.seed, number, command, progress.stage)  # -w and gen-mb hold
         except GenerationFailed as failure:
             progress.interrupt()
             print(f"error: {_place(job)}no instance {number}: {failure}", file=stream)
