@@ -182,3 +182,29 @@ def test_no_robot_of_the_corridor_can_serve_its_order_without_leaving_its_side()
     run = subprocess.run([sys.executable, "-m", "clingo", str(CORRIDOR), str(encoding), "-c", "horizon=6"],
                          capture_output=True, text=True)
     assert "UNSATISFIABLE" in run.stdout.splitlines()
+
+
+GEN = ["gen", "-x", "11", "-y", "6", "-H", "-r", "3", "-s", "8", "-p", "1", "--domain", "m", "-C", "-q"]
+
+
+def _energies(text: str) -> dict[int, int]:
+    import re
+
+    facts = re.findall(r"init\(object\(robot,(\d+)\),value\(energy,(-?\d+)\)\)", text)
+    return {int(robot): int(level) for robot, level in facts}
+
+
+def test_gen_draws_the_variants_attributes_within_their_range(capsys):
+    """energy.yml draws every robot's energy from 30..50; --energy 7-7 leaves one value."""
+    assert main([*GEN, "--variant", "energy", "--seed", "5"]) == 0
+    drawn = _energies(capsys.readouterr().out)
+    assert set(drawn) == {1, 2, 3} and all(30 <= level <= 50 for level in drawn.values())
+    assert main([*GEN, "--variant", "energy", "--seed", "5"]) == 0
+    assert _energies(capsys.readouterr().out) == drawn  # the seed decides
+    assert main([*GEN, "--energy", "7-7", "--seed", "5"]) == 0
+    assert _energies(capsys.readouterr().out) == {1: 7, 2: 7, 3: 7}
+
+
+def test_gen_refuses_a_variant_that_does_not_change_its_domain(capsys):
+    code = main([*GEN[:-4], "--domain", "a", "-P", "2", "-u", "4", "-o", "1", "--variant", "visit-anytime", "-C"])
+    assert code == 2 and capsys.readouterr().err.endswith("variant 'visit-anytime' changes domain M, not A\n")

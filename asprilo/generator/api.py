@@ -11,6 +11,7 @@ from asprilo.model import Instance
 from asprilo.writer import header_lines
 
 from .assemble import assemble
+from .attributes import draw
 from .config import GeneratorConfig, RunOptions
 from .options import DEFAULT_SEED
 from .pipeline import GenerationFailed, Generator
@@ -66,6 +67,7 @@ def generate_one(plan: GenerationPlan, seed: int, number: int = 1, command: str 
     """Generate instance ``number`` of a checked plan (raises GenerationFailed)."""
     generator = Generator(plan, instance_seed(seed, number), on_stage)
     instance = assemble(plan, generator.run())
+    draw(instance, plan.attributes, instance_seed(seed, number))
     header = header_lines(instance, command, seed, tool=TOOL)
     header.insert(3 if command is not None else 2, f"instance: {number}")
     stages = {r.stage: (r.rounds, r.seconds) for r in generator.reports.values() if r.rounds}

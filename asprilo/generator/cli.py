@@ -43,8 +43,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
         kwargs: dict[str, Any] = {"dest": option.name, "help": option.help_text, "default": argparse.SUPPRESS}
         if option.kind == "flag":
             kwargs["action"] = "store_true"
-        elif option.kind == "paths":
-            kwargs.update(nargs="+", metavar=option.metavar)
+        elif option.kind == "paths":  # repeatable: -T a.lp -T b.lp is -T a.lp b.lp
+            kwargs.update(nargs="+", action="extend", metavar=option.metavar)
         else:
             kwargs.update(type=_TYPES[option.kind], metavar=option.metavar)
         group.add_argument(*option.flags, **kwargs)

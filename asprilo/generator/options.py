@@ -86,8 +86,9 @@ class Option:
                 raise InputError(f"{self.flag} {problem}")
 
 
-FLOOR, OBJECTS, PRODUCTS, ORDERS, SOLVING, OUTPUT = (
-    "floor and layout", "objects", "products on shelves", "orders", "solving", "output and batches")
+FLOOR, OBJECTS, PRODUCTS, ORDERS, VARIANTS, SOLVING, OUTPUT = (
+    "floor and layout", "objects", "products on shelves", "orders", "rule variants (docs/VARIANTS.md)", "solving",
+    "output and batches")
 
 COUNT = (at_least(0),)
 SIZE = (at_least(1),)
@@ -154,6 +155,11 @@ OPTIONS: tuple[Option, ...] = (
     _o("--domain", "domain", "domain",
        "m: the M alignment (as many products as shelves, one unit of one product per shelf, as many "
        "orders as robots, one line of one unit each); a, b, c: no alignment (default a)", ORDERS, "D"),
+    _o("--variant", "variants", "paths",
+       "rule variants the instances are for (diagonal, energy, ...; or variant files): the attributes they "
+       "declare are drawn for every object, as their generate: says; repeatable", VARIANTS, "NAME|FILE"),
+    _o("--energy", "energy", "str", "every robot's energy, drawn uniformly from MIN..MAX (the attribute the "
+       "variant energy reads; default with --variant energy: the variant's range)", VARIANTS, "MIN-MAX"),
     _o("-t --threads", "threads", "int", "clingo threads (default {default}; more may vary the result)",
        SOLVING, "T", default=1, checks=(at_least(1), at_most(MOST_THREADS))),
     _o("-w --wait", "time_limit", "float", "time limit per instance in seconds (default {default})",

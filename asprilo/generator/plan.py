@@ -15,6 +15,7 @@ from asprilo.limits import Limits, current
 from asprilo.model import Instance
 from asprilo.reader import read_instance
 
+from .attributes import drawn_attributes
 from .config import GeneratorConfig, check_given, value_of
 from .inventory import inventory, new_count, orders, ranges
 from .layout import Floor, plan_floor, shelf_room, where_shelves_go
@@ -61,6 +62,7 @@ class GenerationPlan:
     time_limit: float
     split: int | None           # objects per round (None: one round per stage)
     one_shot: bool
+    attributes: tuple = ()      # (kind, attribute, least, most): drawn for every object (attributes.py)
 
     @property
     def partial_floor(self) -> bool:
@@ -121,11 +123,12 @@ def make_plan(config: GeneratorConfig) -> GenerationPlan:
     r = ranges(config, config.domain or DEFAULT, objects["shelf_total"], objects["robot_total"])
     stock = inventory(r, existing, objects["shelf_total"])
     lines = orders(config, r, stock, existing, objects["station_total"])
+    drawn = drawn_attributes(config.domain or DEFAULT, config.variants, config.energy)
     return GenerationPlan(
         layout=floor.layout, width=floor.width, height=floor.height, nodes=floor.nodes, gap_size=floor.gap_size,
         zone_x=floor.zone_x, zone_y=floor.zone_y, border=floor.border, template=template,
         reachable=config.reachable, quantities=_with_quantities(config.domain, existing),
-        **objects, **solving, **stock, **lines)
+        attributes=drawn, **objects, **solving, **stock, **lines)
 
 
 def _solving(c: GeneratorConfig) -> dict:
