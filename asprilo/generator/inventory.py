@@ -68,8 +68,8 @@ def inventory(r: dict[str, Any], existing: Instance, shelves: int) -> dict[str, 
     spr_max = min(r["spr_max"] if r["spr_max"] >= 1 else shelves, shelves)
     prs_max = min(r["prs_max"] if r["prs_max"] >= 1 else product_total, product_total)
     # a shelf takes each new product once, up to prs_max with the template's products on it
-    loads = Counter(shelf for product in existing.products.values() for shelf in product.stock)
-    loads = [loads[shelf] for shelf in existing.shelves] + [0] * (shelves - len(existing.shelves))
+    stocked = Counter(shelf for product in existing.products.values() for shelf in product.stock)
+    loads = [stocked[shelf] for shelf in existing.shelves] + [0] * (shelves - len(existing.shelves))
     deficit = [max(0, r["prs_min"] - load) for load in loads]
     least = max(new * r["spr_min"], sum(deficit))
     most = min(new * spr_max, sum(min(max(0, prs_max - load), new) for load in loads))

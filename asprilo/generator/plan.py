@@ -123,7 +123,8 @@ def make_plan(config: GeneratorConfig) -> GenerationPlan:
     r = ranges(config, config.domain or DEFAULT, objects["shelf_total"], objects["robot_total"])
     stock = inventory(r, existing, objects["shelf_total"])
     lines = orders(config, r, stock, existing, objects["station_total"])
-    drawn = drawn_attributes(config.domain or DEFAULT, config.variants, config.energy)
+    given = vars(config)  # (a dataclass made at run time: its fields by name)
+    drawn = drawn_attributes(given["domain"] or DEFAULT, given["variants"], given["energy"])
     return GenerationPlan(
         layout=floor.layout, width=floor.width, height=floor.height, nodes=floor.nodes, gap_size=floor.gap_size,
         zone_x=floor.zone_x, zone_y=floor.zone_y, border=floor.border, template=template,
