@@ -25,6 +25,7 @@ import itertools
 from collections import Counter
 
 import pytest
+from helpers.streams import Terminal
 
 from asprilo.cli import main
 from asprilo.errors import InputError
@@ -215,22 +216,6 @@ def test_a_template_shelf_above_the_products_per_shelf_maximum_is_refused(tmp_pa
 
 
 # --- progress -----------------------------------------------------------------------------------
-
-class Terminal:
-    """A stream that says it is a terminal and keeps what is written."""
-
-    def __init__(self):
-        self.text = ""
-
-    def isatty(self):
-        return True
-
-    def write(self, text):
-        self.text += text
-
-    def flush(self):
-        pass
-
 
 def test_the_heartbeat_names_the_stage_an_instance_is_in():
     progress = WriteProgress(1, Terminal())

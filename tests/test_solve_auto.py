@@ -20,6 +20,7 @@ from pathlib import Path
 
 import pytest
 from helpers import CORRIDOR, EXAMPLES, SMALL_A
+from helpers.streams import Terminal
 
 from asprilo import isolation
 from asprilo.checker import check
@@ -322,22 +323,6 @@ def test_the_heartbeat_beats_on_a_terminal_and_not_in_a_pipe():
     assert "horizon 23: " in on_terminal or "lower bound: computing" in on_terminal
     in_pipe = _stderr_of(command, terminal=False, seconds=4)
     assert "\r" not in in_pipe and " s left" not in in_pipe
-
-
-class Terminal:
-    """A stream that says it is a terminal and keeps what is written."""
-
-    def __init__(self):
-        self.text = ""
-
-    def isatty(self):
-        return True
-
-    def write(self, text):
-        self.text += text
-
-    def flush(self):
-        pass
 
 
 def test_the_heartbeat_line_says_what_runs_and_what_is_known():

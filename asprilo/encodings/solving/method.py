@@ -19,6 +19,7 @@ from abc import ABC, abstractmethod
 from typing import ClassVar
 
 from asprilo.domain import Domain
+from asprilo.errors import InputError
 
 from .outcome import Outcome
 from .request import SolveRequest
@@ -48,6 +49,16 @@ class Method(ABC):
         """Raise :class:`~asprilo.errors.InputError` if this method cannot serve ``request``
         (by default it serves every request)."""
         return None
+
+    def refuse_other_rules(self, request: SolveRequest, words: str, rules: str = "SPEC.md's rules") -> None:
+        """For a method that runs no logic program (``words`` names it: "the flow method"; it
+        knows ``rules``): refuse a domain whose rules it does not honour, and a first stage."""
+        if not self.honours(request.domain):
+            raise InputError(f"{words} knows only {rules}, not {unserved_words(request.domain)}; leave "
+                             f"out --method (the exact search runs the domain's own encoding) or give your own "
+                             f"with --encoding FILE")
+        if request.stage is not None:
+            raise InputError(f"--stage goes with an encoding: {words} runs none")
 
     def quick(self, request: SolveRequest) -> bool:
         """Whether ``request`` is so small that this method answers it before a child process

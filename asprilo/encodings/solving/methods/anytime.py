@@ -6,7 +6,7 @@ from __future__ import annotations
 from asprilo.domain import Domain
 from asprilo.errors import InputError
 
-from ..method import Method, spec_rules, unserved_words
+from ..method import Method, spec_rules
 from ..outcome import Outcome
 from ..request import SolveRequest
 from ..status import SolveStatus
@@ -26,12 +26,7 @@ class Anytime(Method):
     def check(self, request: SolveRequest) -> None:
         if request.horizon is not None:
             raise InputError("the anytime method searches the makespan itself; leave out --horizon")
-        if not self.honours(request.domain):
-            raise InputError(f"the anytime planner knows only SPEC.md's rules, not "
-                             f"{unserved_words(request.domain)}; leave out --method (the exact search runs the "
-                             f"domain's own encoding) or give your own with --encoding FILE")
-        if request.stage is not None:
-            raise InputError("--stage goes with an encoding: the anytime planner runs none")
+        self.refuse_other_rules(request, "the anytime planner")
 
     def time_limit(self, request: SolveRequest) -> float | None:
         """The request's, or the planner's default (it needs one to share out its time)."""

@@ -6,7 +6,7 @@ from asprilo.domain import Domain, Job
 from asprilo.errors import InputError
 from asprilo.solver import Statistics
 
-from ..method import Method, spec_rules, unserved_words
+from ..method import Method, spec_rules
 from ..outcome import Outcome
 from ..request import SolveRequest
 from ..status import SolveStatus
@@ -30,12 +30,7 @@ class MaxFlow(Method):
     def check(self, request: SolveRequest) -> None:
         if request.domain.work is not Job.GOALS:
             raise InputError(f"the flow method solves domains M and Md only, not {request.domain.label}")
-        if not self.honours(request.domain):
-            raise InputError(f"the flow method knows only SPEC.md's rules of M and Md, not "
-                             f"{unserved_words(request.domain)}; leave out --method (the exact search runs the "
-                             f"domain's own encoding) or give your own with --encoding FILE")
-        if request.stage is not None:
-            raise InputError("--stage goes with an encoding: the flow method runs none")
+        self.refuse_other_rules(request, "the flow method", "SPEC.md's rules of M and Md")
         if request.instance.assignment:
             raise InputError("the instance assigns goals to robots; the flow method solves anonymous "
                              "goals only (use --method asp)")
