@@ -13,6 +13,7 @@ independently of the grader.
 from __future__ import annotations
 
 import importlib.resources
+import re
 import shlex
 
 import pytest
@@ -28,6 +29,9 @@ from asprilo.reader import read_instance
 DOMAINS = [Domain.A, Domain.B, Domain.C, Domain.M, Domain.MD]
 RUNGS = [(domain, rung) for domain in DOMAINS for rung in bundled_ladder(domain).rungs]
 TINY = [(domain, rung) for domain, rung in RUNGS if any("breadth-first" in check for check in rung.cross_checked)]
+#: how a ladder instance made by gen for B or C says its quantity-free facts were rewritten
+UNIT_QUANTITIES = ("every quantity-free value(on,S) and value(line,P) written with quantity 1: "
+                   "value(on,(S,1)), value(line,(P,1))")
 
 
 def _id(item) -> str:
@@ -106,9 +110,38 @@ def test_every_instance_is_what_its_header_says(item, tmp_path, capsys):
     words = shlex.split(origin.removeprefix("% made with: ").split(">")[0].split("(")[0])
     if words[:2] == ["asprilo", "gen"]:
         assert main(words[1:]) == 0
-        assert _body(rung.file.read_text()) == capsys.readouterr().out
+        made = capsys.readouterr().out
+        if origin.endswith(f", then {UNIT_QUANTITIES}"):
+            made = re.sub(r"value\((on|line),(\d+)\)\)", r"value(\1,(\2,1)))", made)
+        assert _body(rung.file.read_text()) == made
         return
     assert words[:2] == ["asprilo", "convert"]
     source, target = rung.file.parent / words[2], tmp_path / words[3]
     assert main([*words[1:2], str(source), str(target), *words[4:]]) == 0
     assert _body(rung.file.read_text()) == target.read_text()
+
+
+#: the one instance format of every ladder (docs/GRADING.md): stock and order lines as pairs
+#: with a quantity in every domain (B and C ignore it; M asks one unit), as the public
+#: encodings' input.lp reads them; Md states destinations instead of order lines
+PAIR = r"\(\d+,\d+\)"
+LADDER_FORMAT = {
+    Domain.A: {"on": PAIR, "line": PAIR},
+    Domain.B: {"on": PAIR, "line": PAIR},
+    Domain.C: {"on": PAIR, "line": PAIR},
+    Domain.M: {"on": r"\(\d+,1\)", "line": r"\(\d+,1\)"},
+    Domain.MD: {"on": r"\(\d+,1\)", "destination": r"\(\d+,\d+\)"},
+}
+
+
+@pytest.mark.parametrize("item", RUNGS, ids=_id)
+def test_every_ladder_instance_uses_only_its_domains_format(item):
+    domain, rung = item
+    formats = LADDER_FORMAT[domain]
+    stated = re.findall(r"^init\(object\((\w+),\d+\),value\((\w+),(.*)\)\)\.$", rung.file.read_text(), re.M)
+    quantified = [(kind, attribute, value) for kind, attribute, value in stated
+                  if attribute in ("on", "line") or kind == "destination"]
+    assert quantified, rung.file
+    for kind, attribute, value in quantified:
+        key = "destination" if kind == "destination" else attribute
+        assert key in formats and re.fullmatch(formats[key], value), (rung.file.name, kind, attribute, value)
