@@ -11,7 +11,8 @@ quantities make an instance A (the most general reading), quantity-free facts
 each ordered product on exactly one shelf, as many orders as robots) are M, and
 instances with ``destination`` objects are Md.  An instance without orders has nothing
 to deliver and is read as M.  A plan can refine this: an M-aligned instance whose plan
-picks up or delivers is read as A (B if its deliveries carry no quantity).  Every tool
+picks up or delivers is read as A (B if its deliveries carry no quantity); an action name
+no domain knows (a typo) is warned about by the reader and plays no part.  Every tool
 takes ``--domain`` to override the guess.
 """
 
@@ -70,14 +71,18 @@ def _has_quantities(instance: Instance) -> bool:
 
 
 def detect_domain(instance: Instance, plan: Plan | None = None) -> Domain:
-    """The domain an instance (and optionally its plan) fits; see the module docstring."""
+    """The domain an instance (and optionally its plan) fits; see the module docstring.
+    Only actions some domain knows count: a misspelt one (``mvoe``) is the reader's warning,
+    never a vote for another domain."""
     if instance.destinations:
         return MD
     if not instance.orders:
         return M
-    if is_m_aligned(instance) and (plan is None or all(action.name == "move" for action in plan.actions)):
+    known = frozenset().union(*(domain.actions for domain in domains()))
+    actions = [action for action in (plan.actions if plan is not None else ()) if action.name in known]
+    if is_m_aligned(instance) and all(action.name == "move" for action in actions):
         return M
-    if plan is not None and any(action.name == "deliver" and isinstance(action.args, tuple)
-                                and len(action.args) == 2 for action in plan.actions):
+    if any(action.name == "deliver" and isinstance(action.args, tuple) and len(action.args) == 2
+           for action in actions):
         return B
     return A if _has_quantities(instance) else B
