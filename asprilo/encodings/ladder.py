@@ -27,6 +27,8 @@ from asprilo.domain import Domain
 from asprilo.errors import InputError
 from asprilo.yamlfile import YamlList, YamlMapping, load_yaml
 
+from .probes import Probe, read_probes
+
 #: the bundled ladders, one folder per domain
 LADDERS = Path(__file__).resolve().parent / "ladders"
 MANIFEST = "ladder.yml"
@@ -95,6 +97,7 @@ class Ladder:
     rungs: tuple[Rung, ...]
     bundled: bool = False
     title: str = ""  # how the grader names instances that are no ladder (an exercise, a folder)
+    probes: tuple[Probe, ...] = ()  # illegal plans an encoding must refuse (:mod:`.probes`)
 
     @property
     def label(self) -> str:
@@ -123,9 +126,9 @@ def read_ladder(path: str | Path) -> Ladder:
     document = load_yaml(path)
     if not isinstance(document, YamlMapping):
         raise InputError("a ladder is a mapping with 'domain' and 'instances'", str(path), 1)
-    unknown = sorted(set(map(str, document)) - {"domain", "instances"})
+    unknown = sorted(set(map(str, document)) - {"domain", "instances", "probes"})
     if unknown:
-        raise InputError(f"unknown key {unknown[0]!r} (a ladder has 'domain' and 'instances')", str(path),
+        raise InputError(f"unknown key {unknown[0]!r} (a ladder has 'domain', 'instances' and 'probes')", str(path),
                          document.line_of(unknown[0]))
     if "domain" not in document:
         raise InputError("no 'domain' (a|b|c|m|md)", str(path), document.line)
@@ -138,7 +141,8 @@ def read_ladder(path: str | Path) -> Ladder:
         raise InputError("'instances' is a list of instances (file, minimum, established)", str(path),
                          document.line_of("instances"))
     rungs = tuple(_rung(path, item, line) for item, line in zip(items, items.item_lines, strict=True))
-    return Ladder(domain, path, rungs)
+    probes = read_probes(path, document["probes"], document.line_of("probes")) if "probes" in document else ()
+    return Ladder(domain, path, rungs, probes=probes)
 
 
 def _rung(manifest: Path, item: object, line: int) -> Rung:
