@@ -48,6 +48,7 @@ from PyQt5.QtWidgets import (
     QWidget,
 )
 
+from asprilo.domain import Domain
 from asprilo.errors import InputError
 from asprilo.reader import value_of
 from asprilo.simulate import Violation
@@ -390,6 +391,7 @@ class JobRunner(QObject):
         if document.scenario is None:
             return None
         scenario, instance, domain = document.scenario, copy.deepcopy(document.instance), document.domain
+        base = document.base_domain  # the plan found is shown under the rules it is solved for
         method = method or self.method
         drafts = method in ("auto", "anytime")
         encoding = encoding or str(self.settings.value("tools/encoding", "plain"))
@@ -410,21 +412,21 @@ class JobRunner(QObject):
                          on_phase=lambda phase: job.progress.emit(doing(phase)))
 
         def done(job: Job, outcome) -> None:
-            self._solved(job, outcome, scenario, domain.label)
+            self._solved(job, outcome, scenario, domain.label, solved_in=base)
 
-        better = functools.partial(self._show_better, scenario) if drafts else None
+        better = functools.partial(self._show_better, scenario, base) if drafts else None
         return self.start("Solve", work, done, better, time_limit)
 
-    def _show_better(self, scenario, attempt) -> None:
-        """A better plan of a solve for ``scenario``: drafted (while that scenario is shown) and
-        its makespan beside the job's clock."""
+    def _show_better(self, scenario, solved_in: Domain, attempt) -> None:
+        """A better plan of a solve for ``scenario`` in the domain ``solved_in``: drafted (while
+        that scenario is shown) and its makespan beside the job's clock."""
         if self.bar.best is not None and attempt.horizon > self.bar.best:
             return  # (the anytime planner's next plan of the same makespan has a smaller sum of costs)
         self.bar.best = attempt.horizon
         self.bar.tick()
         document = self.state.document
         if document.scenario is scenario:
-            document.draft_plan(attempt.plan)
+            document.draft_plan(attempt.plan, solved_in)
 
     def ask_solve_file(self) -> None:
         """Run > Solve with encoding file…: choose the files of an encoding and solve with them."""
@@ -445,6 +447,7 @@ class JobRunner(QObject):
         paths = [str(path) for path in paths]
         encoding_files.remember_encoding(self.settings, paths)
         scenario, instance, domain = document.scenario, copy.deepcopy(document.instance), document.domain
+        base = document.base_domain  # the plan found is shown under the rules it is solved for
         time_limit = SOLVE_SECONDS if time_limit is None else time_limit
         names = encoding_files.entry_text(paths)
 
@@ -460,18 +463,22 @@ class JobRunner(QObject):
                             cancel=job.cancel,
                             on_progress=lambda attempt: job.progress.emit(f"{said} — {tried(attempt)}"),
                             on_phase=lambda phase: job.progress.emit(f"{said} — {doing(phase)}"))
+            from asprilo.encodings.solving.minimality import learn_minimum
+            learn_minimum(outcome, instance)  # a plan above the bound: the problem's minimum, where cheap
             return encoding, outcome
 
         def done(job: Job, result) -> None:
             encoding, outcome = result
-            self._solved(job, outcome, scenario, domain.label, encoding)
+            self._solved(job, outcome, scenario, domain.label, encoding, solved_in=base)
 
         return self.start("Solve", work, done, time_limit=time_limit)
 
-    def _solved(self, job: Job, outcome, scenario, domain: str, own=None) -> None:
+    def _solved(self, job: Job, outcome, scenario, domain: str, own=None, solved_in: Domain | None = None) -> None:
         """Load and play the plan found in ``scenario`` (if still shown), show a plan that breaks
         the rules with the checker's violations, or say why there is none.  ``own``: the user's
-        own encoding that solved (an :class:`~asprilo.encodings.Encoding`)."""
+        own encoding that solved (an :class:`~asprilo.encodings.Encoding`); ``solved_in``: the
+        domain it was solved for (before the variants), which the plan is then shown under, so
+        that the checker's verdict, the replay, the panels and the status bar judge it alike."""
         document = self.state.document
         self.last_outcome = outcome
         if document.scenario is not scenario:
@@ -493,7 +500,7 @@ class JobRunner(QObject):
             return
         verdict = "" if outcome.found else ", invalid"
         document.replace_plan(outcome.plan, f"solve ({outcome.encoding}, makespan {outcome.horizon}{verdict})",
-                              time=0.0, sources=[])
+                              time=0.0, sources=[], solved_in=solved_in)
         if invalid:  # the checker's violations, the first one's step shown
             violations = list(outcome.check.errors)
             self.state.show_checker_report(violations)
@@ -563,7 +570,10 @@ def found(outcome, job: Job, domain: str, own=None) -> str:
         return (f"{head}: {minimal}makespan {outcome.horizon}{proof}, {len(outcome.plan)} actions "
                 f"({domain}, {outcome.encoding} and anytime, found by {by})")
     if outcome.method != "anytime":
-        return (f"plan found in {job.seconds:.1f} s: {minimal}makespan {outcome.horizon}, "
+        from asprilo.encodings.solving.minimality import proof
+
+        said = "" if outcome.trusted or outcome.minimal else f" ({proof(outcome)})"  # your encoding's: not minimal
+        return (f"plan found in {job.seconds:.1f} s: {minimal}makespan {outcome.horizon}{said}, "
                 f"{len(outcome.plan)} actions ({domain}, {encoding_words(outcome, own)})")
     head = f"Solve stopped after {job.seconds:.1f} s, best plan" if job.cancel.is_set() else \
         f"plan found in {job.seconds:.1f} s"
@@ -589,8 +599,10 @@ def broken(outcome, job: Job, domain: str, own=None) -> str:
 
 def no_plan(outcome, own) -> str:
     """What the error dialog says when the user's encoding gave no plan: why, in words."""
+    from asprilo.encodings.solving.minimality import no_plan_headline, refuted_words
+
     names = encoding_files.entry_text([str(path) for path in own.files])
-    why = {"none": "no plan exists", "limit": "no plan within the time limit",
+    why = {"none": no_plan_headline(outcome), "limit": "no plan within the time limit",
            "invalid": "no plan"}.get(outcome.status.value, outcome.status.value)
     text = f"{names}: {why}" + (f": {outcome.message}" if outcome.message else "")
     refuted = outcome.refuted
@@ -598,8 +610,7 @@ def no_plan(outcome, own) -> str:
         several = len(refuted) > 1
         horizons = f"{refuted[0]}–{refuted[-1]}" if refuted == list(range(refuted[0], refuted[-1] + 1)) and several \
             else ", ".join(map(str, refuted))
-        text += (f" (refuted horizon{'s' if several else ''} {horizons}: "
-                 f"no plan is shorter than {outcome.proven_bound:g})")
+        text += f" ({refuted_words(outcome, horizons, several)})"
     return text
 
 

@@ -63,16 +63,20 @@ class _InstanceStep:
 class _PlanStep:
     part = PLAN
 
-    def __init__(self, document: Document, after: Plan, sources: list[Source], text: str, time: float | None):
+    def __init__(self, document: Document, after: Plan, sources: list[Source], text: str, time: float | None,
+                 solved_in: Domain | None):
         scenario = document.scenario
         self.document, self.text, self.time = document, text, time
-        self.before, self.after = (scenario.plan, scenario.plan_sources), (after, sources)
+        self.before = (scenario.plan, scenario.plan_sources, scenario.solved_in)
+        self.after = (after, sources, solved_in)
 
     def redo(self) -> None:
-        self.document.put_plan(*self.after, self.time)
+        plan, sources, solved_in = self.after
+        self.document.put_plan(plan, sources, self.time, solved_in)
 
     def undo(self) -> None:
-        self.document.put_plan(*self.before, self.time)
+        plan, sources, solved_in = self.before
+        self.document.put_plan(plan, sources, self.time, solved_in)
 
 
 def _touches(step: Step, part: str) -> bool:
@@ -90,7 +94,8 @@ class Document:
         self.path: Path | None = None  # where Save instance writes (None: ask)
         self._empty = Instance()
         self._modified = False
-        self._before_draft: tuple[Plan, list[Source]] | None = None  # the plan a draft covers
+        #: the plan a draft covers (with its sources and the domain a solve found it for)
+        self._before_draft: tuple[Plan, list[Source], Domain | None] | None = None
         #: the rule variants every scenario is shown under (``viz --variant``)
         self.variants: tuple[VariantFile, ...] = ()
         self.opened = Signal()            # (keep_time: bool) another scenario, or none
@@ -108,11 +113,18 @@ class Document:
         return self.scenario.plan if self.scenario is not None else Plan()
 
     @property
+    def base_domain(self) -> Domain:
+        """The scenario's domain before the variants: given, the one a solve found the plan
+        shown for, or detected from instance and plan."""
+        scenario = self.scenario
+        given = scenario.domain or scenario.solved_in if scenario is not None else None
+        return given or detect_domain(self.instance, self.plan if len(self.plan) else None)
+
+    @property
     def domain(self) -> Domain:
-        """The scenario's domain: given, or detected from instance and plan, changed by the
-        variants (unchanged where they do not fit it: the window said so when it was opened)."""
-        given = self.scenario.domain if self.scenario is not None else None
-        domain = given or detect_domain(self.instance, self.plan if len(self.plan) else None)
+        """The scenario's domain (:attr:`base_domain`) changed by the variants (unchanged where
+        they do not fit it: the window said so when it was opened)."""
+        domain = self.base_domain
         try:
             return varied(domain, self.variants)
         except InputError:
@@ -142,37 +154,40 @@ class Document:
         return True
 
     def replace_plan(self, plan: Plan, text: str, time: float | None = None,
-                     sources: list[Source] | None = None) -> bool:
+                     sources: list[Source] | None = None, solved_in: Domain | None = None) -> bool:
         """Show ``plan`` instead of the plan shown, as one undoable step; ``sources``: where
-        it comes from now (default: where the plan shown came from).  A draft shown ends:
-        the step replaces the plan from before the draft."""
+        it comes from now (default: where the plan shown came from); ``solved_in``: the domain
+        a solve found it for, which it is then shown under (``None``: detected again).  A draft
+        shown ends: the step replaces the plan from before the draft."""
         if self.scenario is None:
             return False
         drafted = self._before_draft is not None
         if drafted:  # the step goes from the plan the draft covers
-            (self.scenario.plan, self.scenario.plan_sources), self._before_draft = self._before_draft, None
+            (self.scenario.plan, self.scenario.plan_sources, self.scenario.solved_in), self._before_draft = \
+                self._before_draft, None
         if plan == self.scenario.plan:
             if drafted:  # the plan from before the draft, shown again
-                self.put_plan(plan, self.scenario.plan_sources, time)
+                self.put_plan(plan, self.scenario.plan_sources, time, self.scenario.solved_in)
             return False
         sources = self.scenario.plan_sources if sources is None else sources
-        self.history.push(_PlanStep(self, plan, sources, text, time))
+        self.history.push(_PlanStep(self, plan, sources, text, time, solved_in))
         return True
 
-    def draft_plan(self, plan: Plan) -> None:
-        """Show ``plan`` for now, outside the history (a search's better plans as they come),
-        until :meth:`replace_plan` puts the result in as one step or :meth:`drop_draft` ends it."""
+    def draft_plan(self, plan: Plan, solved_in: Domain | None = None) -> None:
+        """Show ``plan`` for now, outside the history (a search's better plans as they come, for
+        the domain ``solved_in``), until :meth:`replace_plan` puts the result in as one step or
+        :meth:`drop_draft` ends it."""
         if self.scenario is None:
             return
         if self._before_draft is None:
-            self._before_draft = (self.scenario.plan, self.scenario.plan_sources)
-        self.put_plan(plan, [], None)
+            self._before_draft = (self.scenario.plan, self.scenario.plan_sources, self.scenario.solved_in)
+        self.put_plan(plan, [], None, solved_in)
 
     def drop_draft(self) -> None:
         """Show the plan from before the draft again (the search failed or was dropped)."""
         if self._before_draft is not None:
-            before, self._before_draft = self._before_draft, None
-            self.put_plan(*before, None)
+            (plan, sources, solved_in), self._before_draft = self._before_draft, None
+            self.put_plan(plan, sources, None, solved_in)
 
     def grow_plan(self, plan: Plan) -> None:
         """The plan of an online session grew (not undoable: the session owns it)."""
@@ -186,8 +201,8 @@ class Document:
         edits.apply(self.instance, edit, undo)
         self.changed.emit(Change(edit=edit, time=0.0))
 
-    def put_plan(self, plan: Plan, sources: list[Source], time: float | None) -> None:
-        self.scenario.plan, self.scenario.plan_sources = plan, sources
+    def put_plan(self, plan: Plan, sources: list[Source], time: float | None, solved_in: Domain | None = None) -> None:
+        self.scenario.plan, self.scenario.plan_sources, self.scenario.solved_in = plan, sources, solved_in
         self.changed.emit(Change(plan=True, time=time))
 
     # --- unsaved edits ------------------------------------------------------------------------

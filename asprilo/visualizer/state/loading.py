@@ -38,6 +38,9 @@ class Scenario:
     instance_sources: list[Source] = field(default_factory=list)
     plan_sources: list[Source] = field(default_factory=list)
     domain: Domain | None = None  # None: detected from instance and plan
+    #: the domain a solve found the plan shown for (None: the plan came otherwise): the plan
+    #: is shown under the rules it was solved and checked under, whatever it holds
+    solved_in: Domain | None = None
     unfinished: bool = False  # the plan still grows (an online session): no goal check yet
     #: what the reader warned about reading the files (``FILE:LINE: ...``, as ``check`` says
     #: them after ``warning:``): the window shows them until another file is read
