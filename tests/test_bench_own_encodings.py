@@ -81,13 +81,14 @@ def test_a_suite_runs_encodings_of_its_own_end_to_end(tmp_path, capsys):
 
 
 def test_the_constants_and_the_files_reach_the_run(tmp_path):
-    """Without need=2 the encoding has no plan at the minimal makespan: an error, said in words."""
+    """Without need=2 the encoding has no plan at the problem's minimum: an error, said in words."""
     _encoding_folder(tmp_path)
     suite = _suite(tmp_path, "encodings:\n  mine: {files: [enc/mine.lp, enc/goal.lp]}\n",
                    "  - {domain: m, encoding: mine}\n", (TINY,))
     assert main(["bench", str(suite), "-o", str(tmp_path / "out"), "--plots", "none"]) == 0
     (record,) = load_results(tmp_path / "out")
-    assert (record["status"], record["error"]) == ("error", "no plan at the minimal makespan 1")
+    assert (record["status"], record["error"]) == ("error", "the encoding has no plan at horizon 1, the problem's "
+                                                            "minimum")
 
 
 def test_the_suite_keeps_its_encodings_with_their_style(tmp_path):

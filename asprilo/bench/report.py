@@ -8,7 +8,7 @@ A run ends in one of four ways:
   of time): counted at the time limit;
 - **invalid**: a plan that the checker rejected (a wrong answer);
 - **error**: the run failed (its encoding refused at run time, a crash, no plan at the
-  minimal makespan...).
+  problem's minimum -- an own encoding whose shortest plan is longer...).
 
 Invalid plans and errors are never averaged in as times: the cells count them apart
 (``xN``, ``!N``) and the list of failed runs says why.  The time tables give the average run

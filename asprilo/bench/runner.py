@@ -113,8 +113,14 @@ def complete(record: dict, path: Path, status: str, wall: float, report: dict, d
     checked = (SolveStatus.FOUND.value, SolveStatus.INVALID.value)  # a plan: the runner checks it itself
     if report["status"] not in checked or not report.get("plan"):
         return {**record, "status": ERROR,
-                "error": report.get("message") or f"no plan at the minimal makespan {record['horizon']}"}
+                "error": report.get("message") or no_plan_at_minimum(record["horizon"])}
     return {**record, "time": report["time"], **plan_verdict(path, record["domain"], report["plan"])}
+
+
+def no_plan_at_minimum(horizon: int) -> str:
+    """Why a run at the problem's minimum has no plan: its encoding allows none that short
+    (the sentence of :mod:`asprilo.encodings.solving.minimality`)."""
+    return f"the encoding has no plan at horizon {horizon}, the problem's minimum"
 
 
 def complete_anytime(record: dict, path: Path, run: LimitedRun) -> dict:

@@ -79,6 +79,8 @@ def run(job: dict, report=None) -> dict:
         "status": outcome.status.value,
         "time": seconds,
         "horizon": outcome.horizon,
+        # for the problem (never for an invalid plan; an own encoding's: where it meets the lower
+        # bound): what a makespan search needs to be "solved"
         "minimal": outcome.minimal_along_assignment if job.get("assign") else outcome.minimal,
         "plan": format_plan(outcome.plan) if outcome.plan is not None else None,
         "stats": outcome.stats,

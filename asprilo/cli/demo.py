@@ -53,6 +53,7 @@ def _say(text: str) -> None:
 def run(args: argparse.Namespace) -> int:
     from asprilo.checker import check
     from asprilo.encodings import solve
+    from asprilo.encodings.solving.minimality import proof
     from asprilo.generator import GeneratorConfig, generate
 
     domain: Domain = args.domain
@@ -83,8 +84,7 @@ def run(args: argparse.Namespace) -> int:
         return 1
     plan_path = folder / "plan.lp"
     write_text(plan_path, format_plan(outcome.plan))
-    proven = "proven minimal" if outcome.minimal else "not proven minimal"
-    _say(f"2. solved     {plan_path}: horizon {outcome.horizon} ({proven}), {len(outcome.plan)} actions "
+    _say(f"2. solved     {plan_path}: horizon {outcome.horizon} ({proof(outcome)}), {len(outcome.plan)} actions "
          f"({time.perf_counter() - step:.1f} s)")
 
     report = check(instance, outcome.plan, domain)

@@ -171,6 +171,9 @@ class EncodingSolve(Rerun):
                             isolate=True, cancel=cancel, on_progress=progress.attempt, on_phase=progress.phase)
         finally:
             progress.close()
+        from asprilo.encodings.solving.minimality import learn_minimum
+
+        learn_minimum(outcome, instance)  # your encoding's plan above the bound: the problem's minimum, where cheap
         lines = []
         if encoding.own:
             lines.append(f"your encoding: {encoding.summary}")
@@ -182,8 +185,10 @@ class EncodingSolve(Rerun):
         if outcome.plan is None or outcome.check is None:
             return _no_plan(outcome, self.time_limit)
         plan = outcome.plan
-        proof = f" ({'proven minimal' if outcome.minimal else 'not proven minimal'})" if outcome.found else ""
-        line = f"plan: horizon {plan.horizon}{proof}, {len(plan)} actions"
+        from asprilo.encodings.solving.minimality import proof
+
+        said = f" ({proof(outcome)})" if outcome.found else ""
+        line = f"plan: horizon {plan.horizon}{said}, {len(plan)} actions"
         if self.plan is not None:
             write_text(self.plan, format_plan(plan), self.paths())
             line += f", written to {self.plan}"
@@ -251,12 +256,16 @@ class Progress:
 def _no_plan(outcome: Outcome, time_limit: float) -> list[str]:
     """Why there is no plan, in a line (and the horizons refuted)."""
     from asprilo.encodings import SolveStatus
-    words = {SolveStatus.NONE: "no plan exists", SolveStatus.LIMIT: f"no plan within the limits ({time_limit:g} s)",
+    from asprilo.encodings.solving.minimality import no_plan_headline, refuted_words
+
+    words = {SolveStatus.NONE: no_plan_headline(outcome),
+             SolveStatus.LIMIT: f"no plan within the limits ({time_limit:g} s)",
              SolveStatus.CANCELLED: "cancelled", SolveStatus.INVALID: "no valid plan"}.get(outcome.status,
                                                                                        outcome.status.value)
     lines = [words + (f": {outcome.message}" if outcome.message else "")]
-    if outcome.refuted:
-        lines.append(f"refuted horizons: {', '.join(map(str, outcome.refuted))}")
+    refuted = outcome.refuted
+    if refuted and (outcome.trusted or outcome.status is not SolveStatus.NONE):  # (else said by the headline)
+        lines.append(refuted_words(outcome, ", ".join(map(str, refuted)), len(refuted) > 1))
     return lines
 
 

@@ -70,6 +70,7 @@ from .choice import choose_encoding, is_encoding_file, stage_encoding
 from .registry import Encoding, default_encoding, reference_encodings
 from .solving import Attempt, Phase, method_names, solve
 from .solving.methods import methods_words
+from .solving.minimality import learn_minimum
 from .summary import SHOWN_VIOLATIONS, SHOWN_WARNINGS, report, summary
 from .summary import verdict as _verdict
 
@@ -147,6 +148,7 @@ def run(args: argparse.Namespace) -> int:
                             on_progress=progress.attempt, on_phase=progress.phase, cancel=cancel, stage=stage)
     finally:
         progress.close()
+    learn_minimum(outcome, instance)  # your encoding's plan above the bound: the problem's minimum, where cheap
     if outcome.plan is not None and outcome.found and args.output:
         write_text(args.output, format_plan(outcome.plan), inputs)
     summary(outcome, encoding, hint=args.method == "asp" and horizon is None, instance=instance)

@@ -29,6 +29,7 @@ from .grading import timed_out
 from .ladder import ReferenceMinimum, Rung
 from .registry import Encoding
 from .solving import Outcome, Phase, SolveStatus, solve
+from .solving.outcome import proven_bound
 
 
 class Reference:
@@ -76,12 +77,13 @@ class Reference:
 
 
 def found(outcome: Outcome, seconds: float, time_limit: float) -> ReferenceMinimum:
-    """What an outcome of the reference's search says of the minimum."""
-    bound = outcome.proven_bound
+    """What an outcome of the reference's search says of the minimum.  The teacher's encoding
+    is trusted: the horizons it refutes, and its shortest plan, hold for the problem."""
+    bound = proven_bound(outcome.lower_bound, outcome.refuted)
     at_least = int(bound) if math.isfinite(bound) else None
     if outcome.status is SolveStatus.FOUND and outcome.horizon is not None:
         makespan = outcome.horizon
-        if outcome.minimal:
+        if outcome.encoding_minimal:
             return ReferenceMinimum(makespan, makespan, makespan, seconds)
         return ReferenceMinimum(None, makespan, at_least, seconds,
                                 f"the reference found makespan {makespan} but did not prove it minimal")

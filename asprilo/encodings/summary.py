@@ -1,8 +1,9 @@
 """What ``asprilo solve`` says of a solve on stderr (:func:`summary`) and prints with
 ``--json`` (:func:`report`): the plan and how its makespan was proven minimal (for a domain
 changed by rule variants: under which rules, from which bound, refuted by which encoding),
-or the bound proven and the gap; the violations of a plan that breaks the rules; why there
-is none; what was tried."""
+or the bound proven and the gap, or (a user's own encoding) the shortest plan the encoding
+allows and the problem's minimum (:mod:`.solving.minimality`); the violations of a plan that
+breaks the rules; why there is none; what was tried."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ from asprilo.writer import format_action
 
 from .registry import Encoding
 from .solving import Outcome
+from .solving.minimality import no_plan_headline, problem_minimum, proof, refuted_words
 
 #: the most violations the summary lists of a plan that breaks the rules, and of clingo's warnings
 SHOWN_VIOLATIONS, SHOWN_WARNINGS = 20, 5
@@ -69,7 +71,7 @@ def verdict(outcome: Outcome) -> list[str]:
     plan = outcome.plan
     if outcome.found and plan is not None:
         by = f"; found by {_FOUND_BY[outcome.found_by]}" if outcome.found_by in _FOUND_BY else ""
-        line = f"plan: horizon {outcome.horizon} ({_proof(outcome)}), {len(plan)} actions, checked: valid{by}"
+        line = f"plan: horizon {outcome.horizon} ({proof(outcome)}), {len(plan)} actions, checked: valid{by}"
         ended = [f"the search ended: {outcome.message}"] if outcome.message and not outcome.minimal else []
         return [line] + ([] if outcome.minimal else _tried(outcome)) + ended
     if outcome.check is not None and not outcome.check.valid and plan is not None:
@@ -79,7 +81,7 @@ def verdict(outcome: Outcome) -> list[str]:
             lines.append(f"... and {len(errors) - SHOWN_VIOLATIONS} more (asprilo check lists them all)")
         return lines + [f"no valid plan: the plan of makespan {plan.horizon} breaks the rules "
                         f"({len(errors)} violation{'s' * (len(errors) != 1)})"]
-    headline = {"none": "no plan exists", "limit": "no plan within the limits", "cancelled": "cancelled",
+    headline = {"none": no_plan_headline(outcome), "limit": "no plan within the limits", "cancelled": "cancelled",
                 "invalid": "no valid plan"}[outcome.status.value]
     if outcome.status.value == "none" and (outcome.stage or (outcome.refuted_along and not outcome.refuted)):
         headline = "no plan"  # none along a stage's answer, or for an encoding of part of the rules: not none at all
@@ -89,25 +91,12 @@ def verdict(outcome: Outcome) -> list[str]:
     return lines
 
 
-def _proof(outcome: Outcome) -> str:
-    """``proven minimal``, or the bound proven and the gap (and, with a first stage, whether no
-    shorter plan follows its answer)."""
-    if outcome.minimal:
-        return "proven minimal"
-    along = "minimal along the first stage's answer; " if outcome.stage and outcome.minimal_along_assignment else ""
-    bound, gap = outcome.proven_bound, outcome.gap
-    if not bound or bound == float("inf") or gap is None:
-        return f"{along}not proven minimal"
-    return (f"{along}not proven minimal: no plan is shorter than {bound:g}, gap {gap:g} step{'s' * (gap != 1)}, "
-            f"{100 * gap / bound:.0f}%")
-
-
 def _tried(outcome: Outcome) -> list[str]:
     """What was tried and proven: the horizons refuted (for the problem, and those refuted only
     along the task assignment), the horizons left undecided, the anytime planner's plans."""
     lines = []
     if outcome.refuted:
-        lines.append(f"refuted horizons {_spans(outcome.refuted)}: no plan is shorter than {outcome.proven_bound:g}")
+        lines.append(refuted_words(outcome, _spans(outcome.refuted), len(outcome.refuted) > 1 or outcome.trusted))
     along = [horizon for horizon in outcome.refuted_along if horizon not in outcome.refuted]
     if along:
         horizons = f"horizon{'s' * (len(along) > 1)} {_spans(along)}"
@@ -155,6 +144,9 @@ def report(outcome: Outcome) -> dict:
         "encoding": outcome.encoding,
         "horizon": outcome.horizon,
         "minimal": outcome.minimal,
+        "encoding_minimal": outcome.encoding_minimal,
+        "minimum": outcome.minimum,
+        "minimum_by": outcome.minimum_by or None,
         "lower_bound": outcome.lower_bound if outcome.lower_bound != float("inf") else None,
         "horizons_tried": [attempt.as_json() for attempt in outcome.horizons_tried],
         "refuted": outcome.refuted,
@@ -199,6 +191,8 @@ def rules_words(outcome: Outcome) -> list[str]:
     if outcome.found and outcome.minimal and outcome.horizon is not None:
         if outcome.horizon <= outcome.lower_bound:
             how = "the plan meets the lower bound"
+        elif not outcome.trusted:
+            how = problem_minimum(outcome.minimum, outcome.proven_bound, outcome.minimum_by)
         else:
             refuted = [horizon for horizon in outcome.refuted if horizon < outcome.horizon]
             how = (f"{_encoding_words(outcome)} has no plan at horizon{'s' * (len(refuted) > 1)} "

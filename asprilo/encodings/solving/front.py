@@ -25,6 +25,7 @@ from ..registry import Encoding, default_encoding, find_encoding
 from .bounds import LowerBounds, lower_bounds
 from .method import Method
 from .methods import method_for, resolve
+from .minimality import settle
 from .outcome import Outcome
 from .request import SolveOptions, SolveRequest, given_assignment
 from .status import Attempt, Phase, PhaseListener, Progress, SolveStatus, Totals
@@ -96,14 +97,18 @@ def request_for(instance: Instance | str | Path, domain: Domain | str | None = N
 def solve_request(request: SolveRequest, listeners: Listeners | None = None,
                   cancel: threading.Event | None = None) -> Outcome:
     """Run ``request`` with its method, here or (``isolate``) in a child process (a method
-    that runs its own child processes, ``auto``, and a quick run always run here)."""
+    that runs its own child processes, ``auto``, and a quick run always run here); then say
+    what its plan is minimal for (:func:`.minimality.settle`)."""
     request = resolve(request)
     method = method_for(request)
     listeners = listeners or Listeners()
     quick = request.memory_limit is None and method.quick(request)
     if request.isolate and not method.isolates_itself and not quick:
-        return _solve_isolated(request, method, listeners, cancel)
-    return solve_here(request, method, listeners, cancel)
+        outcome = _solve_isolated(request, method, listeners, cancel)
+    else:
+        outcome = solve_here(request, method, listeners, cancel)
+    settle(request, outcome)  # minimal for the problem, or for a user's own encoding only
+    return outcome
 
 
 def solve_here(request: SolveRequest, method: Method, listeners: Listeners,

@@ -18,7 +18,10 @@ class Outcome:
     """What :func:`~asprilo.encodings.solve` found.
 
     ``minimal`` says that no shorter plan exists: proven by the search or the lower bound;
-    with an assignment, by the lower bound or by a try one step shorter without it.
+    with an assignment, by the lower bound or by a try one step shorter without it.  For a
+    user's own encoding its search proves ``encoding_minimal`` only (no shorter plan of this
+    encoding), ``minimal`` where the plan meets the lower bound or the problem's ``minimum``
+    (:mod:`.minimality`); its refuted horizons are not ``trusted`` for the problem.
     ``stats`` holds ground and solve time (seconds), rules, atoms (of the last program),
     choices and conflicts (summed over all solve calls).
     """
@@ -42,6 +45,10 @@ class Outcome:
     found_by: str = ""  # method auto: the method whose plan is the answer (asp or anytime)
     stage: str = ""  # the files of a first stage (``--stage``), in words; "" without one
     staged: list[str] | None = None  # the atoms of its first answer, as text (None: it had no answer)
+    encoding_minimal: bool = False  # a valid plan, and the encoding (or method) allows none shorter
+    minimum: int | None = None  # the problem's minimal makespan, where it is known
+    minimum_by: str = ""  # who proved ``minimum``, in words, where not the search itself
+    trusted: bool = True  # the horizons refuted hold for the problem (not so for a user's own encoding)
 
     @property
     def found(self) -> bool:
@@ -61,8 +68,10 @@ class Outcome:
 
     @property
     def proven_bound(self) -> float:
-        """No plan is shorter: the lower bound raised past every horizon refuted."""
-        return proven_bound(self.lower_bound, self.refuted)
+        """No plan is shorter: the lower bound raised past every horizon refuted (by a trusted
+        encoding: a user's own proves nothing for the problem), or the problem's minimum."""
+        bound = proven_bound(self.lower_bound, self.refuted if self.trusted else [])
+        return bound if self.minimum is None else max(bound, self.minimum)
 
     @property
     def gap(self) -> float | None:
