@@ -11,6 +11,8 @@ An exercise file (``exercise.yml``; docs/GRADING.md) names paths relative to its
                                         # reference encoding's name (default: the variant's own)
     instances: instances                # a folder (its .lp files, by name) or a list of files
     time-limit: 10                      # seconds per instance, for each search (default 20)
+    probes: [...]                       # illegal plans the student's encoding must refuse
+                                        # (as in a ladder.yml: asprilo/encodings/probes.py)
 
 Only ``domain`` and ``instances`` are required.  Every mistake is :class:`InputError` with
 the file and the line.
@@ -29,9 +31,10 @@ from asprilo.errors import InputError
 from asprilo.yamlfile import YamlMapping, load_yaml, shown
 
 from .ladder import Ladder, Rung
+from .probes import Probe, read_probes
 
 #: the keys of an exercise file, in the order docs/GRADING.md explains them
-KEYS = ("exercise", "summary", "domain", "variants", "reference", "instances", "time-limit")
+KEYS = ("exercise", "summary", "domain", "variants", "reference", "instances", "time-limit", "probes")
 _NAME = re.compile(r"[a-z][a-z0-9-]*\Z")
 
 
@@ -49,6 +52,7 @@ class Exercise:
     instances: tuple[Path, ...]
     time_limit: float | None = None
     summary: str = ""
+    probes: tuple[Probe, ...] = ()
 
 
 def read_exercise(path: str | Path) -> Exercise:
@@ -84,7 +88,8 @@ def read_exercise(path: str | Path) -> Exercise:
         raise InputError(error.message, where, line) from None
     return Exercise(path, name, domain, tuple(_variant(value, folder) for value in _texts(data, "variants", where)),
                     tuple(_reference(value, folder) for value in _texts(data, "reference", where)), tuple(instances),
-                    _seconds(data, where), _text(data, "summary", where) if "summary" in data else "")
+                    _seconds(data, where), _text(data, "summary", where) if "summary" in data else "",
+                    read_probes(path, data["probes"], data.line_of("probes")) if "probes" in data else ())
 
 
 def _text(data: YamlMapping, key: str, where: str) -> str:

@@ -39,7 +39,7 @@ import time
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, TextIO
 
 import clingo
 
@@ -211,6 +211,28 @@ def probe_encoding(encoding: Encoding, probes: Sequence[Probe], domain: Domain, 
         if on_start is not None:
             on_start(number, len(probes), probe)
         yield run_probe(encoding, probe, domain, time_limit=time_limit, memory_limit=memory_limit)
+
+
+def probe_report(encoding: Encoding, probes: Sequence[Probe], domain: Domain, *, time_limit: float,
+                 memory_limit: int | None = None, out: TextIO | None = None,
+                 on_start: Callable[[int, int, Probe], None] | None = None,
+                 on_done: Callable[[], None] | None = None) -> list[Probed]:
+    """:func:`probe_encoding`, a line per probe on ``out`` (when given) as each ends;
+    ``on_done()`` is called after each (and after a failure)."""
+    probed = []
+    try:
+        for item in probe_encoding(encoding, probes, domain, time_limit=time_limit, memory_limit=memory_limit,
+                                   on_start=on_start):
+            if on_done is not None:
+                on_done()
+            probed.append(item)
+            if out is not None:
+                out.write(item.line() + "\n")
+                out.flush()
+    finally:
+        if on_done is not None:
+            on_done()
+    return probed
 
 
 def run_probe(encoding: Encoding, probe: Probe, domain: Domain, *, time_limit: float,
