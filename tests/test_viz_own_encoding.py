@@ -177,12 +177,29 @@ def test_no_plan_within_the_time_limit_says_which_horizons_were_refuted(window, 
     finish(qtbot, window)
     outcome = window.jobs.last_outcome
     assert outcome.status.value == "limit"
-    refuted = outcome.refuted
+    refuted = outcome.refuted  # by the user's encoding: nothing is proven for the problem
+    only = "(refuted for the encoding only, not for the problem)"
     words = "" if not refuted else (
-        f" (refuted horizon {refuted[0]}: no plan is shorter than {refuted[0] + 1})" if len(refuted) == 1 else
-        f" (refuted horizons {refuted[0]}–{refuted[-1]}: no plan is shorter than {refuted[-1] + 1})")
+        f" (your encoding has no plan at horizon {refuted[0]} {only})" if len(refuted) == 1 else
+        f" (your encoding has no plan at horizons {refuted[0]}–{refuted[-1]} {only})")
     assert window.state.last_error == f"never.lp: no plan within the time limit{words}"
     assert error_dialogs(window) == [window.state.last_error] and len(window.scenario.plan) == 0
+
+
+def test_a_weak_encoding_is_said_to_be_the_shortest_it_allows_not_minimal(qtbot, tmp_path_factory, monkeypatch):
+    """m-one-mover.lp moves one robot at a time: on m-side-by-side.lp its shortest plan is 4
+    steps where both robots move at once in 2 (by hand; max-flow proves it too)."""
+    window = shown_window(qtbot, tmp_path_factory)
+    monkeypatch.setattr(QMessageBox, "question", lambda *args: QMessageBox.Discard)
+    window.open_files([str(ENCODINGS / "m-side-by-side.lp")])
+    assert window.jobs.solve_files([ENCODINGS / "m-one-mover.lp"]) is not None
+    finish(qtbot, window)
+    outcome = window.jobs.last_outcome
+    assert (outcome.found, outcome.horizon, outcome.minimal, outcome.encoding_minimal, outcome.minimum) == (
+        True, 4, False, True, 2)
+    assert re.fullmatch(rf"plan found in \d+\.\d s: makespan 4 \(the shortest plan this encoding allows \(4\); the "
+                        rf"problem's minimum is 2, by max-flow\), 4 actions \(M, m-one-mover: {SINGLE}\)",
+                        window.statusBar().currentMessage())
 
 
 def test_a_syntax_error_opens_the_error_dialog_located_and_the_warehouse_stays(window, qtbot, choose, tmp_path):
