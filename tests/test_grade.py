@@ -129,7 +129,7 @@ def test_the_json_shape(upside_down, capsys):
     }
     assert first == {
         "step": 1, "name": "01-x3_y2_r1", "file": "01-x3_y2_r1.lp", "size": "3x2", "robots": 1, "minimum": 3,
-        "result": "invalid", "valid": False, "minimal": False, "makespan": 3,
+        "result": "invalid", "valid": False, "minimal": False, "encoding_minimal": False, "makespan": 3,
         "violation": {"atom": "err(goal,unfilledOrder,(1,1,1,3))", "module": "goal", "check": "unfilledOrder",
                       "step": 3, "message": "step 3 (the horizon): order 1 is not fulfilled: no robot stands under "
                                             "a shelf holding product 1"},
@@ -155,8 +155,9 @@ def test_a_plan_longer_than_the_minimum_and_the_horizons_refuted(tmp_path, capsy
     late.write_text(f'#include "{OWN / "m-single.lp"}".\n:- not move(_,_,4).\n')
     code, out, _err = _grade(capsys, late, "--domain", "m", "--first", "1")
     assert code == 0
-    assert _lines(out)[0].endswith("  valid    makespan 4, minimum 3 (horizon 3 refuted, yet plans exist from "
-                                   "makespan 3 on: a constraint is too strong)")
+    assert _lines(out)[0].endswith("  valid    the shortest plan this encoding allows (4); the problem's minimum "
+                                   "is 3 (horizon 3 refuted, yet plans exist from makespan 3 on: a constraint is too "
+                                   "strong)")
     assert out.splitlines()[-1].startswith("1/1 valid, 0/1 minimal; ")
 
 

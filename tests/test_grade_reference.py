@@ -78,8 +78,8 @@ def test_the_plain_m_encoding_ignores_the_variant_and_is_graded_so(capsys):
     code, out, _err = _grade(capsys, PLAIN_M, "--exercise", EXERCISE)
     assert code == 1
     corridor, alone, corner = _lines(out)
-    assert corridor.endswith("  valid    makespan 4, minimum 2 (horizons 2-3 refuted, yet plans exist from makespan 2 "
-                             "on: a constraint is too strong)")
+    assert corridor.endswith("  valid    the shortest plan this encoding allows (4); the problem's minimum is 2 "
+                             "(horizons 2-3 refuted, yet plans exist from makespan 2 on: a constraint is too strong)")
     assert "  no plan  " in alone and alone.endswith(
         "; horizons 0-8 refuted, yet plans exist from makespan 2 on: a constraint is too strong")
     assert corner.endswith("  valid    minimal (makespan 4)")
@@ -109,8 +109,8 @@ def test_the_json_shape(capsys):
     }
     assert corridor == {
         "step": 1, "name": "01-corridor", "file": "01-corridor.lp", "size": "6x1", "robots": 2, "minimum": 2,
-        "result": "valid", "valid": True, "minimal": False, "makespan": 4, "violation": None, "violations": 0,
-        "reason": None, "refuted": [0, 1, 2, 3],
+        "result": "valid", "valid": True, "minimal": False, "encoding_minimal": True, "makespan": 4, "violation": None,
+        "violations": 0, "reason": None, "refuted": [0, 1, 2, 3],
         "reference": {"proven": True, "makespan": 2, "at_least": 2, "reason": None}}
     assert alone["result"] == "no-plan" and alone["minimum"] == 2 and alone["refuted"] == list(range(9))
     assert alone["reference"] == {"proven": True, "makespan": 2, "at_least": 2, "reason": None}
@@ -182,8 +182,8 @@ def test_a_minimum_the_reference_did_not_prove_is_unknown(tmp_path, capsys):
     assert code == 0
     assert out.splitlines()[1].startswith("  rules: M+visit-anytime; ")  # the variant's one domain
     for line, name in zip(_lines(out), NAMES, strict=True):
-        assert re.search(rf"  valid    makespan {VISIT_MINIMA[name]}, minimum unknown \(the reference found makespan "
-                         r"\d+ but did not prove it minimal\)$", line)
+        assert re.search(rf"  valid    the shortest plan this encoding allows \({VISIT_MINIMA[name]}\); the problem's "
+                         r"minimum is unknown \(the reference found makespan \d+ but did not prove it minimal\)$", line)
     assert out.splitlines()[-1].startswith("3/3 valid, 0/3 minimal, minimum unknown on 3; ")
 
 

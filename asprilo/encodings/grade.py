@@ -63,6 +63,7 @@ from .ladder import Ladder, Rung, bundled_ladder, read_ladder
 from .reference import Reference
 from .registry import Encoding, find_encoding
 from .solving import Phase
+from .solving.minimality import sentence
 
 #: options asprilo does not know are clingo's (the command line passes them on)
 CLINGO_OPTIONS = True
@@ -320,6 +321,8 @@ def detail(graded: Graded) -> str:
         if graded.too_strong:
             notes.append(f"{horizons(graded.too_strong)} refuted{too_strong(graded)}")
         said = f" ({'; '.join(notes)})" if notes else ""
+        if graded.encoding_minimal and graded.makespan is not None:  # it refuted every shorter horizon
+            return sentence(graded.makespan, minimum) + said
         return f"makespan {graded.makespan}, minimum {'unknown' if minimum is None else minimum}{said}"
     if graded.violation is not None:
         more = graded.violations - 1

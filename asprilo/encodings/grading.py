@@ -49,8 +49,9 @@ class Graded:
     ``result``: ``valid`` (a plan the checker accepts), ``invalid`` (a plan that breaks the
     rules: ``violation`` is the first, ``violations`` how many), ``no-plan`` or ``time-out``
     (``reason`` says why in words).  ``makespan``: of the plan, valid or not; ``refuted``:
-    the horizons the encoding proved to have no plan; ``seconds``: the whole solve, the
-    child process and the check included.
+    the horizons the encoding proved to have no plan; ``encoding_minimal``: a valid plan and
+    the encoding allows none shorter (minimal for the problem or not: :attr:`minimal`);
+    ``seconds``: the whole solve, the child process and the check included.
     """
 
     step: int
@@ -63,6 +64,7 @@ class Graded:
     violations: int = 0
     reason: str = ""
     refuted: list[int] = field(default_factory=list)
+    encoding_minimal: bool = False
     plan: Plan | None = field(default=None, repr=False)
 
     @property
@@ -102,6 +104,7 @@ class Graded:
             "result": self.result,
             "valid": self.valid,
             "minimal": self.minimal,
+            "encoding_minimal": self.encoding_minimal,
             "makespan": self.makespan,
             "seconds": round(self.seconds, 3),
             "violation": None if violation is None else {
@@ -235,7 +238,7 @@ def _graded(step: int, rung: Rung, instance: Instance, outcome: Outcome, seconds
             time_limit: float) -> Graded:
     graded = Graded(step, rung, instance, NO_PLAN, seconds, refuted=outcome.refuted, plan=outcome.plan)
     if outcome.status is SolveStatus.FOUND:
-        graded.result, graded.makespan = VALID, outcome.horizon
+        graded.result, graded.makespan, graded.encoding_minimal = VALID, outcome.horizon, outcome.encoding_minimal
     elif outcome.check is not None and not outcome.check.valid:
         errors = outcome.check.errors
         graded.result, graded.violation, graded.violations = INVALID, errors[0], len(errors)
