@@ -136,6 +136,20 @@ def included_text(path: Path, seen: set[Path] | None = None) -> str | None:
     return _INCLUDE.sub(insert, text)
 
 
+def _hint(message: str, name: str) -> str:
+    """The hint for a syntax error in the file ``name`` that a missing ``.`` on the line
+    before causes (:func:`asprilo.syntax_hint.missing_period`), or nothing."""
+    where = re.match(r"^.*?:(\d+):(\d+)(?:-\d+(?::\d+)?)?: error: syntax error", message)
+    if where is None or not Path(name).is_file():
+        return ""
+    from .syntax_hint import missing_period
+    try:
+        text = Path(name).read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return ""
+    return missing_period(text, int(where.group(1)), int(where.group(2))) or ""
+
+
 def _one_line(message: str) -> str:
     """clingo's message on one line: an unsafe rule's lines, and which variable is unsafe,
     joined (at most 300 characters)."""
@@ -179,7 +193,7 @@ class Solver:
         if not match:
             return InputError(text.splitlines()[0], default_name)
         name = default_name if match.group(1) in ("<string>", "<block>") else match.group(1)
-        return InputError(_one_line(match.group(3)), name, int(match.group(2)))
+        return InputError(_one_line(match.group(3)) + _hint(text, name), name, int(match.group(2)))
 
     # --- programs ------------------------------------------------------------------------
 

@@ -31,6 +31,7 @@ import clingo.ast
 from clingo.ast import ASTType
 
 from asprilo.errors import InputError
+from asprilo.syntax_hint import missing_period
 
 from .registry import Encoding
 
@@ -174,7 +175,7 @@ def _features(program: list[Path]) -> _Features:
             clingo.ast.parse_string(text, lambda statement: _collect(statement, features),
                                     logger=lambda _code, message: messages.append(message))
         except RuntimeError:
-            raise _located(messages, file) from None
+            raise _located(messages, file, text) from None
     return features
 
 
@@ -208,14 +209,16 @@ def _program_files(files: list[Path], strict: bool = True) -> list[Path]:
     return seen
 
 
-def _located(messages: list[str], file: Path) -> InputError:
-    """clingo's first error message on ``file`` as bad input with its line."""
+def _located(messages: list[str], file: Path, program: str) -> InputError:
+    """clingo's first error message on ``file`` (its text ``program``) as bad input with its
+    line, and the hint where a missing ``.`` on the line before is the likely cause."""
     text = next((m for m in messages if ": error:" in m), messages[0] if messages else "syntax error")
     match = re.match(r"^.*?:(\d+):(\d+)(?:-\d+(?::\d+)?)?: error: (.*)", text, re.S)
     if not match:
         return InputError(text.strip().splitlines()[0], str(file))
     line, column, what = match.groups()
-    return InputError(f"column {column}: {' '.join(what.split())}", str(file), int(line))
+    hint = missing_period(program, int(line), int(column)) or ""
+    return InputError(f"column {column}: {' '.join(what.split())}{hint}", str(file), int(line))
 
 
 def _collect(statement: clingo.ast.AST, features: _Features) -> None:
