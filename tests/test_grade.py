@@ -133,7 +133,7 @@ def test_the_json_shape(upside_down, capsys):
         "violation": {"atom": "err(goal,unfilledOrder,(1,1,1,3))", "module": "goal", "check": "unfilledOrder",
                       "step": 3, "message": "step 3 (the horizon): order 1 is not fulfilled: no robot stands under "
                                             "a shelf holding product 1"},
-        "violations": 2, "reason": None, "refuted": []}
+        "violations": 2, "reason": None, "refuted": [], "warnings": []}
     assert set(second) == set(first) and second["result"] == "invalid" and second["step"] == 2
 
 
@@ -179,12 +179,13 @@ def test_a_constant_horizon_solves_there_only(capsys):
     assert lines[4].endswith("  no plan  no answer set; horizon 5 refuted")  # the minimum is 6
 
 
-def test_an_encoding_that_grounds_for_ever_is_a_time_out(tmp_path, capsys):
+def test_an_encoding_that_grounds_for_ever_is_a_time_out_said_where(tmp_path, capsys):
     endless = tmp_path / "endless.lp"
     endless.write_text("#const horizon = 1.\np(0).\np(X+1) :- p(X).\n")
-    code, out, _err = _grade(capsys, endless, "--domain", "m", "--first", "1", "--time-limit", "1")
+    code, out, _err = _grade(capsys, endless, "--domain", "m", "--first", "1", "--time-limit", "2")
     assert code == 1
-    assert _lines(out)[0].endswith("  time-out time limit (1 s)")
+    # the search starts at the lower bound 3 (the robot at (3,2) is 3 steps from the shelf at (1,1))
+    assert _lines(out)[0].endswith("  time-out time limit (2 s) while grounding horizon 3")
     assert out.splitlines()[-1].startswith("0/1 valid, 0/1 minimal, 1 time-out; ")
 
 
@@ -207,15 +208,21 @@ def test_a_reference_encoding_is_graded_by_name(capsys):
                                    "time limit 20 s each")
 
 
-def test_bad_encodings_are_refused_before_the_first_instance(tmp_path, capsys):
-    broken = tmp_path / "broken.lp"
+def test_encodings_clingo_refuses_are_graded_and_bad_command_lines_refused(tmp_path, capsys):
+    broken = tmp_path / "broken.lp"  # the '.' after step(1..horizon) is missing: clingo stops on line 3
     broken.write_text("#const horizon = 1.\nstep(1..horizon)\nrobot(R) :- init(object(robot,R),_).\n")
-    code, out, err = _grade(capsys, broken, "--domain", "m")
-    assert (code, out) == (2, "") and err.startswith(f"error: {broken}:3: column ") and "syntax error" in err
-    unsafe = tmp_path / "unsafe.lp"  # found by clingo when it grounds the first instance
+    code, out, err = _grade(capsys, broken, "--domain", "m", "--first", "2")
+    assert code == 1 and out.splitlines()[0].startswith(f"grading your encoding ({broken}: refused by clingo) ")
+    for line in _lines(out):
+        assert f"  0.0 s  no plan  clingo refused the encoding: {broken}:3: column 1: syntax error" in line
+    assert out.splitlines()[-1].startswith("0/2 valid, 0/2 minimal, 2 without a plan; ")
+    unsafe = tmp_path / "unsafe.lp"  # found by clingo when it grounds each instance
     unsafe.write_text("#const horizon = 1.\np(X) :- q.\n")
-    code, out, err = _grade(capsys, unsafe, "--domain", "m", "--quiet")
-    assert (code, out) == (2, "") and err.startswith(f"error: {unsafe}:2: unsafe variables")
+    code, out, err = _grade(capsys, unsafe, "--domain", "m", "--quiet", "--first", "2", "--json")
+    assert code == 1
+    assert [(entry["result"], entry["reason"]) for entry in json.loads(out)["instances"]] == [
+        ("no-plan", f"clingo refused the encoding: {unsafe}:2: unsafe variables in: p(X):-[#inc_base];q. 'X' is "
+                    "unsafe")] * 2
     code, out, err = _grade(capsys, OWN / "m-single.lp", "--domain", "m", "--frobnicate=3")
     assert (code, out) == (2, "")
     assert err == "error: clingo refuses the option --frobnicate=3: unknown option: 'frobnicate'\n"

@@ -110,7 +110,7 @@ def test_the_json_shape(capsys):
     assert corridor == {
         "step": 1, "name": "01-corridor", "file": "01-corridor.lp", "size": "6x1", "robots": 2, "minimum": 2,
         "result": "valid", "valid": True, "minimal": False, "encoding_minimal": True, "makespan": 4, "violation": None,
-        "violations": 0, "reason": None, "refuted": [0, 1, 2, 3],
+        "violations": 0, "reason": None, "refuted": [0, 1, 2, 3], "warnings": [],
         "reference": {"proven": True, "makespan": 2, "at_least": 2, "reason": None}}
     assert alone["result"] == "no-plan" and alone["minimum"] == 2 and alone["refuted"] == list(range(9))
     assert alone["reference"] == {"proven": True, "makespan": 2, "at_least": 2, "reason": None}

@@ -58,12 +58,24 @@ from asprilo.reader import read_instance
 
 from .choice import choose_encoding, stage_encoding
 from .exercise import Exercise, instance_files, instance_ladder, read_exercise
-from .grading import JSON_VERSION, VALID, VERDICTS, Graded, Summary, grade_ladder, horizons, refused, too_strong
+from .grading import (
+    JSON_VERSION,
+    VALID,
+    VERDICTS,
+    Graded,
+    Summary,
+    grade_ladder,
+    horizons,
+    refusal_words,
+    refused,
+    too_strong,
+)
 from .ladder import Ladder, Rung, bundled_ladder, read_ladder
 from .reference import Reference
 from .registry import Encoding, find_encoding
 from .solving import Phase
 from .solving.minimality import sentence
+from .summary import SHOWN_WARNINGS
 
 #: options asprilo does not know are clingo's (the command line passes them on)
 CLINGO_OPTIONS = True
@@ -84,6 +96,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help="megabytes per instance (default: no limit)")
     parser.add_argument("--first", type=_count, metavar="N", help="grade only the first N instances of the ladder")
     parser.add_argument("--json", action="store_true", help="print the grades as JSON (docs/GRADING.md)")
+    parser.add_argument("--class", dest="class_", action="store_true",
+                        help="grade a class: each ENCODING is a submission (a file), or a folder of submissions "
+                             "(each encoding file in it one, each sub-folder one of its encoding files), graded "
+                             "one by one, then a table of the class")
+    parser.add_argument("--csv", metavar="FILE", help="with --class: write a row per submission to FILE (CSV)")
     parser.add_argument("--list", action="store_true", help="list the ladder's instances and their minima, and exit")
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress on stderr")
     parser.add_argument("--stage", action="extend", nargs="+", metavar="FILE",
@@ -126,57 +143,96 @@ class _Setup:
 
 def run(args: argparse.Namespace) -> int:
     setup = _setup(args)
-    ladder, reference, time_limit = setup.ladder, setup.reference, setup.time_limit
+    ladder, reference = setup.ladder, setup.reference
     if args.list:
         _list(ladder, reference)
         return 0
     if not args.encoding:
         raise InputError("no encoding given (asprilo grade ENCODING... --domain D)")
-    encoding, horizon, stage, refusal = _graded_encoding(args, ladder, reference)
-    progress = _Progress(sys.stderr, quiet=args.quiet)
+    if args.csv is not None and not args.class_:
+        raise InputError("--csv writes the table of a class: grade one with --class")
+    if args.class_:
+        from .grade_class import grade_class
+        return grade_class(args, setup)
+    submission = graded_encoding(args, args.encoding, ladder)
     out = sys.stdout
-    started = time.perf_counter()
-    graded: list[Graded] = []
-    steps = len(ladder.rungs) if args.first is None else min(args.first, len(ladder.rungs))
-    if refusal is not None:
-        grades = refused(ladder, refusal, args.first)
-    else:
-        grades = grade_ladder(encoding, ladder, time_limit=time_limit, horizon=horizon, stage=stage,
-                              memory_limit=args.memory_limit, first=args.first, reference=reference,
-                              refusals=reference is not None, on_start=progress.start, on_phase=progress.phase,
-                              on_reference_phase=progress.reference_phase)
-    try:
-        for item in grades:
-            progress.clear()
-            if not args.json and not graded:  # after the first grade: a refused encoding is an error alone
-                _say(out, _header(encoding, ladder, steps, time_limit, reference))
-            graded.append(item)
-            if not args.json:
-                _say(out, line(item, steps))
-    finally:
-        progress.clear()
-    summary = Summary.of(graded, time.perf_counter() - started)
+    graded, summary = grade_submission(submission, args, setup, out, GradeProgress(sys.stderr, quiet=args.quiet))
     if args.json:
-        _say(out, json.dumps(report(encoding, horizon, ladder, time_limit, graded, summary, reference,
-                                    setup.exercise), indent=2))
+        _say(out, json.dumps(report(submission.encoding, submission.horizon, ladder, setup.time_limit, graded,
+                                    summary, reference, setup.exercise), indent=2))
     else:
         _say(out, summary.line())
     return 0 if summary.valid == summary.instances else 1
 
 
-def _graded_encoding(args: argparse.Namespace, ladder: Ladder, reference: Reference | None
-                     ) -> tuple[Encoding, int | None, Encoding | None, InputError | None]:
-    """The encoding graded, its horizon (``-c horizon=H``) and first stage (``--stage``); against
-    a reference, an encoding clingo refuses is graded (the refusal comes back) rather than an error."""
+@dataclass(frozen=True)
+class Submission:
+    """An encoding to grade: the one its files make, its horizon (``-c horizon=H``) and first
+    stage (``--stage``); for files clingo refuses, a stand-in and the ``refusal`` in words."""
+
+    encoding: Encoding
+    horizon: int | None = None
+    stage: Encoding | None = None
+    refusal: str = ""
+
+
+def graded_encoding(args: argparse.Namespace, values: list[str], ladder: Ladder) -> Submission:
+    """The encoding that ``values`` name, with the command line's constants, options and
+    first stage: an encoding clingo refuses is graded (the refusal comes back), a mistake of
+    the command line (a missing file, an option) is :class:`InputError`."""
     try:
-        encoding, horizon = choose_encoding(args.encoding, args.const, getattr(args, "clingo_options", None) or (),
+        encoding, horizon = choose_encoding(values, args.const, getattr(args, "clingo_options", None) or (),
                                             ladder.domain)
         stage = stage_encoding(args.stage, encoding.constants) if args.stage else None
     except InputError as error:
-        if reference is None or not _in_encoding(error):
+        if not _in_encoding(error):
             raise
-        return _refused_encoding(args.encoding), None, None, error
-    return encoding, horizon, stage, None
+        return Submission(refused_encoding(values), refusal=refusal_words(error))
+    return Submission(encoding, horizon, stage)
+
+
+def grade_submission(submission: Submission, args: argparse.Namespace, setup: _Setup, out: TextIO,
+                     progress: GradeProgress) -> tuple[list[Graded], Summary]:
+    """Grade one submission on the setup's instances; without ``--json`` its header, a line
+    per instance and clingo's warnings (each the first time it is said) go to ``out``."""
+    ladder, reference, time_limit = setup.ladder, setup.reference, setup.time_limit
+    started = time.perf_counter()
+    graded: list[Graded] = []
+    said: list[str] = []
+    steps = len(ladder.rungs) if args.first is None else min(args.first, len(ladder.rungs))
+    if submission.refusal:
+        grades = refused(ladder, submission.refusal, args.first)
+    else:
+        grades = grade_ladder(submission.encoding, ladder, time_limit=time_limit, horizon=submission.horizon,
+                              stage=submission.stage, memory_limit=args.memory_limit, first=args.first,
+                              reference=reference, on_start=progress.start, on_phase=progress.phase,
+                              on_reference_phase=progress.reference_phase)
+    try:
+        for item in grades:
+            progress.clear()
+            if not args.json and not graded:  # after the first grade: a bad reference is an error alone
+                _say(out, _header(submission.encoding, ladder, steps, time_limit, reference))
+            graded.append(item)
+            if not args.json:
+                _say(out, "\n".join([line(item, steps), *warning_lines(item, said)]))
+    finally:
+        progress.clear()
+    return graded, Summary.of(graded, time.perf_counter() - started)
+
+
+def warning_lines(graded: Graded, said: list[str]) -> list[str]:
+    """clingo's warnings on the encoding not ``said`` before (at most :data:`SHOWN_WARNINGS`
+    in all, then how many more there are), under an instance's line as solve shows them."""
+    lines = []
+    for warning in graded.warnings:
+        if warning in said:
+            continue
+        said.append(warning)
+        if len(said) <= SHOWN_WARNINGS:
+            lines.append(f"  clingo: {warning}")
+        elif len(said) == SHOWN_WARNINGS + 1:
+            lines.append("  clingo: more warnings (--json lists them all)")
+    return lines
 
 def _setup(args: argparse.Namespace) -> _Setup:
     """The ladder, or the instances with the reference that computes their minima."""
@@ -243,10 +299,11 @@ def _in_encoding(error: InputError) -> bool:
     return error.file is not None and error.message not in ("no such file", "is not a file")
 
 
-def _refused_encoding(values: list[str]) -> Encoding:
-    """A stand-in for an encoding clingo refuses outright: its files, no style."""
+def refused_encoding(values: list[str], summary: str = "refused by clingo") -> Encoding:
+    """A stand-in for an encoding clingo refuses outright: its files, no style (``summary``
+    says why)."""
     files = [Path(value) for value in values]
-    return Encoding("+".join(file.stem for file in files), None, files[0], None, False, "refused by clingo",
+    return Encoding("+".join(file.stem for file in files), None, files[0], None, False, summary,
                     extra=tuple(files[1:]), own=True)
 
 
@@ -384,23 +441,26 @@ def _say(stream: TextIO, text: str) -> None:
     stream.flush()
 
 
-class _Progress:
+class GradeProgress:
     """Says on stderr which instance is being graded: on a terminal one line redrawn as the
-    search goes (the horizon and phase), otherwise a line per instance."""
+    search goes (the horizon and phase, after ``prefix``), otherwise a line per instance
+    (unless ``instance_lines`` is false: a class says a line per submission instead)."""
 
-    def __init__(self, stream: TextIO, quiet: bool = False):
+    def __init__(self, stream: TextIO, quiet: bool = False, instance_lines: bool = True):
         self.stream, self.quiet = stream, quiet
         self.live = stream.isatty() and not quiet
+        self.instance_lines = instance_lines
+        self.prefix = ""
         self.current = ""
 
     def start(self, step: int, steps: int, rung: Rung) -> None:
         if self.quiet:
             return
         minimum = "the reference's minimum first" if rung.minimum is None else f"minimum {rung.minimum}"
-        self.current = f"[{step}/{steps}] {rung.name} ({minimum})"
+        self.current = f"{self.prefix}[{step}/{steps}] {rung.name} ({minimum})"
         if self.live:
             self.stream.write(f"\r\033[K{self.current}")
-        else:
+        elif self.instance_lines:
             self.stream.write(f"grading {self.current}\n")
         self.stream.flush()
 

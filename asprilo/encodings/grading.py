@@ -7,11 +7,11 @@ under a time limit, its plan checked, and the makespan compared with the stored 
         graded.result, graded.valid, graded.minimal, graded.makespan, graded.reason
 
 A wrong answer is a grade, never an error: a plan that breaks the rules (its first
-violation in words), no plan (no answer set, no occurs/3, occurs/3 atoms that are no plan, a
-crash of the child process, the memory limit) or the time limit each give one
-:class:`Graded`.  Against a model solution (``reference``: :class:`.reference.Reference`)
-each instance's minimum is what the reference's search proves first, and an encoding clingo
-refuses is graded too (``refusals``).
+violation in words), no plan (no answer set, no occurs/3, occurs/3 atoms that are no plan,
+clingo refusing the encoding, a crash of the child process, the memory limit) or the time
+limit (and where the search was then) each give one :class:`Graded`, with clingo's warnings
+on the encoding.  Against a model solution (``reference``: :class:`.reference.Reference`)
+each instance's minimum is what the reference's search proves first.
 """
 
 from __future__ import annotations
@@ -66,6 +66,7 @@ class Graded:
     refuted: list[int] = field(default_factory=list)
     encoding_minimal: bool = False
     plan: Plan | None = field(default=None, repr=False)
+    warnings: list[str] = field(default_factory=list)  # clingo's warnings and hints on the encoding
 
     @property
     def valid(self) -> bool:
@@ -113,6 +114,7 @@ class Graded:
             "violations": self.violations,
             "reason": self.reason or None,
             "refuted": self.refuted,
+            "warnings": self.warnings,
         }
 
 
@@ -157,7 +159,7 @@ class Summary:
 
 def grade_ladder(encoding: Encoding, ladder: Ladder, *, time_limit: float, horizon: int | None = None,
                  stage: Encoding | None = None, memory_limit: int | None = None, first: int | None = None,
-                 reference: Reference | None = None, refusals: bool = False,
+                 reference: Reference | None = None,
                  on_start: Callable[[int, int, Rung], None] | None = None,
                  on_phase: Callable[[Phase], None] | None = None,
                  on_reference_phase: Callable[[Phase], None] | None = None) -> Iterator[Graded]:
@@ -170,10 +172,9 @@ def grade_ladder(encoding: Encoding, ladder: Ladder, *, time_limit: float, horiz
     while the reference solves it, ``on_phase`` while the encoding does.
 
     Bad input is :class:`InputError` before the first grade: an instance of the ladder that
-    cannot be read, a reference that clingo refuses on the first instance, or (unless
-    ``refusals``: then every refusal is a grade) an encoding that clingo refuses on the first
-    instance (e.g. unsafe variables, found when grounding); refused on a later instance
-    only, it is that instance's grade.  A model whose occurs/3 atoms are no plan is a grade."""
+    cannot be read, or a reference that clingo refuses on the first instance.  Whatever the
+    encoding does is a grade: clingo refusing it (unsafe variables, found when grounding), a
+    model whose occurs/3 atoms are no plan, a crash of the child process, a limit."""
     rungs = ladder.rungs[:first] if first is not None else ladder.rungs
     instances = [read_instance(rung.file) for rung in rungs]
     for step, (rung, instance) in enumerate(zip(rungs, instances, strict=True), 1):
@@ -186,21 +187,27 @@ def grade_ladder(encoding: Encoding, ladder: Ladder, *, time_limit: float, horiz
             graded = grade_rung(step, rung, instance, ladder, encoding, time_limit=time_limit, horizon=horizon,
                                 stage=stage, memory_limit=memory_limit, on_phase=on_phase)
         except InputError as error:
-            shape = no_plan_shape(error)
-            if step == 1 and not refusals and not shape:
-                raise
-            reason = shape or f"clingo refused the encoding: {_words(str(error))}"
-            graded = Graded(step, rung, instance, NO_PLAN, time.perf_counter() - started, reason=reason)
+            graded = Graded(step, rung, instance, NO_PLAN, time.perf_counter() - started, reason=refusal_words(error))
         yield graded
 
 
-def refused(ladder: Ladder, error: InputError, first: int | None = None) -> Iterator[Graded]:
-    """The grades of an encoding that clingo refuses outright (a syntax error): no plan on
-    every (``first``) instance of ``ladder``, with clingo's located message."""
+def refused(ladder: Ladder, reason: str, first: int | None = None) -> Iterator[Graded]:
+    """The grades of an encoding refused outright (a syntax error: :func:`refusal_words`):
+    no plan on every (``first``) instance of ``ladder``, for the ``reason`` in words."""
     rungs = ladder.rungs[:first] if first is not None else ladder.rungs
     for step, rung in enumerate(rungs, 1):
-        yield Graded(step, rung, read_instance(rung.file), NO_PLAN, 0.0,
-                     reason=f"clingo refused the encoding: {_words(str(error))}")
+        yield Graded(step, rung, read_instance(rung.file), NO_PLAN, 0.0, reason=reason)
+
+
+def refusal_words(error: InputError) -> str:
+    """Why an encoding got no grade from the solver, in words: its model's ``occurs/3`` atoms
+    are no plan, clingo refused it (located in its files), or its model broke a limit."""
+    shape = no_plan_shape(error)
+    if shape:
+        return shape
+    if error.file is not None:
+        return f"clingo refused the encoding: {_words(str(error))}"
+    return f"its model is no plan: {_words(str(error))}"
 
 
 def no_plan_shape(error: InputError) -> str:
@@ -236,7 +243,8 @@ def _words(text: str) -> str:
 
 def _graded(step: int, rung: Rung, instance: Instance, outcome: Outcome, seconds: float,
             time_limit: float) -> Graded:
-    graded = Graded(step, rung, instance, NO_PLAN, seconds, refuted=outcome.refuted, plan=outcome.plan)
+    graded = Graded(step, rung, instance, NO_PLAN, seconds, refuted=outcome.refuted, plan=outcome.plan,
+                    warnings=_warnings(outcome))
     if outcome.status is SolveStatus.FOUND:
         graded.result, graded.makespan, graded.encoding_minimal = VALID, outcome.horizon, outcome.encoding_minimal
     elif outcome.check is not None and not outcome.check.valid:
@@ -245,10 +253,21 @@ def _graded(step: int, rung: Rung, instance: Instance, outcome: Outcome, seconds
         graded.makespan = outcome.plan.horizon if outcome.plan is not None else None
     elif timed_out(outcome):
         graded.result = TIME_OUT
-        graded.reason = f"time limit ({time_limit:g} s)" + _refuted(graded)
+        graded.reason = f"time limit ({time_limit:g} s){stopped_while(outcome)}" + _refuted(graded)
     else:
         graded.reason = _no_plan(outcome, graded)
     return graded
+
+
+#: clingo's words for a predicate without atoms: at a horizon too short for any move, moves have none
+_EMPTY_SIGNATURE = "no atoms over signature occur in program"
+
+
+def _warnings(outcome: Outcome) -> list[str]:
+    """clingo's warnings on the encoding, each in one line; with a plan, not those on
+    predicates without atoms (said for the short horizons tried before it)."""
+    said = [_words(warning) for warning in outcome.warnings]
+    return [warning for warning in said if outcome.plan is None or _EMPTY_SIGNATURE not in warning]
 
 
 def timed_out(outcome: Outcome) -> bool:
@@ -260,6 +279,18 @@ def timed_out(outcome: Outcome) -> bool:
         return "time limit" in outcome.message
     tried = outcome.horizons_tried
     return not tried or tried[-1].result != "unsat"
+
+
+def stopped_while(outcome: Outcome) -> str:
+    """Where a search stopped by its time limit was: `` while grounding horizon 7`` (as the
+    child process last said), `` while solving horizon 7`` (a horizon left undecided), or ``""``."""
+    said = outcome.message.partition(" while ")[2].partition(";")[0]
+    if said:
+        return f" while {said}"
+    tried = outcome.horizons_tried
+    if tried and tried[-1].result == "unknown":
+        return f" while solving horizon {tried[-1].horizon}"
+    return ""
 
 
 def _no_plan(outcome: Outcome, graded: Graded) -> str:
