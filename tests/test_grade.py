@@ -46,7 +46,9 @@ def test_a_correct_encoding_is_valid_and_minimal_on_every_instance(capsys):
     header, *lines, summary = out.splitlines()
     assert header == (f"grading your encoding ({OWN / 'm-single.lp'}: single-shot with a horizon constant) on the "
                       f"M ladder: {len(M_LADDER.rungs)} instances, time limit 20 s each")
-    assert len(lines) == len(M_LADDER.rungs)
+    lines, probes = lines[:len(M_LADDER.rungs)], lines[len(M_LADDER.rungs):]  # the ladder's probes after (test_probes)
+    assert probes == [f"kept: {probe.rule} ({probe.name} probe refused)" for probe in M_LADDER.probes]
+    assert summary.endswith(f"; probes: {len(probes)}/{len(probes)} refused")
     for line, rung in zip(lines, M_LADDER.rungs, strict=True):
         assert f" {rung.name} " in line and line.endswith(f"  valid    minimal (makespan {rung.minimum})")
     assert summary.startswith(f"{len(lines)}/{len(lines)} valid, {len(lines)}/{len(lines)} minimal; ")

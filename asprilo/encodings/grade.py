@@ -40,7 +40,7 @@ import argparse
 import json
 import sys
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, TextIO
 
@@ -71,6 +71,7 @@ from .grading import (
     too_strong,
 )
 from .ladder import Ladder, Rung, bundled_ladder, read_ladder
+from .probes import REFUSED, Probe, add_probes, probe_report, require_illegal, summary_words
 from .reference import Reference
 from .registry import Encoding, find_encoding
 from .solving import Phase
@@ -156,13 +157,24 @@ def run(args: argparse.Namespace) -> int:
         return grade_class(args, setup)
     submission = graded_encoding(args, args.encoding, ladder)
     out = sys.stdout
-    graded, summary = grade_submission(submission, args, setup, out, GradeProgress(sys.stderr, quiet=args.quiet))
+    progress = GradeProgress(sys.stderr, quiet=args.quiet)
+    # no probes on a part of the ladder, or where a first stage's answer could rule a plan out
+    probing = bool(ladder.probes) and args.first is None and submission.stage is None and not submission.refusal
+    for probe in ladder.probes if probing else ():  # a legal plan is a mistake of the ladder: before any grade
+        require_illegal(probe, ladder.domain)
+    graded, summary = grade_submission(submission, args, setup, out, progress)
+    probed = probe_report(submission.encoding, ladder.probes, ladder.domain, time_limit=setup.time_limit,
+                          memory_limit=args.memory_limit, out=None if args.json else out, on_start=progress.probe,
+                          on_done=progress.clear, checked=True) if probing else None
     if args.json:
-        _say(out, json.dumps(report(submission.encoding, submission.horizon, ladder, setup.time_limit, graded,
-                                    summary, reference, setup.exercise), indent=2))
+        answer = report(submission.encoding, submission.horizon, ladder, setup.time_limit, graded, summary,
+                        reference, setup.exercise)
+        add_probes(answer, probed)
+        _say(out, json.dumps(answer, indent=2))
     else:
-        _say(out, summary.line())
-    return 0 if summary.valid == summary.instances else 1
+        _say(out, summary.line() + ("" if probed is None else f"; {summary_words(probed)}"))
+    clean = probed is None or all(item.result == REFUSED for item in probed)
+    return 0 if summary.valid == summary.instances and clean else 1
 
 
 @dataclass(frozen=True)
@@ -275,7 +287,8 @@ def _exercise_setup(args: argparse.Namespace) -> _Setup:
     domain = with_variants(exercise.domain, exercise.variants)  # loads them before the instances are read
     time_limit = args.time_limit or exercise.time_limit or DEFAULT_TIME_LIMIT
     title = f"the exercise {exercise.name} ({exercise.path})"
-    ladder = instance_ladder(domain, exercise.instances, exercise.path, title, "the reference")
+    ladder = replace(instance_ladder(domain, exercise.instances, exercise.path, title, "the reference"),
+                     probes=exercise.probes)
     reference = _reference(list(exercise.reference) or None, domain, time_limit, args.memory_limit)
     return _Setup(ladder, reference, time_limit, exercise)
 
@@ -463,6 +476,13 @@ class GradeProgress:
         elif self.instance_lines:
             self.stream.write(f"grading {self.current}\n")
         self.stream.flush()
+
+    def probe(self, number: int, count: int, probe: Probe) -> None:
+        """Before the ``number``-th of ``count`` probes."""
+        self.current = f"{self.prefix}probe [{number}/{count}] {probe.name} ({probe.rule})"
+        if self.live or (self.instance_lines and not self.quiet):
+            self.stream.write(f"\r\033[K{self.current}" if self.live else f"probing {self.current}\n")
+            self.stream.flush()
 
     def phase(self, phase: Phase, who: str = "") -> None:
         if self.live and phase.name in ("grounding", "solving"):

@@ -117,6 +117,14 @@ def summary(probed: Sequence[Probed]) -> dict[str, int]:
             "undecided": results.count(UNDECIDED)}
 
 
+def add_probes(report: dict[str, Any], probed: Sequence[Probed] | None) -> None:
+    """Add the probes to a report of ``asprilo grade --json`` (where they ran: ``probed``
+    not ``None``): ``probes``, one entry each, and their counts as ``summary.probes``."""
+    if probed is not None:
+        report["probes"] = [item.as_json() for item in probed]
+        report["summary"]["probes"] = summary(probed)
+
+
 def summary_words(probed: Sequence[Probed]) -> str:
     """E.g. ``probes: 2/3 refused, forgot 1 rule (swap)``."""
     counts = summary(probed)
@@ -201,11 +209,12 @@ def require_illegal(probe: Probe, domain: Domain) -> None:
 
 def probe_encoding(encoding: Encoding, probes: Sequence[Probe], domain: Domain, *, time_limit: float,
                    memory_limit: int | None = None,
-                   on_start: Callable[[int, int, Probe], None] | None = None) -> Iterator[Probed]:
+                   on_start: Callable[[int, int, Probe], None] | None = None,
+                   checked: bool = False) -> Iterator[Probed]:
     """Run every probe on ``encoding``, each in a child process under ``time_limit``
-    seconds (and ``memory_limit`` MB); every plan is checked first (:func:`require_illegal`).
-    ``on_start(number, count, probe)`` is called before each."""
-    for probe in probes:
+    seconds (and ``memory_limit`` MB); every plan is checked first (:func:`require_illegal`)
+    unless the caller has (``checked``).  ``on_start(number, count, probe)`` is called before each."""
+    for probe in () if checked else probes:
         require_illegal(probe, domain)
     for number, probe in enumerate(probes, 1):
         if on_start is not None:
@@ -216,13 +225,13 @@ def probe_encoding(encoding: Encoding, probes: Sequence[Probe], domain: Domain, 
 def probe_report(encoding: Encoding, probes: Sequence[Probe], domain: Domain, *, time_limit: float,
                  memory_limit: int | None = None, out: TextIO | None = None,
                  on_start: Callable[[int, int, Probe], None] | None = None,
-                 on_done: Callable[[], None] | None = None) -> list[Probed]:
+                 on_done: Callable[[], None] | None = None, checked: bool = False) -> list[Probed]:
     """:func:`probe_encoding`, a line per probe on ``out`` (when given) as each ends;
     ``on_done()`` is called after each (and after a failure)."""
     probed = []
     try:
         for item in probe_encoding(encoding, probes, domain, time_limit=time_limit, memory_limit=memory_limit,
-                                   on_start=on_start):
+                                   on_start=on_start, checked=checked):
             if on_done is not None:
                 on_done()
             probed.append(item)
