@@ -113,12 +113,13 @@ def ladder_minimum(instance: Instance, domain: Domain) -> Minimum | None:
 
 
 def proof(outcome: Outcome) -> str:
-    """What is proven of a valid plan's makespan, in words: ``proven minimal``; for an own
-    encoding that refuted every shorter horizon, :func:`sentence`; else the bound proven
-    for the problem and the gap (with a first stage, whether no shorter plan follows its
-    answer)."""
-    if outcome.minimal:
-        return "proven minimal"
+    """What is proven of a valid plan's makespan, in words: ``proven minimal`` (by a minimum
+    known besides the search: which); for an own encoding that refuted every shorter horizon,
+    :func:`sentence`; else the problem's minimum or the bound proven for it, and the gap (with
+    a first stage, whether no shorter plan follows its answer)."""
+    if outcome.minimal:  # (by a minimum known besides the search: said whose)
+        return "proven minimal" + (f": {problem_minimum(outcome.minimum, by=outcome.minimum_by)}"
+                                   if outcome.minimum_by else "")
     horizon = outcome.horizon if outcome.horizon is not None else 0
     if outcome.encoding_minimal:
         return sentence(horizon, outcome.minimum, outcome.proven_bound, outcome.minimum_by)
