@@ -166,3 +166,20 @@ def test_the_page_shows_what_solve_says(capsys, monkeypatch):
     _code, _report, lines = _solve(capsys, "tests/encodings/m-side-by-side.lp", "--encoding",
                                    "tests/encodings/m-one-mover.lp")
     assert lines[2:4] == shown
+
+
+def test_the_heartbeat_claims_nothing_from_an_own_encoding_s_refutations():
+    from helpers.streams import Terminal
+
+    from asprilo.encodings import Attempt
+    from asprilo.encodings.cli import SearchProgress
+
+    for own, said in ((False, "best plan: makespan 4 (proven minimal) | no plan shorter than 4 | "),
+                      (True, "best plan: makespan 4 | ")):
+        progress = SearchProgress(Terminal(), time_limit=300, own=own)
+        for horizon in (2, 3):
+            progress.attempt(Attempt(horizon, "unsat", 0.1))
+        progress.attempt(Attempt(4, "sat", 0.1, plan=object()))
+        line = progress.heartbeat(progress.started + 1.2)
+        progress.close()
+        assert line == f"{said}elapsed 1 s, 299 s left"

@@ -139,7 +139,7 @@ def run(args: argparse.Namespace) -> int:
         said = methods_words(domain, encoding)  # a domain the other methods do not serve: which do
         if said:
             print(said, file=sys.stderr)
-    progress = SearchProgress(sys.stderr, time_limit)
+    progress = SearchProgress(sys.stderr, time_limit, own=encoding is not None and encoding.own)
     cancel = threading.Event()
     try:
         with _stopping_on_interrupt(cancel):
@@ -222,15 +222,17 @@ def chosen_encoding(args: argparse.Namespace, domain: Domain) -> tuple[Encoding 
 class SearchProgress:
     """Says what the search does: a line per horizon tried and per better plan; while it works,
     on a terminal, one line redrawn twice a second (a heartbeat): what the exact search does
-    (phase, horizon, seconds on it, conflicts so far), the best plan so far and what is proven,
-    the seconds elapsed and left.  Otherwise (a pipe, a file) a line when each phase begins
+    (phase, horizon, seconds on it, conflicts so far), the best plan so far and what is proven
+    (nothing by the horizons a user's ``own`` encoding refutes), the seconds elapsed and left.
+    Otherwise (a pipe, a file) a line when each phase begins
     and nothing between.
 
     The heartbeat's thread starts with the first word from the search (its child processes
     are started by then: a process without threads may fork them)."""
 
-    def __init__(self, stream: TextIO, time_limit: float | None = None):
+    def __init__(self, stream: TextIO, time_limit: float | None = None, own: bool = False):
         self.stream, self.live, self.time_limit = stream, stream.isatty(), time_limit
+        self.own = own  # a user's own encoding: its refuted horizons say nothing of the problem
         self.started = time.perf_counter()
         self.current: Phase | None = None
         self.since = self.started
@@ -257,7 +259,7 @@ class SearchProgress:
         with self.lock:
             if attempt.plan is not None and (self.best is None or attempt.horizon < self.best):
                 self.best = attempt.horizon
-            if attempt.refutes:
+            if attempt.refutes and not self.own:
                 self.proven = max(self.proven or 0, attempt.horizon + 1)
             if attempt.result == "improved":
                 self._say(f"plan: makespan {attempt.horizon}, {attempt.note} ({attempt.seconds:.2f} s)")
