@@ -121,16 +121,16 @@ def test_the_csv_has_a_row_per_submission(text_run):
     _done, table = text_run
     rows = list(csv.reader(table.read_text().splitlines()))
     assert rows[0] == ["student", "files", "instances", "valid", "minimal", "invalid", "no_plan", "time_outs",
-                       "refused", "first_failure", "clingo_warnings", "seconds"]
+                       "forgot", "refused", "first_failure", "clingo_warnings", "seconds"]
     seconds = [float(row.pop()) for row in rows[1:]]
     assert all(value >= 0 for value in seconds)
     assert rows[1:] == [
-        ["ada", f"{RELATIVE}/ada/moves.lp {RELATIVE}/ada/show.lp", "2", "2", "2", "0", "0", "0", "", "", ""],
-        ["bob", f"{RELATIVE}/bob.lp", "2", "0", "0", "0", "2", "0", BOB, f"01-x3_y2_r1: no plan {BOB}", ""],
-        ["cyd", f"{RELATIVE}/cyd.lp", "2", "0", "0", "0", "2", "0", "",
+        ["ada", f"{RELATIVE}/ada/moves.lp {RELATIVE}/ada/show.lp", "2", "2", "2", "0", "0", "0", "", "", "", ""],
+        ["bob", f"{RELATIVE}/bob.lp", "2", "0", "0", "0", "2", "0", "", BOB, f"01-x3_y2_r1: no plan {BOB}", ""],
+        ["cyd", f"{RELATIVE}/cyd.lp", "2", "0", "0", "0", "2", "0", "", "",
          f"01-x3_y2_r1: no plan {SHAPE}occurs(object(robot,1),start((3,2)),0)", ""],
-        ["dan", f"{RELATIVE}/dan.lp", "2", "2", "2", "0", "0", "0", "", "", DAN],
-        ["eve", f"{RELATIVE}/eve.lp", "2", "0", "0", "0", "2", "0", "", f"01-x3_y2_r1: no plan {MEMORY}", ""],
+        ["dan", f"{RELATIVE}/dan.lp", "2", "2", "2", "0", "0", "0", "", "", "", DAN],
+        ["eve", f"{RELATIVE}/eve.lp", "2", "0", "0", "0", "2", "0", "", "", f"01-x3_y2_r1: no plan {MEMORY}", ""],
     ]
 
 
@@ -141,8 +141,8 @@ def test_the_class_as_json():
     assert isinstance(report["summary"].pop("seconds"), float)
     assert {key: report[key] for key in ("version", "domain", "ladder", "time_limit", "class", "summary")} == {
         "version": 1, "domain": "m", "ladder": "m", "time_limit": 20.0, "class": True,
-        "summary": {"submissions": 5, "all_valid": 2, "refused": 1, "instances": 10, "valid": 4, "minimal": 4,
-                    "invalid": 0, "no_plan": 6, "time_outs": 0}}
+        "summary": {"submissions": 5, "all_valid": 2, "clean": 2, "refused": 1, "instances": 10, "valid": 4,
+                    "minimal": 4, "invalid": 0, "no_plan": 6, "time_outs": 0}}
     submissions = {entry["name"]: entry for entry in report["submissions"]}
     assert list(submissions) == ["ada", "bob", "cyd", "dan", "eve"]
     assert {name: (entry["files"], entry["refused"], entry["warnings"], entry["encoding"]["style"])
@@ -217,3 +217,53 @@ def test_bad_command_lines_of_a_class_exit_2(tmp_path, capsys):
     assert main(["grade", "--class", str(CLASS), "--domain", "m", "--frobnicate=3"]) == 2
     assert capsys.readouterr().err == "error: clingo refuses the option --frobnicate=3: unknown option: 'frobnicate'\n"
     assert not (tmp_path / "x.csv").exists()
+
+
+def test_a_class_on_a_ladder_with_a_probe_names_the_rule_a_student_forgot(tmp_path, capsys):
+    """A ladder of the first M instance and the M ladder's swap probe (robots 1 and 2
+    exchange (1,1) and (2,1) at step 1): ada's swap constraint refuses it; dan's reads att/3,
+    which never holds, so dan's encoding accepts the swap."""
+    from asprilo.domain import Domain
+    from asprilo.encodings.ladder import bundled_ladder
+
+    m = bundled_ladder(Domain.M)
+    for name in ("swap.lp", "swap-plan.lp"):
+        (tmp_path / name).write_text((m.manifest.parent / "probes" / name).read_text())
+    (tmp_path / "01.lp").write_text(m.rungs[0].file.read_text())
+    ladder = tmp_path / "ladder.yml"
+    ladder.write_text("domain: m\ninstances:\n  - {file: 01.lp, minimum: 3, established: by hand}\n"
+                      "probes:\n  - name: swap\n    rule: robots may not swap cells\n"
+                      "    case: robots 1 and 2 between (1,1) and (2,1) at step 1\n"
+                      "    instance: swap.lp\n    plan: swap-plan.lp\n    horizon: 1\n")
+    pupils = tmp_path / "pupils"
+    (pupils / "ada").mkdir(parents=True)
+    for path in (CLASS / "ada" / "moves.lp", CLASS / "ada" / "show.lp", CLASS / "dan.lp"):
+        (pupils / path.relative_to(CLASS)).write_text(path.read_text())
+    table = tmp_path / "class.csv"
+    code = main(["grade", "--class", str(pupils), "--ladder", str(ladder), "--csv", str(table), "--quiet"])
+    out = capsys.readouterr().out
+    assert code == 1  # a rule forgotten
+    ada, dan, summary = out.split("\n\n")
+    assert [_timeless(line) for line in ada.splitlines()[1:]] == [
+        "1/1  01             3x2, 1 robot       _ s  valid    minimal (makespan 3)",
+        "kept: robots may not swap cells (swap probe refused)",
+        "1/1 valid, 1/1 minimal; _ s; probes: 1/1 refused"]
+    assert [_timeless(line) for line in dan.splitlines()[1:]] == [
+        "1/1  01             3x2, 1 robot       _ s  valid    minimal (makespan 3)",
+        f"  clingo: {pupils / 'dan.lp'}:16:44-55: info: atom does not occur in any rule head: att(R2,C,T)",
+        "forgot: robots may not swap cells (swap probe: robots 1 and 2 between (1,1) and (2,1) at step 1)",
+        "1/1 valid, 1/1 minimal; _ s; probes: 0/1 refused, forgot 1 rule (swap)"]
+    assert [_timeless(line) for line in summary.splitlines()] == [
+        "student  valid  minimal  notes",
+        "ada        1/1      1/1",
+        "dan        1/1      1/1  forgot swap; 1 clingo warning",
+        "all        2/2      2/2  1 forgot a rule",
+        "2 submissions: 1 with every plan valid and no rule forgotten; _ s"]
+    rows = list(csv.reader(table.read_text().splitlines()))
+    assert [(row[0], row[8]) for row in rows] == [("student", "forgot"), ("ada", ""), ("dan", "swap")]
+    code = main(["grade", "--class", str(pupils), "--ladder", str(ladder), "--json", "--quiet"])
+    report = json.loads(capsys.readouterr().out)
+    assert (report["summary"]["clean"], report["summary"]["probes"]) == (
+        1, {"probes": 2, "refused": 1, "forgotten": 1, "undecided": 0})
+    assert [[(probe["name"], probe["result"]) for probe in entry["probes"]] for entry in report["submissions"]] == [
+        [("swap", "refused")], [("swap", "accepted")]]

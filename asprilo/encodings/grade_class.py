@@ -41,6 +41,8 @@ from .grade import (
 )
 from .grading import VERDICTS, Graded, Summary
 from .own import check_options
+from .probes import UNDECIDED, Probed, add_probes, probe_report, require_illegal, summary_words
+from .probes import summary as probes_summary
 
 if TYPE_CHECKING:
     from .grade import _Setup
@@ -49,7 +51,7 @@ if TYPE_CHECKING:
 ENCODING_SUFFIXES = (".lp", ".ilp", ".iclp", ".clp")
 #: the columns of ``--csv``
 CSV_COLUMNS = ("student", "files", "instances", "valid", "minimal", "invalid", "no_plan", "time_outs",
-               "refused", "first_failure", "clingo_warnings", "seconds")
+               "forgot", "refused", "first_failure", "clingo_warnings", "seconds")
 
 
 @dataclass(frozen=True)
@@ -63,16 +65,28 @@ class Member:
 
 @dataclass
 class Result:
-    """How one submission did: its encoding (or refusal), its grades and their counts."""
+    """How one submission did: its encoding (or refusal), its grades and their counts, the
+    ladder's probes (``None``: not run)."""
 
     member: Member
     submission: Submission
     graded: list[Graded]
     summary: Summary
+    probed: list[Probed] | None = None
 
     @property
     def all_valid(self) -> bool:
         return self.summary.valid == self.summary.instances
+
+    @property
+    def forgot(self) -> list[str]:
+        """The probes it accepted: the rules it forgot."""
+        return [item.probe.name for item in self.probed or () if item.forgot]
+
+    @property
+    def clean(self) -> bool:
+        """Every plan valid, no rule forgotten."""
+        return self.all_valid and not self.forgot
 
     def warnings(self) -> list[str]:
         """clingo's warnings on the encoding, each once."""
@@ -82,6 +96,11 @@ class Result:
         """What went wrong, in a few words: the refusal, or the counts, and how many warnings
         clingo gave (``""``: nothing)."""
         parts = [self.submission.refusal or failure_counts(self.summary)]
+        if self.forgot:
+            parts.append(f"forgot {', '.join(self.forgot)}")
+        undecided = sum(item.result == UNDECIDED for item in self.probed or ())
+        if undecided:
+            parts.append(f"{undecided} probe{'s' * (undecided != 1)} undecided")
         warnings = len(self.warnings())
         if warnings:
             parts.append(f"{warnings} clingo warning{'s' * (warnings != 1)}")
@@ -132,11 +151,17 @@ def _unique(members: list[Member]) -> list[Member]:
 
 
 def grade_class(args: argparse.Namespace, setup: _Setup) -> int:
-    """Grade every submission that ``args.encoding`` names on the setup's instances; print
-    the grades and the table (or ``--json``), write ``--csv``.  Exit status 0 when every
-    submission got a valid plan on every instance, else 1."""
+    """Grade every submission that ``args.encoding`` names on the setup's instances (and the
+    ladder's probes, as for one encoding); print the grades and the table (or ``--json``),
+    write ``--csv``.  Exit status 0 when every submission got a valid plan on every
+    instance and forgot no rule, else 1."""
     members = class_members(args.encoding)
     check_options(getattr(args, "clingo_options", None) or ())  # the command line's, once for all
+    ladder = setup.ladder
+    # no probes on a part of the ladder, or where a first stage's answer could rule a plan out
+    probing = bool(ladder.probes) and args.first is None and not args.stage
+    for probe in ladder.probes if probing else ():  # a legal plan is a mistake of the ladder: before any grade
+        require_illegal(probe, ladder.domain)
     if args.csv is not None:
         check_output(args.csv, [file for member in members for file in member.files])
     out = sys.stdout
@@ -149,9 +174,12 @@ def grade_class(args: argparse.Namespace, setup: _Setup) -> int:
         progress.prefix = f"{member.name} ({number}/{len(members)}) "
         submission = _submission(args, member, setup)
         graded, summary = grade_submission(submission, args, setup, out, progress)
+        probed = probe_report(submission.encoding, ladder.probes, ladder.domain, time_limit=setup.time_limit,
+                              memory_limit=args.memory_limit, out=None if args.json else out, on_start=progress.probe,
+                              on_done=progress.clear, checked=True) if probing and not submission.refusal else None
         if not args.json:
-            out.write(f"{summary.line()}\n\n")
-        results.append(Result(member, submission, graded, summary))
+            out.write(summary.line() + ("" if probed is None else f"; {summary_words(probed)}") + "\n\n")
+        results.append(Result(member, submission, graded, summary, probed))
     seconds = time.perf_counter() - started
     if args.json:
         out.write(json.dumps(class_report(results, setup, seconds), indent=2) + "\n")
@@ -160,7 +188,7 @@ def grade_class(args: argparse.Namespace, setup: _Setup) -> int:
     out.flush()
     if args.csv is not None:
         write_text(args.csv, csv_text(results))
-    return 0 if all(result.all_valid for result in results) else 1
+    return 0 if all(result.clean for result in results) else 1
 
 
 def _submission(args: argparse.Namespace, member: Member, setup: _Setup) -> Submission:
@@ -199,12 +227,16 @@ def table(results: list[Result], seconds: float) -> list[str]:
         rows.append((result.member.name, f"{result.summary.valid}/{n}", f"{result.summary.minimal}/{n}",
                      result.notes()))
     n = total.instances
-    rows.append(("all", f"{total.valid}/{n}", f"{total.minimal}/{n}", failure_counts(total)))
+    forgetful = sum(bool(result.forgot) for result in results)
+    notes = [failure_counts(total)] + [f"{forgetful} forgot a rule"] * bool(forgetful)
+    rows.append(("all", f"{total.valid}/{n}", f"{total.minimal}/{n}", ", ".join(note for note in notes if note)))
     lines = [f"{name:<{width}}  {valid:>5}  {minimal:>7}  {notes}".rstrip() for name, valid, minimal, notes in rows]
     refused = sum(bool(result.submission.refusal) for result in results)
     count = len(results)
-    lines.append(f"{count} submission{'s' * (count != 1)}: {sum(r.all_valid for r in results)} with every plan "
-                 f"valid" + (f", {refused} refused" if refused else "") + f"; {seconds:.1f} s")
+    probed = any(result.probed is not None for result in results)
+    lines.append(f"{count} submission{'s' * (count != 1)}: {sum(r.clean for r in results)} with every plan "
+                 f"valid{' and no rule forgotten' if probed else ''}" + (f", {refused} refused" if refused else "")
+                 + f"; {seconds:.1f} s")
     return lines
 
 
@@ -218,15 +250,20 @@ def class_report(results: list[Result], setup: _Setup, seconds: float) -> dict[s
                         result.graded, result.summary, setup.reference, setup.exercise)
         entry = {"name": result.member.name, "files": [str(file) for file in result.member.files],
                  "refused": result.submission.refusal or None, "warnings": result.warnings()}
+        add_probes(graded, result.probed)
         for key, value in graded.items():
-            if key in ("encoding", "instances", "summary"):
+            if key in ("encoding", "instances", "probes", "summary"):
                 entry[key] = value
             else:
                 shared[key] = value
         submissions.append(entry)
     total = Summary.of([item for result in results for item in result.graded], seconds)
     summary = {"submissions": len(results), "all_valid": sum(result.all_valid for result in results),
+               "clean": sum(result.clean for result in results),
                "refused": sum(bool(result.submission.refusal) for result in results), **total.as_json()}
+    probed = [item for result in results for item in result.probed or ()]
+    if any(result.probed is not None for result in results):
+        summary["probes"] = probes_summary(probed)
     return {**shared, "class": True, "submissions": submissions, "summary": summary}
 
 
@@ -239,6 +276,6 @@ def csv_text(results: list[Result]) -> str:
         summary = result.summary
         writer.writerow([result.member.name, " ".join(str(file) for file in result.member.files), summary.instances,
                          summary.valid, summary.minimal, summary.invalid, summary.no_plan, summary.time_outs,
-                         result.submission.refusal, result.first_failure(),
+                         " ".join(result.forgot), result.submission.refusal, result.first_failure(),
                          " | ".join(result.warnings()), f"{summary.seconds:.3f}"])
     return buffer.getvalue()
