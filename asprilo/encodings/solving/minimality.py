@@ -125,9 +125,9 @@ def proof(outcome: Outcome) -> str:
         return sentence(horizon, outcome.minimum, outcome.proven_bound, outcome.minimum_by)
     along = "minimal along the first stage's answer; " if outcome.stage and outcome.minimal_along_assignment else ""
     if outcome.minimum is not None:
-        gap = horizon - outcome.minimum
+        steps = horizon - outcome.minimum
         return (f"{along}not minimal: {problem_minimum(outcome.minimum, outcome.proven_bound, outcome.minimum_by)}, "
-                f"gap {gap} step{'s' * (gap != 1)}")
+                f"gap {steps} step{'s' * (steps != 1)}")
     bound, gap = outcome.proven_bound, outcome.gap
     if not bound or bound == math.inf or gap is None:
         return f"{along}not proven minimal"

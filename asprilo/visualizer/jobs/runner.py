@@ -570,9 +570,9 @@ def found(outcome, job: Job, domain: str, own=None) -> str:
         return (f"{head}: {minimal}makespan {outcome.horizon}{proof}, {len(outcome.plan)} actions "
                 f"({domain}, {outcome.encoding} and anytime, found by {by})")
     if outcome.method != "anytime":
-        from asprilo.encodings.solving.minimality import proof
+        from asprilo.encodings.solving.minimality import proof as proof_words
 
-        said = "" if outcome.trusted or outcome.minimal else f" ({proof(outcome)})"  # your encoding's: not minimal
+        said = "" if outcome.trusted or outcome.minimal else f" ({proof_words(outcome)})"  # an own encoding's
         return (f"plan found in {job.seconds:.1f} s: {minimal}makespan {outcome.horizon}{said}, "
                 f"{len(outcome.plan)} actions ({domain}, {encoding_words(outcome, own)})")
     head = f"Solve stopped after {job.seconds:.1f} s, best plan" if job.cancel.is_set() else \
