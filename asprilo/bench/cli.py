@@ -109,8 +109,10 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _described(suite) -> dict[str, str]:
-    """The suite's own encodings in words (files, style, constants, options), for the report's key."""
-    return {name: own.describe().partition(": ")[2] for name, own in suite.encodings.items()}
+    """The suite's own encodings in words (files relative to the suite's folder, style,
+    constants, options), for the report's key."""
+    folder = suite.path.resolve().parent
+    return {name: own.describe(folder).partition(": ")[2] for name, own in suite.encodings.items()}
 
 
 #: how each limit is set, for messages

@@ -42,6 +42,8 @@ from .results import ERROR, INVALID, OUT_OF_LIMITS, SOLVED
 LIMIT, FAILED_RUN = "limit", "failed"
 #: the plot formats ``plot`` may write
 FORMATS = ("png", "pdf", "svg")
+#: the LaTeX columns of the failed runs (run, instance, outcome, reason): shares of the line
+FAILED_WIDTHS = (0.17, 0.28, 0.13, 0.42)
 #: the failed runs listed at most (all of them are in results.csv)
 LISTED = 50
 
@@ -151,6 +153,9 @@ class Table:
     groups: list[int] = field(default_factory=list)            # row numbers where a new group starts
     align: str = ""                                            # LaTeX column types (default: l for text, r)
     listing: bool = False                                      # as text: a list, one wrapped entry per row
+    #: in LaTeX, columns that wrap: each column's share of the line (adding up to 1), so that
+    #: the table is exactly as wide as the page's line (empty: columns as wide as their text)
+    widths: tuple[float, ...] = ()
 
     def text(self, width: int = 100) -> str:
         """The table (or the list), then its key (wrapped at ``width`` characters)."""
@@ -171,15 +176,22 @@ class Table:
         return "\n\n".join(parts)
 
     def latex(self) -> str:
-        """The table as a LaTeX float with booktabs rules (no vertical rules); the key below it."""
+        """The table as a LaTeX float with booktabs rules (no vertical rules); the key below it.
+        With :attr:`widths` its columns wrap (ragged right, names breakable at ``/`` and ``_``)
+        and it fills the line exactly, in a smaller type."""
         align = self.align or "l" * self.text_columns + "r" * (len(self.header) - self.text_columns)
+        cell, end = _latex_cell, r" \\"
+        size: list[str] = []
+        if self.widths:
+            align, cell, end = _wrapped_columns(self.widths), _wrapped_cell, r" \tabularnewline"
+            size = [r"  \footnotesize"]
         lines = [r"\begin{table}[tbp]", r"  \centering", f"  \\caption{{{latex_text(self.caption)}}}",
-                 f"  \\label{{tab:{self.name}}}", f"  \\begin{{tabular}}{{{align}}}", r"    \toprule",
-                 "    " + " & ".join(latex_text(text) for text in self.header) + r" \\", r"    \midrule"]
+                 f"  \\label{{tab:{self.name}}}", *size, f"  \\begin{{tabular}}{{{align}}}", r"    \toprule",
+                 "    " + " & ".join(latex_text(text) for text in self.header) + end, r"    \midrule"]
         for number, row in enumerate(self.rows):
             if number in self.groups and number > 0:
                 lines.append(r"    \addlinespace")
-            lines.append("    " + " & ".join(_latex_cell(text) for text in row) + r" \\")
+            lines.append("    " + " & ".join(cell(text) for text in row) + end)
         lines += [r"    \bottomrule", r"  \end{tabular}"]
         if self.key:
             key = "; ".join(f"{latex_text(mark)}: {latex_text(meaning)}" for mark, meaning in self.key)
@@ -199,6 +211,25 @@ def latex_text(text: str) -> str:
 
 def _latex_cell(text: str) -> str:
     return "--" if text == "-" else latex_text(text)
+
+
+def _wrapped_columns(widths: tuple[float, ...]) -> str:
+    """Paragraph columns of ``widths`` (shares of the line, adding up to 1), each less the
+    space between columns (none at the outer edges), so that they fill the line exactly."""
+    last = len(widths) - 1
+    columns = []
+    for number, width in enumerate(widths):
+        gaps = (number > 0) + (number < last)  # a \tabcolsep on each inner side
+        space = f"-{gaps}\\tabcolsep" if gaps else ""
+        columns.append(f"p{{\\dimexpr {width:g}\\linewidth{space}\\relax}}")
+    return "@{}" + "".join(columns) + "@{}"
+
+
+def _wrapped_cell(text: str) -> str:
+    """A cell of a wrapping column: ragged right, a path or a name breakable after ``/``
+    and ``_`` (a file name is one long word otherwise)."""
+    shown = _latex_cell(text).replace("/", r"/\allowbreak{}").replace(r"\_", r"\_\allowbreak{}")
+    return r"\raggedright " + shown
 
 
 def _text_table(header: list[str], rows: list[list[str]]) -> str:
@@ -412,7 +443,7 @@ def failed_runs(records: list[dict]) -> Table | None:
     if len(failed) > LISTED:
         key.append(("...", f"and {len(failed) - LISTED} more: every run's reason is in results.csv (column error)"))
     return Table("failed", caption, ["run", "instance", "outcome", "reason"], body, key,
-                 text_columns=4, align=r"lllp{0.45\linewidth}", listing=True)
+                 text_columns=4, listing=True, widths=FAILED_WIDTHS)
 
 
 def tables(records: list[dict], set_order: list[str] | None = None,

@@ -51,6 +51,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -126,10 +127,14 @@ class OwnEncoding:
         from asprilo.encodings.choice import stage_encoding
         return stage_encoding(self.stage, self.constants) if self.stage else None
 
-    def describe(self) -> str:
-        """E.g. ``mine: /x/enc/mine.lp, /x/enc/goal.lp; single-shot with a horizon constant; -c lanes=2``."""
-        parts = [", ".join(self.files), self.style, " ".join(f"-c {n}={v}" for n, v in self.constants),
-                 " ".join(self.options), f"first stage {', '.join(self.stage)}" if self.stage else ""]
+    def describe(self, folder: Path | None = None) -> str:
+        """E.g. ``mine: /x/enc/mine.lp, /x/enc/goal.lp; single-shot with a horizon constant; -c lanes=2``;
+        with ``folder`` (the suite's) the files are named relative to it (``enc/mine.lp``)."""
+        def named(files: tuple[str, ...]) -> str:
+            return ", ".join(file if folder is None else os.path.relpath(file, folder) for file in files)
+
+        parts = [named(self.files), self.style, " ".join(f"-c {n}={v}" for n, v in self.constants),
+                 " ".join(self.options), f"first stage {named(self.stage)}" if self.stage else ""]
         return f"{self.name}: " + "; ".join(part for part in parts if part)
 
 
