@@ -8,8 +8,9 @@ The modules, from the bottom up: :mod:`.status` (``SolveStatus``, ``Attempt``, `
 :mod:`.bounds` (the lower bounds, computed once per solve), :mod:`.watch` (time budget,
 cancel, listeners, statistics), :mod:`.outcome`, :mod:`.request` (``SolveRequest``),
 :mod:`.method` (the ``Method`` interface), :mod:`.methods` (the table of methods: the exact
-horizon search, max-flow, anytime) and :mod:`.front` (``solve``: the request checked, the
-bounds, the watch, the child process, the check of the plan).
+horizon search, max-flow, anytime), :mod:`.front` (``solve``: the request checked, the
+bounds, the watch, the child process, the check of the plan) and :mod:`.minimality` (minimal
+for the problem, or only for a user's own encoding, and the words that say it).
 """
 
 from .bounds import LowerBounds, lower_bounds
