@@ -12,17 +12,20 @@ Each instance is solved from a lower bound up in a child process under --time-li
 (default 20 s; so the whole run takes at most about that times the number of instances)
 and its plan checked.  A line per instance: valid or not, minimal or "makespan 9,
 minimum 7", the time, and the first violation in words or why there is no plan (time
-limit, no answer set, no occurs/3 in the model, a crash); then a summary line.  --json
-prints the same as JSON for course tools (docs/GRADING.md).  Progress goes to stderr.
+limit and where, no answer set, occurs/3 atoms that are no plan, clingo refusing the
+encoding, a crash), clingo's warnings under it; then a summary line.  --json: the same
+as JSON for course tools (docs/GRADING.md).  Progress goes to stderr.
 
 Against a model solution: --reference TEACHER.lp --instances DIR (and --variant V for
 changed rules) takes each minimum from the teacher's encoding, searched from the lower
 bound up under the same time limit ("minimum unknown" where it proved none), and checks
 the plans under the variant's rules; --exercise FILE bundles all of it (docs/GRADING.md).
-There an encoding that clingo refuses is graded too, a line per instance.
 
-Exit status: 0 every instance got a valid plan, 1 some did not, 2 bad input (a bad
-encoding is refused before the first instance, with its located message).
+--class grades a class one by one: each ENCODING a submission's file or a folder of them
+(each sub-folder one), then a table; --csv FILE writes a row per submission.
+
+Exit status: 0 every instance got a valid plan, 1 some did not, 2 bad input (the command
+line; an encoding that clingo refuses is graded).
 
 Examples:
   asprilo grade my.lp --domain m
@@ -32,6 +35,7 @@ Examples:
   asprilo grade --list --domain c
   asprilo grade student.lp --variant visit-anytime --reference teacher.lp --instances exercise/
   asprilo grade student.lp --exercise week5/exercise.yml --json
+  asprilo grade --class submissions/ --domain m --csv class.csv
 """
 
 from __future__ import annotations
@@ -69,6 +73,7 @@ from .grading import (
     refusal_words,
     refused,
     too_strong,
+    warning_lines,
 )
 from .ladder import Ladder, Rung, bundled_ladder, read_ladder
 from .probes import REFUSED, Probe, add_probes, probe_report, require_illegal, summary_words
@@ -76,7 +81,6 @@ from .reference import Reference
 from .registry import Encoding, find_encoding
 from .solving import Phase
 from .solving.minimality import sentence
-from .summary import SHOWN_WARNINGS
 
 #: options asprilo does not know are clingo's (the command line passes them on)
 CLINGO_OPTIONS = True
@@ -230,21 +234,6 @@ def grade_submission(submission: Submission, args: argparse.Namespace, setup: _S
     finally:
         progress.clear()
     return graded, Summary.of(graded, time.perf_counter() - started)
-
-
-def warning_lines(graded: Graded, said: list[str]) -> list[str]:
-    """clingo's warnings on the encoding not ``said`` before (at most :data:`SHOWN_WARNINGS`
-    in all, then how many more there are), under an instance's line as solve shows them."""
-    lines = []
-    for warning in graded.warnings:
-        if warning in said:
-            continue
-        said.append(warning)
-        if len(said) <= SHOWN_WARNINGS:
-            lines.append(f"  clingo: {warning}")
-        elif len(said) == SHOWN_WARNINGS + 1:
-            lines.append("  clingo: more warnings (--json lists them all)")
-    return lines
 
 def _setup(args: argparse.Namespace) -> _Setup:
     """The ladder, or the instances with the reference that computes their minima."""

@@ -30,6 +30,7 @@ from asprilo.simulate import Violation
 from .ladder import Ladder, Rung
 from .registry import Encoding
 from .solving import Outcome, Phase, SolveStatus, solve
+from .summary import SHOWN_WARNINGS
 
 if TYPE_CHECKING:
     from .reference import Reference
@@ -268,6 +269,21 @@ def _warnings(outcome: Outcome) -> list[str]:
     predicates without atoms (said for the short horizons tried before it)."""
     said = [_words(warning) for warning in outcome.warnings]
     return [warning for warning in said if outcome.plan is None or _EMPTY_SIGNATURE not in warning]
+
+
+def warning_lines(graded: Graded, said: list[str]) -> list[str]:
+    """clingo's warnings on the encoding not ``said`` before (at most :data:`SHOWN_WARNINGS`
+    in all, then how many more there are), under an instance's line as solve shows them."""
+    lines = []
+    for warning in graded.warnings:
+        if warning in said:
+            continue
+        said.append(warning)
+        if len(said) <= SHOWN_WARNINGS:
+            lines.append(f"  clingo: {warning}")
+        elif len(said) == SHOWN_WARNINGS + 1:
+            lines.append("  clingo: more warnings (--json lists them all)")
+    return lines
 
 
 def timed_out(outcome: Outcome) -> bool:
