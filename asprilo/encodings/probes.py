@@ -42,6 +42,7 @@ from pathlib import Path
 from typing import Any, TextIO
 
 import clingo
+from clingo.backend import Observer
 
 from asprilo.domain import Domain
 from asprilo.errors import InputError
@@ -297,7 +298,7 @@ def forced_answer(instance: Instance, domain: Domain, encoding: Encoding, atoms:
         return solver.solve().status.value
 
 
-class ShownConditions:
+class ShownConditions(Observer):
     """A clingo observer that keeps, for each shown ``occurs/3`` atom or term, the
     conditions under which it is shown (program literals; an empty condition: always)."""
 
