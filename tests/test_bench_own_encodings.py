@@ -95,15 +95,15 @@ def test_the_constants_and_the_files_reach_the_run(tmp_path):
 
 def test_the_suite_keeps_its_encodings_with_their_style(tmp_path):
     _encoding_folder(tmp_path)
-    runs = "  - {domain: [m, md], encoding: [mine, plain], assign: [false, true]}\n"
+    runs = "  - {domain: [m, md], encoding: mine}\n  - {domain: [m, md], encoding: plain, assign: [false, true]}\n"
     suite = load_suite(_suite(tmp_path, MINE, runs))
     mine = suite.encodings["mine"]
     assert mine.files == (str(tmp_path / "enc/mine.lp"), str(tmp_path / "enc/goal.lp"))
     assert (mine.constants, mine.options, mine.style) == (
         (("need", "2"),), ("--configuration=crafty",), "single-shot with a horizon constant")
     assert [(spec.label, spec.encoding, spec.own) for spec in suite.runs] == [
-        ("M", "mine", mine), ("M_a", "mine", mine), ("M", "plain", None), ("M_a", "plain", None),
-        ("Md", "mine", mine), ("Md_a", "mine", mine), ("Md", "plain", None), ("Md_a", "plain", None)]
+        ("M", "mine", mine), ("Md", "mine", mine),
+        ("M", "plain", None), ("M_a", "plain", None), ("Md", "plain", None), ("Md_a", "plain", None)]
     assert suite.encodings["inc"].style == "incremental (step(t)/check(t), query(t))"
 
 

@@ -14,12 +14,16 @@ A suite is a YAML file::
       tiny:  {files: ["../examples/encodings-repo/x2_y2*.lp"]}  # or existing files (patterns)
       quick: {batch: paper-m.yml, select: 1x2x4, first: 5}  # only the first 5 files of each folder
     runs:                     # every combination of the listed values is run on every instance
-      - {domain: m, encoding: [plain, split, clingcon, dl, mine], assign: [false, true]}
-      - {domain: [c, b], encoding: [plain, mine], assign: [false, true], sets: [tiny]}
+      - {domain: m, encoding: [plain, split, clingcon, dl], assign: [false, true]}
+      - {domain: m, encoding: mine}       # the suite's own: no assign (it would not follow one)
+      - {domain: [c, b], encoding: [plain, mine], sets: [tiny]}
       - {domain: [a, m], method: anytime}   # the anytime planner for the whole time limit
       - {domain: m, variant: diagonal}      # under a rule variant: its model solution, checked by its rules
 
-A run entry with ``sets`` runs on the instances of those sets only.  ``variant: NAME`` (a
+A run entry with ``sets`` runs on the instances of those sets only.  ``assign: true`` (the
+task assignment computed first, the plan along it) goes with the reference encodings, which
+are written to follow it: an encoding of the suite's own is refused there (nothing makes it
+follow the assignment, so its row would mean nothing).  ``variant: NAME`` (a
 built-in variant, or a variant file relative to the suite; a list composes them in order, as
 ``--variant`` repeated does) runs and checks under the varied domain (``M+diagonal``): its
 minimal makespans are searched with the variant's model solution (the default encoding of
@@ -411,6 +415,13 @@ class _SuiteFile:
             pairs = [(d, e) for d in domains for e in named]
         else:  # each domain's default: plain, or a variant's model solution
             pairs = [(d, default_encoding(d).name) for d in domains]
+        mine = sorted({e for _d, e in pairs if e in own})
+        if True in assigns and mine:
+            raise self.fail(f"{where}.assign", f"assign: true hands a task assignment to the reference encodings, "
+                                               f"which are written to follow it; '{mine[0]}' is the suite's own "
+                                               f"encoding, which nothing makes follow it, so its row would mean "
+                                               f"nothing: run '{mine[0]}' in an entry without assign",
+                            entry.line_of("assign"))
         return [RunSpec(d, e, a, sets, method, own.get(e), variants, chosen.get(d))
                 for (d, e), a in itertools.product(pairs, assigns)]
 

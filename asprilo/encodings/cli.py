@@ -7,9 +7,10 @@ the best plan found, proven minimal as soon as the exact search has refuted ever
 horizon (or found it), else with the bound proven so far and the gap; a plan once found is
 never lost (time limit, Ctrl-C, SIGTERM).  M/Md with anonymous goals: max-flow, exact and fast.
 --method asp, anytime or flow runs that method alone; --encoding runs that encoding alone
-(method asp).  The plan is checked, then printed as occurs/3 facts (stdout, or -o PLAN); a
-summary goes to stderr.  On a terminal a line redrawn twice a second says what the searches
-do (phase, horizon, conflicts, best plan so far, elapsed and remaining time).
+(method asp; with anytime or flow, which run none, it is refused).  The plan is checked,
+then printed as occurs/3 facts (stdout, or -o PLAN); a summary goes to stderr.  On a
+terminal a line redrawn twice a second says what the searches do (phase, horizon,
+conflicts, best plan so far, elapsed and remaining time).
 
 --encoding FILE... (one flag, several files, as clingo takes them; or the flag repeated)
 runs your own encoding: single-shot with a horizon constant, incremental (#include <incmode>,
@@ -68,7 +69,8 @@ from asprilo.writer import check_output, format_plan, write_text
 from .anytime import DEFAULT_SECONDS as ANYTIME_SECONDS
 from .choice import choose_encoding, is_encoding_file, stage_encoding
 from .registry import Encoding, default_encoding, reference_encodings
-from .solving import Attempt, Phase, method_names, solve
+from .solving import Attempt, Phase, find_method, method_names, solve
+from .solving.method import runs_no_encoding
 from .solving.methods import methods_words
 from .solving.minimality import learn_minimum
 from .summary import SHOWN_VIOLATIONS, SHOWN_WARNINGS, report, summary
@@ -127,6 +129,8 @@ def run(args: argparse.Namespace) -> int:
     inputs = [args.instance, *files]
     check_output(args.output, inputs, standard_output="-o -")
     method, time_limit = _method_and_time_limit(args)
+    if args.encoding and not find_method(method).encoded:  # anytime, flow: the encoding would go unused
+        raise InputError(runs_no_encoding(method))
     loaded_variants(args)  # before reading: the attributes they declare are data
     instance = read_instance(args.instance)
     detected = detect_domain(instance)

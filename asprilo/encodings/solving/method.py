@@ -52,7 +52,10 @@ class Method(ABC):
 
     def refuse_other_rules(self, request: SolveRequest, words: str, rules: str = "SPEC.md's rules") -> None:
         """For a method that runs no logic program (``words`` names it: "the flow method"; it
-        knows ``rules``): refuse a domain whose rules it does not honour, and a first stage."""
+        knows ``rules``): refuse an encoding of one's own (it would go unused), a domain whose
+        rules it does not honour, and a first stage."""
+        if request.encoding is not None and request.encoding.own:
+            raise InputError(runs_no_encoding(self.name))
         if not self.honours(request.domain):
             raise InputError(f"{words} knows only {rules}, not {unserved_words(request.domain)}; leave "
                              f"out --method (the exact search runs the domain's own encoding) or give your own "
@@ -76,6 +79,12 @@ class Method(ABC):
     @abstractmethod
     def run(self, request: SolveRequest, watch: Watch) -> Outcome:
         """Solve ``request`` (checked, with its lower bounds) within ``watch``'s limits."""
+
+
+def runs_no_encoding(method: str) -> str:
+    """Why ``--method METHOD`` (one that runs no logic program) refuses ``--encoding``."""
+    return (f"--method {method} runs no encoding, so --encoding would be ignored: leave out --method to run "
+            f"the encoding with the exact search, or --encoding to run the {method} method")
 
 
 def spec_rules(domain: Domain) -> bool:

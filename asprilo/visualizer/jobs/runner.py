@@ -72,6 +72,8 @@ SOLVE_METHODS = {"auto": "&Best plan fast, proven minimal when possible (exact s
                  "anytime": "&Anytime only: a plan fast, then better ones"}
 #: the Solve method until another is chosen
 DEFAULT_METHOD = "auto"
+#: what Run > Solve with encoding says while the Solve method is the anytime planner alone
+NO_ENCODING = "(Solve method Anytime only runs no encoding)"
 
 JOB_ACTIONS: Table = {
     "generate": ("&Generate (fill this layout)…", ("Ctrl+Shift+G",)),
@@ -237,10 +239,15 @@ class JobRunner(QObject):
         self.encoding_menu.clear()
         chosen = str(self.settings.value("tools/encoding", "plain"))
         names = encoding_names(self.state.document.domain) if self.state.document.scenario is not None else ["plain"]
+        unused = self.method == "anytime"  # the anytime planner runs no encoding: none is offered
+        if unused:
+            note = menu_entry(self.encoding_menu, NO_ENCODING)
+            note.setEnabled(False)
         for name in names:
             action = menu_entry(self.encoding_menu, name)
             action.setCheckable(True)
             action.setChecked(name == chosen)
+            action.setEnabled(not unused)
             self.encodings.addAction(action)
             action.triggered.connect(lambda _checked=False, n=name: self.settings.setValue("tools/encoding", n))
 
