@@ -240,7 +240,7 @@ class JobRunner(QObject):
         chosen = str(self.settings.value("tools/encoding", "plain"))
         names = encoding_names(self.state.document.domain) if self.state.document.scenario is not None else ["plain"]
         unused = self.method == "anytime"  # the anytime planner runs no encoding: none is offered
-        if unused:
+        if unused and self.encoding_menu is not None:
             note = menu_entry(self.encoding_menu, NO_ENCODING)
             note.setEnabled(False)
         for name in names:

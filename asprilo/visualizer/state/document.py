@@ -66,6 +66,7 @@ class _PlanStep:
     def __init__(self, document: Document, after: Plan, sources: list[Source], text: str, time: float | None,
                  solved_in: Domain | None):
         scenario = document.scenario
+        assert scenario is not None  # (a plan is replaced only in a scenario shown)
         self.document, self.text, self.time = document, text, time
         self.before = (scenario.plan, scenario.plan_sources, scenario.solved_in)
         self.after = (after, sources, solved_in)
@@ -161,10 +162,10 @@ class Document:
         shown ends: the step replaces the plan from before the draft."""
         if self.scenario is None:
             return False
-        drafted = self._before_draft is not None
-        if drafted:  # the step goes from the plan the draft covers
-            (self.scenario.plan, self.scenario.plan_sources, self.scenario.solved_in), self._before_draft = \
-                self._before_draft, None
+        before, self._before_draft = self._before_draft, None
+        drafted = before is not None
+        if before is not None:  # the step goes from the plan the draft covers
+            self.scenario.plan, self.scenario.plan_sources, self.scenario.solved_in = before
         if plan == self.scenario.plan:
             if drafted:  # the plan from before the draft, shown again
                 self.put_plan(plan, self.scenario.plan_sources, time, self.scenario.solved_in)
@@ -202,7 +203,9 @@ class Document:
         self.changed.emit(Change(edit=edit, time=0.0))
 
     def put_plan(self, plan: Plan, sources: list[Source], time: float | None, solved_in: Domain | None = None) -> None:
-        self.scenario.plan, self.scenario.plan_sources, self.scenario.solved_in = plan, sources, solved_in
+        scenario = self.scenario
+        assert scenario is not None  # (a plan is put only in a scenario shown)
+        scenario.plan, scenario.plan_sources, scenario.solved_in = plan, sources, solved_in
         self.changed.emit(Change(plan=True, time=time))
 
     # --- unsaved edits ------------------------------------------------------------------------
