@@ -24,6 +24,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from asprilo.domain import Domain
+from asprilo.errors import InputError
 from asprilo.model import Instance
 
 from .outcome import Outcome
@@ -64,13 +65,13 @@ def settle(request: SolveRequest, outcome: Outcome) -> None:
         outcome.minimum, outcome.minimum_by = outcome.horizon, ""
 
 
-def learn_minimum(outcome: Outcome, instance: Instance, cancel_seconds: float = FLOW_SECONDS) -> None:
+def learn_minimum(outcome: Outcome, instance: Instance, seconds: float = FLOW_SECONDS) -> None:
     """For a valid plan of an own encoding not proven minimal for the problem: the problem's
     minimum where it is cheap to know (:func:`known_minimum`); a plan of that makespan is then
     minimal."""
     if not outcome.found or outcome.trusted or outcome.minimal or outcome.horizon is None:
         return
-    known = known_minimum(instance, outcome.domain, cancel_seconds)
+    known = known_minimum(instance, outcome.domain, seconds)
     if known is None:
         return
     outcome.minimum, outcome.minimum_by = known.makespan, known.by
@@ -90,7 +91,10 @@ def known_minimum(instance: Instance, domain: Domain, seconds: float = FLOW_SECO
         return None
     from .front import solve
 
-    found = solve(instance, domain, method="flow", time_limit=seconds)
+    try:
+        found = solve(instance, domain, method="flow", time_limit=seconds)
+    except InputError:  # an instance max-flow does not take (said by solve where it matters): unknown
+        return None
     if found.found and found.minimal and found.horizon is not None:
         return Minimum(found.horizon, "by max-flow")
     return None
