@@ -66,8 +66,7 @@ class Program:
         if self.encoding.incremental:
             solver = self.fresh(None)
             self.watch.phase("grounding", horizon)
-            steps = [("step", [t]) for t in range(1, horizon + 1)]
-            solver.ground([("base", []), *steps, ("check", [horizon])])
+            solver.ground(incmode_parts(horizon))
             self.heard(solver)
             solver.assign_external(f"query({horizon})", True)
             return solver, False
@@ -201,6 +200,17 @@ class Program:
                         facts.append(f"to_station(({px},{py}),({x},{y}),{int(table[row, column])}).")
             self._distances = "\n".join(facts)
         return self._distances
+
+
+def incmode_parts(horizon: int) -> list[tuple[str, list[int]]]:
+    """The parts clingo's incmode has grounded when it solves at ``horizon``: ``base`` and
+    ``check(0)``, then ``step(t)`` and ``check(t)`` for every t from 1 to ``horizon``.  A
+    ``check(t)`` of an earlier step stays in the program (a ``#show`` there shows that step's
+    atoms); only its ``query(t)`` is false, as incmode releases it."""
+    parts: list[tuple[str, list[int]]] = [("base", []), ("check", [0])]
+    for step in range(1, horizon + 1):
+        parts += [("step", [step]), ("check", [step])]
+    return parts
 
 
 def carriers(assignment: Assignment) -> dict[int, int]:
