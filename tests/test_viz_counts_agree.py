@@ -121,14 +121,16 @@ def test_a_solve_is_shown_under_the_rules_it_was_solved_for(window, qtbot, files
                         r"the checker's violations are in the Violations panel", window.statusBar().currentMessage())
     assert corner(window).startswith("\u26a0 1 rule violation")
     violations = window.panels.tables["violations"]
-    assert [sentence(row) for row in violations.model.rows] == ["at the horizon: order 1 still lacks 1 unit of product 1"]
+    assert [sentence(row) for row in violations.model.rows] == [
+        "at the horizon: order 1 still lacks 1 unit of product 1"]
     assert window.panels.docks["violations"].windowTitle() == "Violations — ASP checker (1)"
     assert orders_panel(window, 2) == [(1, 1, False, 1)]
 
     # undo: the loaded plan, read as A again (its pickup), with its one violation at step 3
     window.editor.commands["undo"].trigger()
     assert window.scenario.plan.horizon == 3 and window.track.domain is Domain.A
-    assert [v.message for v in window.track.violations] == ["step 3 (the horizon): order 1 still lacks 1 unit of product 1"]
+    assert [v.message for v in window.track.violations] == [
+        "step 3 (the horizon): order 1 still lacks 1 unit of product 1"]
     # redo: the solved plan under A again
     window.editor.commands["redo"].trigger()
     assert window.track.domain is Domain.A and len(window.track.violations) == 1

@@ -27,7 +27,7 @@ from ..outcome import Outcome
 from ..request import SolveRequest
 from ..status import Attempt, SolveStatus
 from ..watch import Watch
-from .program import Program
+from .program import Program, incmode_parts
 
 #: the message of a search that cannot start: the lower bound is infinite
 UNREACHABLE = "some goal or order line can never be reached"
@@ -211,7 +211,7 @@ class HorizonSearch:
         solver = self.program.fresh(None)
         started = time.perf_counter()
         self.watch.phase("grounding", first)
-        solver.ground([("base", [])] + [("step", [t]) for t in range(1, first + 1)])
+        solver.ground(incmode_parts(first)[:-1])  # as incmode: check(t) of every earlier step too
         for horizon in range(first, last + 1):
             if self.stopped():
                 return
