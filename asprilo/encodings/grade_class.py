@@ -95,7 +95,7 @@ class Result:
     def notes(self) -> str:
         """What went wrong, in a few words: the refusal, or the counts, and how many warnings
         clingo gave (``""``: nothing)."""
-        parts = [self.submission.refusal or failure_counts(self.summary)]
+        parts = [self.submission.refusal or self.summary.failures()]
         if self.forgot:
             parts.append(f"forgot {', '.join(self.forgot)}")
         undecided = sum(item.result == UNDECIDED for item in self.probed or ())
@@ -204,18 +204,6 @@ def _submission(args: argparse.Namespace, member: Member, setup: _Setup) -> Subm
         return Submission(refused_encoding(values, "not graded"), refusal=f"not graded: {' '.join(str(error).split())}")
 
 
-def failure_counts(summary: Summary) -> str:
-    """``2 invalid, 1 without a plan, 1 time-out`` (``""``: every plan valid)."""
-    parts = []
-    if summary.invalid:
-        parts.append(f"{summary.invalid} invalid")
-    if summary.no_plan:
-        parts.append(f"{summary.no_plan} without a plan")
-    if summary.time_outs:
-        parts.append(f"{summary.time_outs} time-out{'s' * (summary.time_outs != 1)}")
-    return ", ".join(parts)
-
-
 def table(results: list[Result], seconds: float) -> list[str]:
     """The class in a table: a line per submission (valid and minimal counts, what went
     wrong, clingo's warnings), the totals, and how many submissions got a valid plan everywhere."""
@@ -228,7 +216,7 @@ def table(results: list[Result], seconds: float) -> list[str]:
                      result.notes()))
     n = total.instances
     forgetful = sum(bool(result.forgot) for result in results)
-    notes = [failure_counts(total)] + [f"{forgetful} forgot a rule"] * bool(forgetful)
+    notes = [total.failures()] + [f"{forgetful} forgot a rule"] * bool(forgetful)
     rows.append(("all", f"{total.valid}/{n}", f"{total.minimal}/{n}", ", ".join(note for note in notes if note)))
     lines = [f"{name:<{width}}  {valid:>5}  {minimal:>7}  {notes}".rstrip() for name, valid, minimal, notes in rows]
     refused = sum(bool(result.submission.refusal) for result in results)

@@ -142,16 +142,17 @@ class Summary:
     def line(self) -> str:
         """E.g. ``7/8 valid, 5/8 minimal, 1 time-out; 12.3 s``."""
         n = self.instances
-        parts = [f"{self.valid}/{n} valid", f"{self.minimal}/{n} minimal"]
-        if self.invalid:
-            parts.append(f"{self.invalid} invalid")
-        if self.no_plan:
-            parts.append(f"{self.no_plan} without a plan")
-        if self.time_outs:
-            parts.append(f"{self.time_outs} time-out{'s' * (self.time_outs != 1)}")
+        parts = [f"{self.valid}/{n} valid", f"{self.minimal}/{n} minimal"] + [self.failures()] * bool(self.failures())
         if self.unknown:
             parts.append(f"minimum unknown on {self.unknown}")
         return f"{', '.join(parts)}; {self.seconds:.1f} s"
+
+    def failures(self) -> str:
+        """``2 invalid, 1 without a plan, 1 time-out`` (``""``: every plan valid)."""
+        parts = [f"{self.invalid} invalid"] * bool(self.invalid)
+        parts += [f"{self.no_plan} without a plan"] * bool(self.no_plan)
+        parts += [f"{self.time_outs} time-out{'s' * (self.time_outs != 1)}"] * bool(self.time_outs)
+        return ", ".join(parts)
 
     def as_json(self) -> dict[str, Any]:
         return {"instances": self.instances, "valid": self.valid, "minimal": self.minimal, "invalid": self.invalid,
