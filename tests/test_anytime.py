@@ -10,6 +10,7 @@ import threading
 
 import pytest
 from helpers import EXAMPLES
+from helpers.clocks import patient_anytime, patient_solves
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
@@ -60,7 +61,7 @@ SMALL = dict(domain=st.sampled_from(domains()), seed=st.integers(1, 10**6), robo
 @given(**SMALL)
 def test_every_plan_passes_the_checker_and_improvements_only_get_better(domain, seed, robots, width, height):
     instance = _instance(domain, seed, robots, width, height)
-    result = plan_anytime(instance, domain, time_limit=0.5)
+    result = plan_anytime(instance, domain, time_limit=0.5)  # what it found by then: sound
     _assert_sound(result, instance, domain)
 
 
@@ -78,7 +79,8 @@ def test_many_more_random_instances(domain, seed, robots, width, height):
     ("x3_y3_n9_r1_s1_ps1_pr1_u1_o1_N1", {"c": 9, "b": 9, "a": 9}),
     ("x4_y4_n16_r2_s3_ps1_pr2_u4_o2_N1", {"c": 7, "b": 8, "a": 8}),
 ])
-def test_tiny_delivery_instances_reach_their_minimal_makespan(name, minimal):
+def test_tiny_delivery_instances_reach_their_minimal_makespan(name, minimal, monkeypatch):
+    patient_anytime(monkeypatch, stop_after=None)  # each search stops at its lower bound
     instance = read_instance(REPO / f"{name}.lp")
     for domain, makespan in minimal.items():
         result = plan_anytime(instance, Domain.parse(domain), time_limit=10)
@@ -86,7 +88,8 @@ def test_tiny_delivery_instances_reach_their_minimal_makespan(name, minimal):
 
 
 @pytest.mark.parametrize("path", sorted(PAPER.glob("1x2x4/*.lp")))
-def test_m_and_md_reach_the_flow_optimum(path):
+def test_m_and_md_reach_the_flow_optimum(path, monkeypatch):
+    patient_anytime(monkeypatch, stop_after=None)  # each search stops at its lower bound
     instance = read_instance(path)
     for domain, goals in ((Domain.M, instance), (Domain.MD, m_to_md(instance))):
         optimum = solve(goals, domain, method="flow").horizon
@@ -206,7 +209,8 @@ def test_a_line_that_cannot_be_served_means_no_plan(write):
     assert (result.status, result.plan, result.minimal) == ("none", None, True)
 
 
-def test_solve_reports_each_plan_and_the_best_one(capsys):
+def test_solve_reports_each_plan_and_the_best_one(capsys, monkeypatch):
+    patient_solves(monkeypatch, 3)  # three plans (or fewer, the last at the lower bound)
     instance = read_instance(PAPER / "1x2x4/x11_y6_n66_r8_s16_ps1_pr16_u16_o8_N001.lp")
     heard = []
     outcome = solve(instance, "b", method="anytime", time_limit=1.5, on_progress=heard.append)
@@ -216,7 +220,8 @@ def test_solve_reports_each_plan_and_the_best_one(capsys):
     assert outcome.horizon == outcome.history[-1]["makespan"]
 
 
-def test_cli_json_reports_bound_minimal_and_history(capsys):
+def test_cli_json_reports_bound_minimal_and_history(capsys, monkeypatch):
+    patient_solves(monkeypatch, None)  # the search stops at its lower bound
     path = REPO / "x4_y4_n16_r2_s3_ps1_pr2_u4_o2_N1.lp"
     assert main(["solve", str(path), "--domain", "b", "--method", "anytime", "--time-limit", "5", "--json"]) == 0
     captured = capsys.readouterr()
@@ -237,8 +242,9 @@ TWO_TRIPS = ("init(object(grid,1),value(xsize,5)). init(object(grid,1),value(ysi
              "init(object(order,1),value(pickingStation,1)).\n")
 
 
-def test_cli_answers_a_time_out_with_the_best_plan(write, capsys):
+def test_cli_answers_a_time_out_with_the_best_plan(write, capsys, monkeypatch):
     path = write("two-trips.lp", TWO_TRIPS)
+    patient_solves(monkeypatch, 2)  # time runs out after two plans, on any machine
     # the bound is out of reach: the search runs till its limit (the time limit tests above)
     assert main(["solve", str(path), "--domain", "b", "--method", "anytime", "--time-limit", "2"]) == 0
     captured = capsys.readouterr()
@@ -253,7 +259,7 @@ def test_cli_refuses_a_horizon_with_the_anytime_method(capsys):
 
 
 @pytest.mark.parametrize("steps", [8, 12])
-def test_it_plans_from_a_state_in_the_middle_of_a_plan(steps):
+def test_it_plans_from_a_state_in_the_middle_of_a_plan(steps, monkeypatch):
     """What the online link asks after new orders: robots carrying shelves (some from the
     start, some standing on a station), shelves away from their cells, lines done."""
     from asprilo.model import Plan
@@ -266,6 +272,7 @@ def test_it_plans_from_a_state_in_the_middle_of_a_plan(steps):
     done = Plan([action for action in first.plan.actions if action.step <= steps])
     now = world_at(instance, simulate(instance, done, Domain.B).state(steps))
     assert any(robot.carries is not None for robot in now.robots.values())
-    result = plan_anytime(now, Domain.B, time_limit=5)
+    clock = patient_anytime(monkeypatch)  # time runs out after the first plan, on any machine
+    result = plan_anytime(now, Domain.B, time_limit=5, on_improvement=clock.reported)
     assert result.status == "found"
     _assert_sound(result, now, Domain.B)

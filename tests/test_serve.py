@@ -8,6 +8,7 @@ import sys
 
 import pytest
 from helpers import SMALL_A
+from helpers.clocks import patient_solves
 from helpers.online import ORDER_2, TINY, WAIT, served, tiny
 
 from asprilo import encodings
@@ -131,6 +132,8 @@ def test_anytime_replanning_answers_at_its_time_limit_with_the_best_plan(monkeyp
         return searches[-1]
 
     monkeypatch.setattr(encodings, "solve", recorded)
+    # the search at step 0 stops by itself, the one at step 2 runs out of time at its first plan
+    clocks = patient_solves(monkeypatch, None, 1)
     instance = read_instance(SMALL_A)
     said: list[str] = []
     online = OnlinePlanner(anytime_planner(time_limit=5.0), log=said.append)
@@ -141,10 +144,12 @@ def test_anytime_replanning_answers_at_its_time_limit_with_the_best_plan(monkeyp
     # answered from the plan
     assert [line.split(":")[0] for line in said if "planning from" in line] == ["step 0", "step 2"]
     # each search answered with the best plan found: at step 0 (orders 1 and 2 only) one of the
-    # lower bound's makespan, proven minimal by it, at once; at step 2 (all three orders) none
-    # meets the bound, so that search ran to its time limit (the planner's cancel is never set)
+    # lower bound's makespan, proven minimal by it; at step 2 (all three orders) its first plan
+    # does not meet the bound, so that search ran to its time limit (the planner's cancel is
+    # never set)
     assert [(o.status, o.method) for o in searches] == [(SolveStatus.FOUND, "anytime")] * 2
     assert [o.minimal for o in searches] == [o.horizon == o.lower_bound for o in searches] == [True, False]
+    assert len(clocks) == 2 and clocks[1]() >= 5.0  # the second search stopped at its time limit
 
 
 # --- both servers on loopback, a plain client -----------------------------------------------------------
