@@ -202,6 +202,22 @@ def test_a_weak_encoding_is_said_to_be_the_shortest_it_allows_not_minimal(qtbot,
                         window.statusBar().currentMessage())
 
 
+@pytest.mark.parametrize("name", ["encoding-check.ilp", "encoding-clingcon.iclp"])
+def test_an_incremental_encoding_that_shows_its_plan_in_check_plays_every_step(window, qtbot, name):
+    """The public collection's style (tests/encodings/m-parts): the moves shown from
+    ``#program check(t)``; rung 3 of the M ladder, whose stored minimum is 5."""
+    from asprilo.domain import Domain
+    from asprilo.encodings.ladder import bundled_ladder
+
+    rung = bundled_ladder(Domain.M).rungs[2]
+    window.open_files([str(rung.file)])
+    assert window.jobs.solve_files([ENCODINGS / "m-parts" / name]) is not None
+    finish(qtbot, window)
+    outcome = window.jobs.last_outcome
+    assert (outcome.found, outcome.horizon, outcome.minimal) == (True, rung.minimum, True)
+    assert window.scenario.plan == outcome.plan and check(read_instance(rung.file), window.scenario.plan).valid
+
+
 def test_a_syntax_error_opens_the_error_dialog_located_and_the_warehouse_stays(window, qtbot, choose, tmp_path):
     choose.files = [ENCODINGS / "m-single.lp"]
     window.jobs.ask_solve_file()
