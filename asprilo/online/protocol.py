@@ -34,6 +34,8 @@ from asprilo.policy import decode
 from asprilo.reader import read_instance, read_plan
 from asprilo.sources import Source, load_facts
 
+from .budgets import MemoryPool, Pace, SessionBudget
+
 RESET, DONE, END, ERROR = "RESET", "done", "end", "error"
 #: a control word at the end of a line
 _CONTROL = re.compile(r"%\$(?P<name>RESET|done|end|error)(?:\((?P<step>-?\d{1,9})\))?\.\s*$")
@@ -132,10 +134,19 @@ class Channel:
     must arrive whole within the ``line-seconds`` limit (with ``speaks_first``, the first line
     counts from now: a server's client must say something within it), and each line sent must
     be taken within it too.  A line longer than the ``file-mb`` limit or not UTF-8 is refused;
-    a line cut off by the other side closing is no message."""
+    a line cut off by the other side closing is no message.  A server's channel has a
+    ``session`` budget (its length and lines per minute) and draws the bytes of its
+    unfinished line, and those the session keeps, from a ``pool`` shared by all clients."""
 
-    def __init__(self, connection: socket.socket, timeout: float | None = TIMEOUT, speaks_first: bool = False):
+    def __init__(self, connection: socket.socket, timeout: float | None = TIMEOUT, speaks_first: bool = False,
+                 session: SessionBudget | None = None, pool: MemoryPool | None = None):
         self.connection = connection
+        self.session = session
+        self._deadline = None if session is None else session.clock() + session.seconds
+        self._pace = None if session is None else Pace(session)
+        self.pool = pool
+        self._last = 0  # bytes of the line returned last, held from the pool until the next is read
+        self._kept = 0  # bytes the session keeps (:meth:`keep`)
         self.timeout = timeout
         self.connection.settimeout(timeout)
         self._buffer = bytearray()
@@ -168,9 +179,25 @@ class Channel:
         line = self._line()
         return None if line is None else parse(decode(line, "<line>"))
 
+    def keep(self, size: int) -> None:
+        """Hold ``size`` bytes from the pool for what the session keeps (until :meth:`forget`)."""
+        if self.pool is not None:
+            self.pool.take(size)
+            self._kept += size
+
+    def forget(self) -> None:
+        """Give back what :meth:`keep` held."""
+        if self.pool is not None:
+            self.pool.give(self._kept)
+        self._kept = 0
+
     def _line(self) -> bytes | None:
         limits = current()
         most = limits.file_mb * 2**20
+        self._give(self._last)
+        self._last = 0
+        if self._deadline is not None and self.session is not None and self.session.clock() >= self._deadline:
+            raise self.session.ended()
         if self._began is None and self._buffer:  # the rest of the last read begins this line
             self._began = time.monotonic()
         start = 0
@@ -181,30 +208,44 @@ class Channel:
             chunk = self._receive(current())  # read anew: the budget may change meanwhile
             if not chunk:
                 self.cut_off = bool(self._buffer)
+                self._give(len(self._buffer))
                 self._buffer, self._began = bytearray(), None
                 return None
             if self._began is None:
                 self._began = time.monotonic()
+            if self.pool is not None:
+                self.pool.take(len(chunk))
             self._buffer += chunk
+        if self._pace is not None:
+            self._pace.count()
         line = bytes(self._buffer[:end + 1])
         del self._buffer[:end + 1]
+        self._last = end + 1
         self._began, self._first = (time.monotonic() if self._buffer else None), False
         return line
 
     def _receive(self, limits: Limits) -> bytes:
         """What comes next, waiting at most the channel's timeout and never beyond the line's budget."""
         wait, budget = self.timeout, limits.line_seconds
-        late = False
+        late = ended = False
         if self._began is not None:
             left = self._began + budget - time.monotonic()
             late = wait is None or left <= wait
             wait = left if late else wait
             if left <= 0:
                 raise self._late(limits)
+        if self._deadline is not None and self.session is not None:
+            left = self._deadline - self.session.clock()
+            if left <= 0:
+                raise self.session.ended()
+            if wait is None or left < wait:
+                wait, late, ended = left, False, True
         self.connection.settimeout(wait)
         try:
             return self.connection.recv(1 << 16)
         except TimeoutError:
+            if ended and self.session is not None:
+                raise self.session.ended() from None
             if late:
                 raise self._late(limits) from None
             raise TimeoutError(f"nothing received for {wait:g} s") from None
@@ -217,7 +258,15 @@ class Channel:
             return limits.exceeded("line_seconds", f"no line within {budget:g} s of connecting")
         return limits.exceeded("line_seconds", f"a line not complete within {budget:g} s of its first byte")
 
+    def _give(self, size: int) -> None:
+        if self.pool is not None and size:
+            self.pool.give(size)
+
     def close(self) -> None:
+        """Close the connection and give back all the pool holds for it."""
+        self._give(len(self._buffer) + self._last)
+        self._buffer, self._last = bytearray(), 0
+        self.forget()
         with contextlib.suppress(OSError):
             self.connection.close()
 

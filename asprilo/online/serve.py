@@ -16,7 +16,10 @@ one session with --once.  Each client is served on its own (up to --clients at o
 with a session of its own; a client silent for --idle-timeout seconds is let go.  Each line
 must arrive whole within the line-seconds limit from its first byte (a client's first line:
 from connecting), and each answer be taken within it (--limit line-seconds=S, default 60), so
-slow clients hold a place no longer.  A line that is refused (not UTF-8, too long, too slow,
+slow clients hold a place no longer.  A session lasts at most --session-seconds (default an
+hour) and sends at most --lines-per-minute lines, so a client trickling short lines holds a
+place no longer either; unfinished lines and the facts kept for sessions take at most
+--memory-mb (default 512) for all clients together.  A line that is refused (not UTF-8, too long, too slow,
 not facts, a step outside the plan) is answered with an error (``%$error.``) and the
 connection closes; the server goes on.  Messages are data: parsed as facts, never handed to
 clingo as text, so no client makes the server open a file.
@@ -36,6 +39,7 @@ from asprilo.arguments import domain_argument, limit_argument, port_argument, se
 from asprilo.errors import InputError
 from asprilo.limits import current, using
 
+from .budgets import LINES_PER_MINUTE, MEMORY_MB, SESSION_SECONDS, MemoryPool, SessionBudget
 from .planner import OnlinePlanner, Planner, Schedule, anytime_planner, encodings_planner, parse_arrivals
 from .protocol import DONE, END, RESET, Channel, Message, action_facts, check_facts, error
 
@@ -72,6 +76,14 @@ def configure(parser: argparse.ArgumentParser) -> None:
                           help=f"clients served at once (default {CLIENTS}); more are turned away")
         role.add_argument("--idle-timeout", type=float, default=IDLE_SECONDS, metavar="S",
                           help=f"let a client go after S seconds of silence (default {IDLE_SECONDS:g})")
+        role.add_argument("--session-seconds", type=float, default=SESSION_SECONDS, metavar="S",
+                          help=f"let a client go S seconds after it connected (default {SESSION_SECONDS:g})")
+        role.add_argument("--lines-per-minute", type=int, default=LINES_PER_MINUTE, metavar="N",
+                          help="let a client go that sends more than N lines within a minute "
+                               f"(default {LINES_PER_MINUTE})")
+        role.add_argument("--memory-mb", type=float, default=MEMORY_MB, metavar="M",
+                          help=f"megabytes of unfinished lines and kept facts for all clients together; a line "
+                               f"beyond them is refused (default {MEMORY_MB})")
         role.add_argument("--limit", action="append", default=[], dest="role_limits", type=limit_argument,
                           metavar="NAME=N", help="a limit on data, as --limit before the role (repeatable); "
                                                  "line-seconds=S: each line must arrive whole within S seconds "
@@ -86,8 +98,11 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run(args: argparse.Namespace) -> int:
-    if args.clients < 1 or not args.idle_timeout > 0:
-        raise InputError("--clients and --idle-timeout must be positive")
+    if args.clients < 1 or args.lines_per_minute < 1 or not min(args.idle_timeout, args.session_seconds,
+                                                                    args.memory_mb) > 0:
+        raise InputError("--clients, --idle-timeout, --session-seconds, --lines-per-minute and --memory-mb "
+                         "must be positive")
+    budget = SessionBudget(args.session_seconds, args.lines_per_minute)
     if args.role == "solver":
         planner, log = _planner(args), _log("solver")
         session = lambda channel: solver_session(channel, OnlinePlanner(planner, args.domain, log))  # noqa: E731
@@ -98,7 +113,8 @@ def _run(args: argparse.Namespace) -> int:
     host, port = listener.getsockname()[:2]
     print(f"asprilo serve {args.role}: listening on {host}:{port}", flush=True)
     try:
-        serve(listener, session, once=args.once, clients=args.clients, idle=args.idle_timeout)
+        serve(listener, session, once=args.once, clients=args.clients, idle=args.idle_timeout, budget=budget,
+              pool=MemoryPool(args.memory_mb))
     except KeyboardInterrupt:
         print(f"asprilo serve {args.role}: stopped", file=sys.stderr)
     finally:
@@ -141,9 +157,12 @@ def listen(host: str, port: int) -> socket.socket:
 
 
 def serve(listener: socket.socket, session: Callable[[Channel], None], once: bool = False,
-          stop: threading.Event | None = None, clients: int = CLIENTS, idle: float = IDLE_SECONDS) -> None:
+          stop: threading.Event | None = None, clients: int = CLIENTS, idle: float = IDLE_SECONDS,
+          budget: SessionBudget | None = None, pool: MemoryPool | None = None) -> None:
     """Serve each connection in a thread of its own, up to ``clients`` at once, until
-    ``stop`` is set (or until the first connection ends, with ``once``)."""
+    ``stop`` is set (or until the first connection ends, with ``once``); each session
+    within ``budget``, all drawing memory from ``pool`` (the defaults: :mod:`.budgets`)."""
+    budget, pool = budget or SessionBudget(), pool or MemoryPool()
     listener.settimeout(0.2)
     places = threading.BoundedSemaphore(clients)
     while stop is None or not stop.is_set():
@@ -154,19 +173,18 @@ def serve(listener: socket.socket, session: Callable[[Channel], None], once: boo
         if not places.acquire(blocking=False):
             _turn_away(connection, f"the server serves {clients} clients at once; try again later")
             continue
-        thread = threading.Thread(target=_serve_one, args=(connection, session, idle, places), daemon=True)
+        channel = Channel(connection, timeout=idle, speaks_first=True, session=budget, pool=pool)
+        thread = threading.Thread(target=_serve_one, args=(channel, session, places), daemon=True)
         thread.start()
         if once:
             thread.join()
             return
 
 
-def _serve_one(connection: socket.socket, session: Callable[[Channel], None], idle: float,
-               place: threading.BoundedSemaphore) -> None:
+def _serve_one(channel: Channel, session: Callable[[Channel], None], place: threading.BoundedSemaphore) -> None:
     """One client: its session; a refused line is answered with the reason, then the
     connection closes (and its place is free for the next client).  Nothing a client
     sends ends the server: a failure of the session ends the client's connection only."""
-    channel = Channel(connection, timeout=idle, speaks_first=True)
     log = _log("session")
     try:
         session(channel)
@@ -201,12 +219,14 @@ def _turn_away(connection: socket.socket, reason: str) -> None:
 
 def solver_session(channel: Channel, online: OnlinePlanner) -> None:
     """Answer every ``%$done(T).`` with the actions of step T+1 (see :class:`OnlinePlanner`).
-    The facts of a session (since ``%$RESET.``) stay within the ``file-mb`` limit together."""
+    The facts of a session (since ``%$RESET.``) stay within the ``file-mb`` limit together,
+    and are held from the server's memory pool while kept."""
     online.reset()
     learned = 0
     while (message := channel.receive()) is not None:
         if message.control == RESET:
             online.reset()
+            channel.forget()
             learned = 0
             continue
         check_facts(message.facts)
@@ -215,6 +235,7 @@ def solver_session(channel: Channel, online: OnlinePlanner) -> None:
         if learned > limits.file_mb * 2**20:
             raise limits.exceeded("file_mb", f"facts of more than {limits.file_mb:,} MB in one session "
                                              "(since its last reset)")
+        channel.keep(len(message.facts))
         online.learn(message.facts)
         if message.control == DONE:
             actions = _while_connected(channel, online, lambda: online.next_actions(message.step))
