@@ -9,6 +9,7 @@ import math
 from .domain import Domain
 from .errors import InputError
 from .limits import NAMES, Limits, parse_option
+from .memory import check_memory_limit
 
 
 def domain_argument(text: str) -> Domain:
@@ -42,13 +43,18 @@ def seconds_argument(text: str) -> float:
 
 
 def megabytes_argument(text: str) -> int:
-    """Memory limits: a positive whole number of megabytes."""
+    """Memory limits of child processes: a whole number of megabytes that this process can
+    give a child (:func:`asprilo.memory.check_memory_limit`)."""
     try:
         megabytes = int(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"not a whole number of megabytes: {text!r}") from None
     if megabytes <= 0:
         raise argparse.ArgumentTypeError(f"must be a positive number of megabytes, got {megabytes}")
+    try:
+        check_memory_limit(megabytes)
+    except InputError as error:
+        raise argparse.ArgumentTypeError(error.message) from None
     return megabytes
 
 

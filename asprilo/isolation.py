@@ -27,13 +27,18 @@ whatever the current folder holds.
 
 No child outlives its parent: a child ignores the interrupts (Ctrl-C, SIGTERM, SIGHUP: the
 parent decides when to stop, and kills it), and on Linux the kernel kills it when its parent
-ends, whatever ended the parent (``PR_SET_PDEATHSIG``), even ``kill -9``.
+ends, whatever ended the parent (``PR_SET_PDEATHSIG``), even ``kill -9``.  A child with a time
+limit also has one of its own, :data:`BACKSTOP` seconds later (``SIGALRM``, whose default
+action ends it even inside clingo): should its parent be stopped (``kill -STOP``) or hang, the
+child still ends.  A memory limit the child cannot start under (below what it has mapped
+already: a forked child starts with its parent's mappings) is said as such, not as a crash.
 """
 
 from __future__ import annotations
 
 import contextlib
 import ctypes
+import math
 import multiprocessing
 import os
 import pickle
@@ -55,6 +60,10 @@ from .objects import ObjectKind, registered_kinds, restore_kind
 #: how long a killed child may take to go, and how often the parent looks at the clock
 _GRACE = 1.0
 _TICK = 0.1
+#: seconds past its time limit after which a child ends by itself (its parent kills it before)
+BACKSTOP = 10.0
+#: megabytes a child needs beyond what it has mapped when its memory limit is set
+_HEADROOM_MB = 32
 
 
 @dataclass
@@ -83,6 +92,13 @@ class _OutOfMemory:
     pass
 
 
+class _TooLittleMemory:
+    """The child's memory limit is below what it has mapped already (it could not work)."""
+
+    def __init__(self, mapped_mb: int):
+        self.mapped_mb = mapped_mb
+
+
 #: the signals that ask a command to stop: a child ignores them (its parent stops it)
 INTERRUPTS = (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)
 #: Linux's prctl option that names the signal a process gets when its parent ends
@@ -101,17 +117,29 @@ def _die_with_parent(parent: int) -> None:
         os._exit(1)
 
 
-def _child(connection, function: Callable, args: tuple, memory_mb: int | None,
-           kinds: Sequence[ObjectKind] = (), parent: int | None = None) -> None:
-    for interrupt in INTERRUPTS:  # the parent decides when to stop
+def _bound_to_parent(parent: int | None, backstop: float | None) -> None:
+    """A child's ties to its parent: it ignores the interrupts (the parent decides when to
+    stop), ends when the parent ends, and (``backstop``) after that many seconds."""
+    for interrupt in INTERRUPTS:
         signal.signal(interrupt, signal.SIG_IGN)
     if parent is not None:
         _die_with_parent(parent)
+    if backstop is not None:  # a time limit of its own: SIGALRM's default action ends the process
+        signal.signal(signal.SIGALRM, signal.SIG_DFL)
+        signal.alarm(max(1, math.ceil(backstop)))
+
+
+def _child(connection, function: Callable, args: tuple, memory_mb: int | None,
+           kinds: Sequence[ObjectKind] = (), parent: int | None = None, backstop: float | None = None) -> None:
+    _bound_to_parent(parent, backstop)
     for kind in kinds:  # object kinds the parent registered at run time (a fresh interpreter lacks them)
         restore_kind(kind)
     if memory_mb:
-        size = memory_mb * 2**20
-        resource.setrlimit(resource.RLIMIT_AS, (size, size))
+        mapped = _mapped_mb()
+        if mapped is not None and memory_mb < mapped + _HEADROOM_MB:
+            connection.send(("result", _TooLittleMemory(mapped + _HEADROOM_MB)))
+            return
+        _limit_memory(memory_mb)
 
     def report(message: Any) -> None:
         connection.send(("message", message))
@@ -127,6 +155,28 @@ def _child(connection, function: Callable, args: tuple, memory_mb: int | None,
             connection.send(("result", _Failure(RuntimeError(f"{type(error).__name__}: {error}"))))
         return
     connection.send(("result", result))
+
+
+def _limit_memory(memory_mb: int) -> None:
+    """Limit this process's address space to ``memory_mb`` (never above the hard limit it has:
+    that cannot be raised; the command line refuses such a value before any child starts)."""
+    size = memory_mb * 2**20
+    _soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+    if hard != resource.RLIM_INFINITY:
+        size = min(size, hard)
+    resource.setrlimit(resource.RLIMIT_AS, (size, size))
+
+
+def _mapped_mb() -> int | None:
+    """The megabytes of address space this process has mapped now (Linux's VmSize)."""
+    try:
+        with open("/proc/self/status") as status:
+            for line in status:
+                if line.startswith("VmSize:"):
+                    return int(line.split()[1]) // 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    return None
 
 
 def peak_memory_mb() -> float:
@@ -150,12 +200,12 @@ def _context() -> multiprocessing.context.ForkContext | multiprocessing.context.
     return multiprocessing.get_context("spawn")
 
 
-def _start(function: Callable, args: tuple, memory_mb: int | None):
+def _start(function: Callable, args: tuple, memory_mb: int | None, backstop: float | None):
     """A child process that runs :func:`_child`, and the end of the pipe it answers on."""
     context = _context()
     receiver, sender = context.Pipe(duplex=False)
     process = context.Process(target=_child, daemon=True,
-                              args=(sender, function, args, memory_mb, registered_kinds(), os.getpid()))
+                              args=(sender, function, args, memory_mb, registered_kinds(), os.getpid(), backstop))
     process.start()
     sender.close()
     return process, receiver
@@ -168,7 +218,7 @@ class _Standalone:
     error goes to a temporary file, whose last line says why a child that ended without a
     result ended."""
 
-    def __init__(self, function: Callable, args: tuple, memory_mb: int | None):
+    def __init__(self, function: Callable, args: tuple, memory_mb: int | None, backstop: float | None):
         reading, writing = os.pipe()
         self.stderr = tempfile.TemporaryFile()  # noqa: SIM115 - closed with the child (close)
         try:
@@ -187,7 +237,8 @@ class _Standalone:
         stdin = self.popen.stdin
         assert stdin is not None  # stdin=PIPE
         with contextlib.suppress(OSError):  # a child that died at once says so through the pipe
-            stdin.write(pickle.dumps((writing, function, args, memory_mb, registered_kinds(), os.getpid())))
+            stdin.write(pickle.dumps((writing, function, args, memory_mb, registered_kinds(), os.getpid(),
+                                      backstop)))
         with contextlib.suppress(OSError):
             stdin.close()
 
@@ -233,8 +284,8 @@ def _standalone_command() -> str:
 
 def _standalone_main() -> None:
     """The standalone child's side: read what to run, run it as :func:`_child` does."""
-    pipe, function, args, memory_mb, kinds, parent = pickle.load(sys.stdin.buffer)
-    _child(Connection(pipe, readable=False), function, args, memory_mb, kinds, parent)
+    pipe, function, args, memory_mb, kinds, parent, backstop = pickle.load(sys.stdin.buffer)
+    _child(Connection(pipe, readable=False), function, args, memory_mb, kinds, parent, backstop)
 
 
 def run_isolated(function: Callable[..., Any], args: tuple = (), time_limit: float | None = None,
@@ -248,29 +299,33 @@ def run_isolated(function: Callable[..., Any], args: tuple = (), time_limit: flo
     ``timeout``).  ``on_tick(elapsed)`` is called about ten times a second while waiting.
     ``standalone``: the child runs as a program of its own (see the module docstring).
     """
-    return start_isolated(function, args, memory_mb, standalone).wait(time_limit, on_message, cancel, on_tick)
+    child = start_isolated(function, args, memory_mb, standalone, time_limit=time_limit)
+    return child.wait(time_limit, on_message, cancel, on_tick)
 
 
 def start_isolated(function: Callable[..., Any], args: tuple = (), memory_mb: int | None = None,
-                   standalone: bool = False) -> Child:
+                   standalone: bool = False, time_limit: float | None = None) -> Child:
     """Start ``function(*args, report=...)`` in a child process and return at once; its
     :meth:`Child.wait` does the rest of :func:`run_isolated`.  Several children started
     one after the other from a process that runs no other thread are all forked (fast),
-    also when threads that wait for them start afterwards."""
-    return Child(function, args, memory_mb, standalone)
+    also when threads that wait for them start afterwards.  ``time_limit``: the child ends by
+    itself :data:`BACKSTOP` seconds after it (the parent's :meth:`Child.wait` stops it first)."""
+    return Child(function, args, memory_mb, standalone, time_limit)
 
 
 class Child:
     """A child process started by :func:`start_isolated`, until :meth:`wait` has ended it."""
 
-    def __init__(self, function: Callable[..., Any], args: tuple, memory_mb: int | None, standalone: bool):
+    def __init__(self, function: Callable[..., Any], args: tuple, memory_mb: int | None, standalone: bool,
+                 time_limit: float | None = None):
         self.started = time.perf_counter()
         self.memory_mb, self.standalone = memory_mb, standalone
+        backstop = None if time_limit is None else time_limit + BACKSTOP
         if standalone:
-            self.process: Any = _Standalone(function, args, memory_mb)
+            self.process: Any = _Standalone(function, args, memory_mb, backstop)
             self.receiver = self.process.receiver
         else:
-            self.process, self.receiver = _start(function, args, memory_mb)
+            self.process, self.receiver = _start(function, args, memory_mb, backstop)
 
     def wait(self, time_limit: float | None = None, on_message: Callable[[Any], None] | None = None,
              cancel: threading.Event | None = None, on_tick: Callable[[float], None] | None = None) -> Isolated:
@@ -316,17 +371,27 @@ def _wait(process, receiver, started: float, time_limit: float | None, on_messag
                 if on_message is not None:
                     on_message(payload)
                 continue
-            if isinstance(payload, _OutOfMemory):
-                return Isolated("memout", messages=messages, detail="out of memory")
-            return Isolated("done", payload, messages=messages)
+            return _answer(payload, messages)
         if on_tick is not None:
             on_tick(time.perf_counter() - started)
         if not process.is_alive() and not receiver.poll():
             return _died(process, messages)
 
 
+def _answer(payload: Any, messages: list[Any]) -> Isolated:
+    """What the child's result says."""
+    if isinstance(payload, _OutOfMemory):
+        return Isolated("memout", messages=messages, detail="out of memory")
+    if isinstance(payload, _TooLittleMemory):
+        return Isolated("crashed", messages=messages,
+                        detail=f"too little memory to start: it needs at least {payload.mapped_mb} MB")
+    return Isolated("done", payload, messages=messages)
+
+
 def _died(process, messages: list[Any]) -> Isolated:
     code = process.exitcode
+    if code == -signal.SIGALRM:  # its own time limit ended it (the parent did not in time)
+        return Isolated("timeout", messages=messages, detail="its own time limit")
     detail = f"killed by signal {-code}" if code is not None and code < 0 else f"exit status {code}"
     return Isolated("crashed", messages=messages, detail=detail)
 

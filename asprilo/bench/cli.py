@@ -30,7 +30,7 @@ import json
 import sys
 from pathlib import Path
 
-from asprilo.arguments import domain_argument
+from asprilo.arguments import domain_argument, megabytes_argument
 from asprilo.errors import InputError
 from asprilo.generator.output import check_output_folder
 from asprilo.writer import write_text
@@ -49,7 +49,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-o", "--output", metavar="DIR", help="output folder (default: out/<suite name>)")
     parser.add_argument("--jobs", type=int, default=1, metavar="N", help="runs at the same time (default 1)")
     parser.add_argument("--time-limit", type=float, metavar="S", help="seconds per run (default: the suite's)")
-    parser.add_argument("--memory-limit", type=int, metavar="MB", help="MB per run (default: the suite's)")
+    parser.add_argument("--memory-limit", type=megabytes_argument, metavar="MB",
+                        help="MB per run (default: the suite's, at most ulimit -v)")
     parser.add_argument("--domain", type=domain_argument, action="append", metavar="D",
                         help="only the runs of this domain (a|b|c|m|md, its variants included; may be repeated)")
     parser.add_argument("--restart", action="store_true",

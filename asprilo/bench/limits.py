@@ -5,6 +5,12 @@ fresh interpreter that runs :func:`asprilo.bench.worker.run` with its address sp
 (``RLIMIT_AS``), in a process group of its own that is killed as a whole when the wall-clock
 limit passes.  A run that runs away is a time-out or a mem-out of that run, never a crash of
 the runner.
+
+No run outlives the runner: a signal to the runner's process group (``timeout``, a closed
+terminal) does not reach a run's group, but the runner takes SIGTERM and SIGHUP as Ctrl-C and
+kills every run in flight (:func:`kill_running`); a runner killed outright takes them with it
+(the parent-death signal), and each run ends by itself shortly after its time limit
+(:data:`asprilo.isolation.BACKSTOP`).
 """
 
 from __future__ import annotations
@@ -26,8 +32,9 @@ DONE = "done"
 #: seconds a child gets beyond its own time limit to stop cleanly before it is killed
 GRACE = 5.0
 
-#: the stop signals of the runs in flight (set on interrupt: their children are killed)
-RUNNING: set[threading.Event] = set()
+#: set on interrupt: the runs in flight are killed, and a run that starts afterwards (a worker
+#: thread that picked its job up meanwhile) is killed at once, so that none outlives the runner
+STOPPED = threading.Event()
 
 
 @dataclass
@@ -44,16 +51,14 @@ def run_limited(job: dict, time_limit: float, memory_mb: int | None) -> LimitedR
     """Run :func:`asprilo.bench.worker.run` on ``job`` within the limits."""
 
     job = {**job, "time_limit": time_limit, "memory_mb": memory_mb}
-    stop = threading.Event()
-    RUNNING.add(stop)
+    if STOPPED.is_set():  # the runner was interrupted: no new child
+        return LimitedRun(ERROR, 0.0, {}, "interrupted")
     started = time.perf_counter()
     try:
-        child = run_isolated(run, (job,), time_limit=time_limit + GRACE, memory_mb=memory_mb, cancel=stop,
+        child = run_isolated(run, (job,), time_limit=time_limit + GRACE, memory_mb=memory_mb, cancel=STOPPED,
                              standalone=True)
     except Exception as error:  # noqa: BLE001 - the job's own error: the run failed
         return failure(error, time.perf_counter() - started)
-    finally:
-        RUNNING.discard(stop)
     if child.status == DONE:
         return LimitedRun(DONE, child.seconds, json.loads(json.dumps(child.value)))
     if child.status == "timeout":
@@ -74,6 +79,10 @@ def failure(error: Exception, wall: float) -> LimitedRun:
 
 
 def kill_running() -> None:
-    """Kill every child still running (when the runner is interrupted)."""
-    for stop in list(RUNNING):
-        stop.set()
+    """Kill every child still running, and any about to start (when the runner is interrupted)."""
+    STOPPED.set()
+
+
+def resume_running() -> None:
+    """Let runs start again (a new run of a suite, after an interrupted one in this process)."""
+    STOPPED.clear()

@@ -32,11 +32,12 @@ from asprilo.domain import Domain
 from asprilo.encodings import SolveStatus
 from asprilo.errors import InputError
 from asprilo.generator import generate_batch
+from asprilo.memory import usable_memory_mb
 from asprilo.reader import read_instance, read_plan
 from asprilo.sources import Source
 from asprilo.writer import write_text
 
-from .limits import DONE, LimitedRun, kill_running, run_limited
+from .limits import DONE, LimitedRun, kill_running, resume_running, run_limited
 from .results import (
     ERROR,
     FAILED,
@@ -320,7 +321,10 @@ class Runner:
         self.folder = Path(folder)
         self.jobs = max(1, jobs)
         self.time_limit = time_limit or suite.time_limit
-        self.memory_limit = memory_limit if memory_limit is not None else suite.memory_limit
+        # the suite's limit (8192 MB unless it says otherwise) within what this process may have:
+        # lowered, and said once, under an outer limit (ulimit -v); --memory-limit above it is refused
+        self.memory_limit, self.lowered = usable_memory_mb(memory_limit if memory_limit is not None
+                                                           else suite.memory_limit)
         self.stream = stream if stream is not None else sys.stderr  # the one of the moment (not of the import)
         self.assignments: dict[str, dict[str, list[str]]] = {}
         #: (instance, label) -> (status, why) of the makespan searches of this session that found
@@ -411,6 +415,9 @@ class Runner:
     def run(self) -> list[dict]:
         """Run everything not yet recorded; return all records of the folder."""
         self.folder.mkdir(parents=True, exist_ok=True)
+        resume_running()
+        if self.lowered:
+            self.stream.write(f"note: {self.lowered}\n")
         instances = self.instances()
         makespans = self.makespans(instances)
         finished = {record["key"] for record in load_results(self.folder)}

@@ -11,7 +11,8 @@ output: ...`` and exit status 2; a reader that goes away (``| head``) ends the c
 With ``--json`` a refusal is also a JSON object on standard output, ``{"error": ..., "exit": 2}``
 (``file`` and ``line`` too where the error has them), so that a script reading JSON always gets
 one.  SIGTERM and SIGHUP (``timeout``, a closed terminal, a cluster's ``scancel``, a service manager)
-stop a command as Ctrl-C does: what it found so far is kept, its children end, exit status 130.
+stop a command as Ctrl-C does: what it found so far is kept, its children end, exit status 130
+(:mod:`asprilo.exits`: the one table of exit statuses).
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ from collections.abc import Callable, Iterator, Sequence
 from asprilo import __version__
 from asprilo.arguments import add_reading_options, reading_limits
 from asprilo.errors import InputError, InputWarning
+from asprilo.exits import INTERRUPTED
 from asprilo.limits import using
 
 #: name -> (module, one-line summary); a command is listed here once it works.
@@ -170,7 +172,7 @@ def _run(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespa
     except MemoryError:
         return _refuse(args, "error: out of memory (the limits on data are in README, Reading data)", 2)
     except KeyboardInterrupt:
-        return _refuse(args, "interrupted", 130)
+        return _refuse(args, "interrupted", INTERRUPTED)
     except BrokenPipeError:
         # the reader went away (e.g. `| head`): stop quietly
         _silence_stdout()

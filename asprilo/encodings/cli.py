@@ -21,7 +21,8 @@ first stage (e.g. a task assignment of your own): solved once with the instance 
 constants, the shown atoms of its first answer become facts of the encoding, as
 "clingo stage.lp inst.lp | clingo - plan.lp inst.lp" would give them.  Exit status: 0 a valid
 plan found (proven minimal or not: the summary and --json say which), 1 no plan within the
-limits or a plan that breaks the rules (the violations are listed), 2 bad input.
+limits or a plan that breaks the rules (the violations are listed), 2 bad input, 130
+interrupted (Ctrl-C, SIGTERM, SIGHUP: the best plan so far is still written and printed).
 
 --variant NAME|FILE changes the rules (docs/VARIANTS.md): the plan is checked under them,
 and without --encoding the search runs the variant's model solution (max-flow and the anytime
@@ -63,6 +64,7 @@ from asprilo.arguments import (
 )
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
+from asprilo.exits import INTERRUPTED
 from asprilo.reader import read_instance
 from asprilo.writer import check_output, format_plan, write_text
 
@@ -107,7 +109,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
                         help=f"stop after S seconds, grounding included (default {DEFAULT_TIME_LIMIT:g}; "
                              f"anytime: {ANYTIME_SECONDS:g})")
     parser.add_argument("--memory-limit", type=megabytes_argument, metavar="MB",
-                        help="stop when the solver needs more than MB megabytes (default: no limit)")
+                        help="stop when the solver needs more than MB megabytes (default for your own encoding: "
+                             "half the machine's memory or 8192, whichever is less, and at most ulimit -v)")
     parser.add_argument("--method", choices=method_names(),
                         help="auto (default; asp with --encoding): the exact search and the anytime "
                              "planner side by side, the best plan with its proof or bound; asp: an "
@@ -156,11 +159,18 @@ def run(args: argparse.Namespace) -> int:
     if outcome.plan is not None and outcome.found and args.output:
         write_text(args.output, format_plan(outcome.plan), inputs)
     summary(outcome, encoding, hint=args.method == "asp" and horizon is None, instance=instance)
+    _answer(args, outcome)
+    if cancel.is_set():  # Ctrl-C, SIGTERM, SIGHUP: the plan so far is kept, the exit status says so
+        return INTERRUPTED
+    return 0 if outcome.found else 1
+
+
+def _answer(args: argparse.Namespace, outcome) -> None:
+    """The answer on standard output: the JSON report, or the plan found (unless written to ``-o``)."""
     if args.json:
         print(json.dumps(report(outcome), indent=2))
     elif outcome.found and not args.output:
         sys.stdout.write(format_plan(outcome.plan))
-    return 0 if outcome.found else 1
 
 
 def _instance(args: argparse.Namespace) -> str:

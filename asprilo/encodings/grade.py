@@ -98,7 +98,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--time-limit", type=seconds_argument, metavar="S",
                         help=f"seconds per instance, grounding and check included (default {DEFAULT_TIME_LIMIT:g})")
     parser.add_argument("--memory-limit", type=megabytes_argument, metavar="MB",
-                        help="megabytes per instance (default: no limit)")
+                        help="megabytes per instance (default: half the machine's memory or 8192, whichever is "
+                             "less, and at most ulimit -v)")
     parser.add_argument("--first", type=_count, metavar="N", help="grade only the first N instances of the ladder")
     parser.add_argument("--json", action="store_true", help="print the grades as JSON (docs/GRADING.md)")
     parser.add_argument("--class", dest="class_", action="store_true",

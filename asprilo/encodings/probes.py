@@ -249,7 +249,10 @@ def run_probe(encoding: Encoding, probe: Probe, domain: Domain, *, time_limit: f
               memory_limit: int | None = None) -> Probed:
     """One probe on ``encoding`` in a child process: refused, accepted or undecided."""
     from asprilo.isolation import run_isolated  # starting children costs imports: only here
+    from asprilo.memory import default_memory_mb
 
+    if memory_limit is None:  # a user's program: limited by default (README)
+        memory_limit = default_memory_mb()
     started = time.perf_counter()
     instance = read_instance(probe.instance)
     atoms = [str(atom) for atom in probe.atoms()]

@@ -117,6 +117,7 @@ def _run(args: argparse.Namespace) -> int:
               pool=MemoryPool(args.memory_mb))
     except KeyboardInterrupt:
         print(f"asprilo serve {args.role}: stopped", file=sys.stderr)
+        return 130  # asprilo.exits.INTERRUPTED: stopped from outside, as every command
     finally:
         listener.close()
     return 0

@@ -100,6 +100,9 @@ def solve_request(request: SolveRequest, listeners: Listeners | None = None,
     that runs its own child processes, ``auto``, and a quick run always run here); then say
     what its plan is minimal for (:func:`.minimality.settle`)."""
     request = resolve(request)
+    if request.isolate and request.memory_limit is None and _runs_users_program(request):
+        from asprilo.memory import default_memory_mb  # a user's program is limited by default (README)
+        request = replace(request, memory_limit=default_memory_mb())
     method = method_for(request)
     listeners = listeners or Listeners()
     quick = request.memory_limit is None and method.quick(request)
@@ -109,6 +112,11 @@ def solve_request(request: SolveRequest, listeners: Listeners | None = None,
         outcome = solve_here(request, method, listeners, cancel)
     settle(request, outcome)  # minimal for the problem, or for a user's own encoding only
     return outcome
+
+
+def _runs_users_program(request: SolveRequest) -> bool:
+    """Whether the request runs a program of the user's own (an encoding or a first stage)."""
+    return any(encoding is not None and encoding.own for encoding in (request.encoding, request.stage))
 
 
 def solve_here(request: SolveRequest, method: Method, listeners: Listeners,
