@@ -11,7 +11,7 @@ import re
 
 import pytest
 
-from asprilo.bench import report
+from asprilo.bench import plots, report
 from asprilo.bench.results import append_result
 from asprilo.cli import main
 
@@ -156,7 +156,7 @@ del _record, _pair
 
 
 def test_plots_are_written_in_every_format(tmp_path):
-    paths = report.plot(COMPARED, tmp_path, formats=("png", "pdf", "svg"), pairs=[("plain", "mine")])
+    paths = plots.plot(COMPARED, tmp_path, formats=("png", "pdf", "svg"), pairs=[("plain", "mine")])
     names = ("cactus", "time-by-robots", "scatter-plain-mine")
     assert [path.name for path in paths] == [f"{name}.{kind}" for name in names for kind in ("png", "pdf", "svg")]
     for path in paths:
@@ -165,7 +165,7 @@ def test_plots_are_written_in_every_format(tmp_path):
 
 
 def test_the_cactus_plot_has_a_panel_per_domain_on_one_log_axis():
-    figure = report.cactus_figure(COMPARED)
+    figure = plots.cactus_figure(COMPARED)
     panels = [axis for axis in figure.axes if axis.get_visible()]
     assert [axis.get_title() for axis in panels] == ["M", "C", "B", "A"]  # the paper's order
     assert len(figure.axes) == 6  # a grid of 2 x 3, two hidden
@@ -177,7 +177,7 @@ def test_the_cactus_plot_has_a_panel_per_domain_on_one_log_axis():
 
 
 def test_the_plot_by_robots_has_integer_robot_ticks():
-    figure = report.robots_figure(COMPARED)
+    figure = plots.robots_figure(COMPARED)
     (axis,) = [axis for axis in figure.axes if axis.get_visible()]
     assert list(axis.get_xticks()) == [2, 5, 8]
     assert _labelled(axis) == ["M plain", "M dl", "M mine", "C plain", "C mine", "B plain", "A plain"]
@@ -185,7 +185,7 @@ def test_the_plot_by_robots_has_integer_robot_ticks():
 
 def test_the_scatter_plot_marks_runs_out_of_limits_at_the_limit():
     records = [*COMPARED, run("i9", "plain", time=5.0), run("i9", "mine", "error", 1.0)]  # left out: a failure
-    figure = report.scatter_figure(records, "plain", "mine")
+    figure = plots.scatter_figure(records, "plain", "mine")
     panels = [axis for axis in figure.axes if axis.get_visible()]
     assert [axis.get_title() for axis in panels] == ["M (1 with a failed run left out)", "C"]
     m = panels[0]
@@ -195,12 +195,12 @@ def test_the_scatter_plot_marks_runs_out_of_limits_at_the_limit():
     assert len(diagonal) == 1
     points = {collection.get_label(): collection.get_offsets().tolist() for collection in m.collections}
     assert points == {"both solved": [[2.0, 1.0]], "out of limits (at the limit)": [[8.0, 60.0]]}
-    assert report.scatter_figure(records, "plain", "nobody") is None
+    assert plots.scatter_figure(records, "plain", "nobody") is None
 
 
 def test_the_default_scatter_plots_compare_the_first_encoding_with_every_other():
-    assert report.scatter_pairs(COMPARED) == [("plain", "dl"), ("plain", "mine")]
-    assert report.scatter_pairs([run("i1", "zeta"), run("i1", "alpha")]) == [("alpha", "zeta")]
+    assert plots.scatter_pairs(COMPARED) == [("plain", "dl"), ("plain", "mine")]
+    assert plots.scatter_pairs([run("i1", "zeta"), run("i1", "alpha")]) == [("alpha", "zeta")]
 
 
 # --- asprilo bench report's options ------------------------------------------------------

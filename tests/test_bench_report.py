@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from asprilo.bench import report
+from asprilo.bench import plots, report
 from asprilo.bench.results import append_result, load_results
 from asprilo.bench.suite import load_suite
 from asprilo.cli import main
@@ -142,6 +142,6 @@ def test_tables_by_robot_count_and_csv():
 
 def test_plots_are_written(tmp_path):
     records = [record("1"), record("1", encoding="split", status="timeout", time=60.0)]  # one instance
-    paths = report.plot(records, tmp_path)
+    paths = plots.plot(records, tmp_path)
     assert [p.name for p in paths] == ["cactus.png", "time-by-robots.png", "scatter-plain-split.png"]
     assert all(p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" for p in paths)

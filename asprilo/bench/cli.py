@@ -35,8 +35,8 @@ from asprilo.errors import InputError
 from asprilo.generator.output import check_output_folder
 from asprilo.writer import write_text
 
-from . import btool, report
-from .report import FORMATS
+from . import btool, plots, report
+from .plots import FORMATS
 from .results import RESULTS, load_results
 from .runner import Runner, forget_unknown_makespans, ticking
 from .suite import MOST_SECONDS, load_suite
@@ -210,7 +210,7 @@ def _report(path: Path, args: argparse.Namespace | None = None) -> int:
         print(f"wrote {len(tables)} LaTeX tables (booktabs) to {out}", file=sys.stderr)
     if formats:
         with ticking(sys.stderr, "drawing the plots (matplotlib)…"):
-            pictures = report.plot(records, out, order, formats, pairs)
+            pictures = plots.plot(records, out, order, formats, pairs)
         for picture in pictures:
             print(f"wrote {picture}", file=sys.stderr)
     return 0
