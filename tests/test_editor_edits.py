@@ -10,7 +10,7 @@ from helpers import SMALL_A
 from asprilo.model import Instance, Order, Product, Robot, Shelf
 from asprilo.reader import read_instance
 from asprilo.sources import Source
-from asprilo.visualizer.state import edits
+from asprilo.visualizer.state import edits, order_edits
 from asprilo.visualizer.state.edits import EditRefused
 from asprilo.writer import format_instance
 
@@ -87,8 +87,8 @@ def test_removing_a_shelf_takes_its_stock_and_its_carrier_lets_go(floor):
     do(floor, edits.add_object(floor, "shelf", (3, 2)))
     do(floor, edits.add_object(floor, "robot", (2, 2)))
     do(floor, edits.set_carries(floor, 1, 1))
-    do(floor, edits.set_stock(floor, 1, {1: 4, 2: 1}))
-    do(floor, edits.set_stock(floor, 2, {2: 3}))
+    do(floor, order_edits.set_stock(floor, 1, {1: 4, 2: 1}))
+    do(floor, order_edits.set_stock(floor, 2, {2: 3}))
     before = copy.deepcopy(floor)
     edit = do(floor, edits.remove_object(floor, "shelf", 1))
     assert floor.products == {2: Product(2, {2: 3})}
@@ -131,7 +131,7 @@ def test_a_robot_takes_its_shelf_along_but_not_under_another(floor):
 
 def test_resize_removes_what_lies_beyond_and_adds_storage_nodes(floor):
     do(floor, edits.add_object(floor, "shelf", (4, 3)))
-    do(floor, edits.set_stock(floor, 1, {1: 2}))
+    do(floor, order_edits.set_stock(floor, 1, {1: 2}))
     before = copy.deepcopy(floor)
     edit = do(floor, edits.resize(floor, 3, 4))
     assert floor.size == (3, 4) and len(floor.nodes) == 12
@@ -144,19 +144,19 @@ def test_resize_removes_what_lies_beyond_and_adds_storage_nodes(floor):
 def test_orders_and_stock(floor):
     do(floor, edits.add_object(floor, "shelf", (1, 1)))
     do(floor, edits.add_object(floor, "station", (4, 1)))
-    do(floor, edits.set_stock(floor, 1, {3: 5}))
-    do(floor, edits.add_order(floor, 3, 2, 1))
-    do(floor, edits.set_order_line(floor, 1, 4, None))
-    do(floor, edits.set_order_line(floor, 1, 5, 1, replaces=4))
+    do(floor, order_edits.set_stock(floor, 1, {3: 5}))
+    do(floor, order_edits.add_order(floor, 3, 2, 1))
+    do(floor, order_edits.set_order_line(floor, 1, 4, None))
+    do(floor, order_edits.set_order_line(floor, 1, 5, 1, replaces=4))
     assert floor.orders == {1: Order(1, {3: 2, 5: 1}, 1)}
     with pytest.raises(EditRefused) as refused:
-        edits.set_order_line(floor, 1, 3, 1, replaces=5)
+        order_edits.set_order_line(floor, 1, 3, 1, replaces=5)
     assert str(refused.value) == "order 1 already has a line for product 3"
     with pytest.raises(EditRefused) as refused:
-        edits.set_stock(floor, 1, {3: 0})
+        order_edits.set_stock(floor, 1, {3: 0})
     assert str(refused.value) == "product 3: a shelf holds at least 1 unit (or no quantity)"
-    do(floor, edits.remove_order_line(floor, 1, 5))
-    do(floor, edits.set_order_station(floor, 1, None))
+    do(floor, order_edits.remove_order_line(floor, 1, 5))
+    do(floor, order_edits.set_order_station(floor, 1, None))
     assert floor.orders == {1: Order(1, {3: 2}, None)}
     assert facts(floor)[-2:] == ["init(object(product,3),value(on,(1,5))).",
                                  "init(object(order,1),value(line,(3,2)))."]
@@ -171,7 +171,7 @@ def test_every_edit_undone_gives_back_the_example_instance():
         lambda i: edits.move_object(i, "robot", 1, (1, 5)),
         lambda i: edits.set_floor(i, (5, 5), "missing"),
         lambda i: edits.resize(i, 8, 7),
-        lambda i: edits.remove_order(i, 2),
+        lambda i: order_edits.remove_order(i, 2),
     )]
     assert format_instance(instance) != original
     for edit in reversed(done):
@@ -182,14 +182,14 @@ def test_every_edit_undone_gives_back_the_example_instance():
 def test_saved_text_reads_back_as_the_same_instance(floor):
     do(floor, edits.set_floor(floor, (2, 1), "highway"))
     do(floor, edits.add_object(floor, "shelf", (1, 2)))
-    do(floor, edits.set_stock(floor, 1, {1: None}))
-    do(floor, edits.add_order(floor, 1, None, None))
+    do(floor, order_edits.set_stock(floor, 1, {1: None}))
+    do(floor, order_edits.add_order(floor, 1, None, None))
     assert read_instance(Source("saved.lp", format_instance(floor))) == floor
 
 
 def test_template_keeps_the_layout_only(floor):
     do(floor, edits.add_object(floor, "shelf", (1, 2)))
-    do(floor, edits.set_stock(floor, 1, {1: 2}))
-    do(floor, edits.add_order(floor, 1, 1, None))
+    do(floor, order_edits.set_stock(floor, 1, {1: 2}))
+    do(floor, order_edits.add_order(floor, 1, 1, None))
     template = edits.template_of(floor)
     assert template.shelves == floor.shelves and not template.products and not template.orders

@@ -25,7 +25,7 @@ from ..panels.dialogs import SizeDialog, StockDialog, confirm_discard
 from ..panels.docks import Panels
 from ..panels.files import remember_folder, start_folder
 from ..scene.stage import Stage
-from ..state import edits
+from ..state import edits, order_edits
 from ..state.document import INSTANCE, PLAN, Change
 from ..state.drafts import DraftOrders
 from ..state.edits import NAMES, Edit, EditRefused
@@ -202,7 +202,7 @@ class Editor(QObject):
         return self.perform(lambda: edits.set_carries(self.document.instance, robot, shelf))
 
     def set_stock(self, shelf: int, stock: dict[int, int | None]) -> bool:
-        return self.perform(lambda: edits.set_stock(self.document.instance, shelf, stock))
+        return self.perform(lambda: order_edits.set_stock(self.document.instance, shelf, stock))
 
     def resize(self, width: int, height: int) -> bool:
         done = self.perform(lambda: edits.resize(self.document.instance, width, height))

@@ -32,7 +32,7 @@ from asprilo.simulate import Violation
 
 from ..panels.dialogs import MAX_COUNT, spin
 from ..panels.tables import PROBLEM, RowsModel
-from ..state import edits
+from ..state import order_edits
 from ..state.edits import Edit, EditRefused
 
 PRODUCT, UNITS, STATION = 1, 2, 3
@@ -133,13 +133,14 @@ class OrderTable(RowsModel):
         if index.column() == PRODUCT:
             if not number or number == row.product:
                 return False
-            return perform(lambda: edits.set_order_line(instance, row.order, number, row.units, replaces=row.product))
+            return perform(lambda: order_edits.set_order_line(instance, row.order, number, row.units,
+                                                              replaces=row.product))
         if index.column() == UNITS:
             if row.product is None:
                 return perform(_refuse("choose the line's product first"))
-            return perform(lambda: edits.set_order_line(instance, row.order, row.product, number or None))
+            return perform(lambda: order_edits.set_order_line(instance, row.order, row.product, number or None))
         if index.column() == STATION:
-            return perform(lambda: edits.set_order_station(instance, row.order, number or None))
+            return perform(lambda: order_edits.set_order_station(instance, row.order, number or None))
         return False
 
 
@@ -234,7 +235,7 @@ class OrderEditor(QWidget):
         station = min(instance.stations, default=None)
         product = min(instance.products, default=None)
         units = self._default_units() if product is not None else None
-        return self.book.perform(lambda: edits.add_order(instance, product, units, station))
+        return self.book.perform(lambda: order_edits.add_order(instance, product, units, station))
 
     def add_line(self) -> bool:
         """A line for the next product the selected order (or the last order) lacks."""
@@ -246,18 +247,18 @@ class OrderEditor(QWidget):
         have = set(instance.orders[order].lines)
         product = next((p for p in sorted(instance.products) if p not in have), max(have | set(instance.products),
                                                                                        default=0) + 1)
-        return self.book.perform(lambda: edits.set_order_line(instance, order, product, self._default_units()))
+        return self.book.perform(lambda: order_edits.set_order_line(instance, order, product, self._default_units()))
 
     def remove_lines(self) -> bool:
         instance = self.book.instance
         rows = [row for row in self.selected_rows() if row.product is not None]
-        return self._perform_all([lambda row=row: edits.remove_order_line(instance, row.order, row.product)
+        return self._perform_all([lambda row=row: order_edits.remove_order_line(instance, row.order, row.product)
                                   for row in rows], "remove order lines")
 
     def remove_orders(self) -> bool:
         instance = self.book.instance
         orders = sorted({row.order for row in self.selected_rows()})
-        return self._perform_all([lambda order=order: edits.remove_order(instance, order) for order in orders],
+        return self._perform_all([lambda order=order: order_edits.remove_order(instance, order) for order in orders],
                                  "remove orders")
 
     def _perform_all(self, makers: list[Callable[[], Edit]], text: str) -> bool:
