@@ -22,7 +22,7 @@ from .errors import InputError
 from .limits import Limits
 from .model import Action, Instance
 from .objects import KINDS
-from .parse import Constant, Fn, Reader, python_value, shown, text_of
+from .parse import Constant, Fn, Reader, Term, parse_terms, python_value, shown, text_of
 
 INIT_SHAPE = "init(object(Type,Id),value(Attribute,Value))"
 ASSIGN_SHAPE = "assign(robot(R),shelf(S)) or assign(robot(R),destination(D))"
@@ -167,7 +167,7 @@ def instance_facts(instance: Instance) -> list[str]:
 # (space, tab, line ends), identifiers as clingo's (not the keyword 'not'), numbers of up
 # to nine digits without leading zeros (others go through the parser, which checks their
 # range), an action's arguments as a tuple of no or at least two numbers ('(5)' is 5, not
-# a tuple: the parser reads it).
+# a tuple: the parser reads it), the final period not the start of '..'.
 _B = r"[ \t\r\n]*+"
 _ID = r"((?!not(?![A-Za-z0-9_']))[_']*+[a-z][A-Za-z0-9_']*+)"
 _NUM = r"-?(?:0|[1-9][0-9]{0,8})"
@@ -176,11 +176,11 @@ _INT = "(" + _NUM + ")"
 # reading files needs only the two together (_PLAIN), and ``check`` starts without the rest.
 _INIT = (
     rf"init\({_B}object\({_B}{_ID}{_B},{_B}{_INT}{_B}\){_B},{_B}value\({_B}{_ID}{_B},{_B}"
-    rf"(?:\({_B}{_INT}{_B},{_B}{_INT}{_B}\)|{_INT}){_B}\){_B}\){_B}\.")
+    rf"(?:\({_B}{_INT}{_B},{_B}{_INT}{_B}\)|{_INT}){_B}\){_B}\){_B}\.(?!\.)")
 _OCCURS = (
     rf"occurs\({_B}object\({_B}{_ID}{_B},{_B}{_INT}{_B}\){_B},{_B}action\({_B}{_ID}{_B},{_B}"
-    rf"\({_B}((?:{_NUM}{_B},{_B}{_NUM}{_B}(?:,{_B}{_NUM}{_B})*)?)\){_B}\){_B},{_B}{_INT}{_B}\){_B}\.")
-_SKIP = re.compile(r"(?:[ \t\r\n]++|%(?!\*)[^\r\n]*+|#program[ \t\r\n]++base[ \t\r\n]*+\.)++")
+    rf"\({_B}((?:{_NUM}{_B},{_B}{_NUM}{_B}(?:,{_B}{_NUM}{_B})*)?)\){_B}\){_B},{_B}{_INT}{_B}\){_B}\.(?!\.)")
+_SKIP = re.compile(r"(?:[ \t\r\n]++|%(?!\*)[^\r\n]*+|#program[ \t\r\n]++base[ \t\r\n]*+\.(?!\.))++")
 #: the deepest nesting of a plain fact: init(value(at,(X,Y)))
 _PLAIN_DEPTH = 3
 
@@ -286,20 +286,49 @@ def fact_text(kind: str, args: Any) -> str:
 
 
 def fact_atom(kind: str, args: Any) -> Fn:
-    """A fact as :func:`scan_facts` gives it, as an atom (the fast path's values are
-    numbers, names and tuples of numbers)."""
+    """A fact as :func:`scan_facts` gives it, as an atom: every value back to its term
+    (:func:`term_of`)."""
     if kind == "init":
         kind_name, ident, attribute, value = args
-        return Fn("init", (Fn("object", (Fn(kind_name), ident)), Fn("value", (Fn(attribute), _term(value)))))
+        return Fn("init", (Fn("object", (term_of(kind_name), term_of(ident))),
+                           Fn("value", (term_of(attribute), term_of(value)))))
     if kind == "occurs":
         kind_name, ident, name, action_args, step = args
-        return Fn("occurs", (Fn("object", (Fn(kind_name), ident)), Fn("action", (Fn(name), _term(action_args))),
-                             step))
+        return Fn("occurs", (Fn("object", (term_of(kind_name), term_of(ident))),
+                             Fn("action", (term_of(name), term_of(action_args))), step))
     return args
 
 
-def _term(value: int | tuple) -> int | Fn:
-    return Fn("", value) if isinstance(value, tuple) else value
+_NAME = re.compile(r"[_']*+[a-z][A-Za-z0-9_']*+")
+
+
+def term_of(value: Any) -> Term:
+    """The term of a Python value as :func:`asprilo.parse.python_value` makes them (its
+    inverse): numbers, names, tuples, and the text of any other term (a string, ``f(1)``,
+    ``-a``, ``#sup``) read back as the term clingo writes so."""
+    if type(value) is int:
+        return value
+    if isinstance(value, tuple):
+        stack: list[tuple[tuple, list]] = [(value, [])]  # without recursion: tuples nest up to 'depth'
+        while True:
+            items, done = stack[-1]
+            if len(done) < len(items):
+                item = items[len(done)]
+                if isinstance(item, tuple):
+                    stack.append((item, []))
+                else:
+                    done.append(term_of(item))
+                continue
+            stack.pop()
+            term = Fn("", tuple(done))
+            if not stack:
+                return term
+            stack[-1][1].append(term)
+    text = str(value)
+    if _NAME.fullmatch(text) and text != "not":
+        return Fn(text)
+    room = Limits(depth=500, fact_chars=len(text) + 16, string_chars=len(text))
+    return parse_terms(f"v({text}).", "<value>", room)[0][0].args[0]
 
 
 def assign_args(atom: Fn) -> tuple[int, str, int]:

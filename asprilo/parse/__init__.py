@@ -14,12 +14,12 @@ are code, data is data").  What is read:
   line, as in clingo); blanks are space, tab and line ends: LF, CRLF and CR (clingo ends
   a line at LF only: a ``%`` comment in a file with CR line ends would run to the end of
   the file there, here it ends at the CR).
-- **Statements**: facts ``[-]name[(term, …)].``, ``#const name = term.`` and
+- **Statements**: facts ``[-]name[(term, …)].``, ``#const name = term.`` (``==`` too) and
   ``#program base.``.  Anything else (rules, ``#show``, intervals, pools, variables, other
   program parts) is refused with a message that says what it is; ``#include`` and
   ``#script`` are never followed.
 - **Terms**: numbers, strings, ``#sup``/``#inf``, constants, functions ``f(t, …)`` (``f()``
-  is ``f``), tuples ``()``, ``(t,)``, ``(t, u)`` (a trailing comma allowed), ``(t)`` is
+  is ``f``), tuples ``()`` (also ``(,)``), ``(t,)``, ``(t, u)`` (a trailing comma allowed), ``(t)`` is
   ``t``, and arithmetic evaluated as clingo does: unary ``-`` (on a function or tuple it
   flips the sign: ``-a``, ``-(1,2)``), ``~``, ``|t|``, and binary ``^`` < ``?`` < ``&`` <
   ``+ -`` < ``* / \\`` < ``**`` (right-associative), unary operators binding tightest

@@ -36,7 +36,7 @@ class ConstantReader(Evaluator):
         if kind != "i" or name == "not":
             raise self._unexpected(kind, name, at)
         kind, text, at, pos = self.token(pos)
-        if kind != "p" or text != "=":
+        if kind != "p" or text not in ("=", "=="):  # clingo reads both alike
             raise self._unexpected(kind, text, at, ", expecting =")
         value_start = pos
         depth = 0

@@ -242,6 +242,12 @@ class _Terms:
         elif text == ")" and not frame.ops and (frame.kind == "(" or (frame.kind in "af" and not frame.args)):
             self._close(self._tuple(frame))
             return False
+        elif text == "," and frame.kind == "(" and not (frame.args or frame.ops or frame.comma):
+            kind, text, start, self.pos = self.reader.token(self.pos)  # (,) is (), as in clingo
+            if kind != "p" or text != ")":
+                raise self.reader._beyond_term(start, kind, text, ", expecting )")
+            self._close(self._tuple(frame))
+            return False
         else:
             raise self.reader._beyond_term(start, "p", text)
         return True

@@ -101,7 +101,12 @@ class Reader(ConstantReader):
         if found is None or text.startswith(".", found.end()):
             return None
         end = found.end()
-        tokens = _PLAIN_TOKEN.findall(text, start, end - 1)
+        # up to and with the period: findall then yields every token in a row (a comment
+        # right before the period would otherwise end the tokens early and findall go on
+        # inside the comment)
+        tokens = _PLAIN_TOKEN.findall(text, start, end)
+        if not tokens or tokens.pop() != ".":
+            return None
         negative = tokens[0] == "-" if tokens else False
         first = tokens[negative] if len(tokens) > negative else "("
         if first[-1] == "(":
@@ -183,6 +188,8 @@ def _plain_arguments(reader: Reader, tokens: list[str], first: int) -> tuple | N
                 return None
             stack.append((name, args))
             name, args = (token[:-1].rstrip() if len(token) > 1 else None), []
+            if name == "not":  # a keyword, not a name: the token-by-token reading says so
+                return None
         elif expect:
             leaf = reader._leaf(token)
             if leaf is None:

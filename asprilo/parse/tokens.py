@@ -26,7 +26,7 @@ def line_at(text: str, offset: int) -> int:
 #   p punctuation and operators, i identifier, n number, s string (its opening quote),
 #   c comment (its %), h '#' word or '#!', v variable, e end of text, x anything else
 _TOKEN = re.compile(r"""[ \t\r\n]*+(?:
-     (?P<p>\*\*|\.\.|:-|:~|[(),.|+\-*/\\&?^~;:{}\[\]=<>!@$])
+     (?P<p>\*\*|\.\.|:-|:~|==|[(),.|+\-*/\\&?^~;:{}\[\]=<>!@$])
     |(?P<i>[_']*+[a-z][A-Za-z0-9_']*+)
     |(?P<n>0x[0-9A-Fa-f]++|0o[0-7]++|0b[01]++|0|[1-9][0-9]*+)
     |(?P<s>")
@@ -59,6 +59,8 @@ def _token_name(kind: str | None, text: str) -> str:
         return "EOF"
     if text == ",":
         return '","'
+    if text == "==":  # clingo's lexer reads '=' and '==' alike
+        return "="
     if kind == "i":
         return "not" if text == "not" else "<IDENTIFIER>"
     if kind == "n":
