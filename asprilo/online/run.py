@@ -1,0 +1,145 @@
+"""An online run without a window: the world carried out step by step while orders are
+released, a planner asked for the next actions as the world changes.
+
+Time: the world takes one step every ``step_seconds`` of the planner's wall time.  A call of
+the planner after step t that takes s seconds lets floor(s / step_seconds) steps pass in
+which the robots stand still (the *waiting steps*: counted); the plan it answers is carried
+out from the step after.  Standing still changes nothing, so the plan made from the state
+after step t fits the state after the waiting steps.
+
+The planner is asked after step 0 and then (``replan``): ``"arrival"`` whenever orders were
+released since it last planned (the default), or an integer k: also every k steps.  An order
+released at step r is known to the planner after step r.  The run ends after ``steps``
+steps, or (``steps=None``) once every order is released and done; a run whose planner finds
+no plan while nothing else can change ends there, and says so.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+
+from asprilo.domain import Domain, Goal
+from asprilo.model import Action, Instance, Plan
+from asprilo.simulate import simulate
+
+from .metrics import PlannerCall
+from .planner import Planner, world_at
+from .protocol import shifted
+
+#: the longest a run goes on without a step limit (steps): a guard, said when it ends a run
+MOST_STEPS = 100_000
+
+
+@dataclass
+class OnlineRun:
+    """What a run carried out: the plan, the planner's calls, the steps robots waited, the
+    release steps, its length in steps and why it ended."""
+
+    plan: Plan
+    releases: dict[int, int]
+    steps: int
+    calls: list[PlannerCall] = field(default_factory=list)
+    waiting: list[int] = field(default_factory=list)
+    ended: str = ""
+
+
+@dataclass
+class _World:
+    """The run so far: the orders released, the actions carried out, the current plan."""
+
+    instance: Instance
+    domain: Domain
+    releases: dict[int, int]
+    done: list[Action] = field(default_factory=list)
+    ahead: dict[int, list[Action]] = field(default_factory=dict)
+
+    def known(self, step: int) -> Instance:
+        """The instance as the planner knows it after ``step``: the orders released by then."""
+        orders = {o: order for o, order in self.instance.orders.items() if self.releases.get(o, 0) <= step}
+        return replace(self.instance, orders=orders)
+
+    def now(self, step: int) -> Instance:
+        """The world after ``step`` as an instance of its own (what the planner plans from)."""
+        known = self.known(step)
+        return world_at(known, simulate(known, Plan(list(self.done)), self.domain).state(step))
+
+    def finished(self, step: int) -> bool:
+        """Every order known after ``step`` is done (M, Md: the plan carried out to its end)."""
+        if self.domain.goal is not Goal.LINES:
+            return not self.ahead_after(step)
+        return not self.now(step).orders
+
+    def ahead_after(self, step: int) -> bool:
+        return any(t > step and actions for t, actions in self.ahead.items())
+
+
+def run_online(instance: Instance, domain: Domain, planner: Planner, releases: dict[int, int] | None = None, *,
+               steps: int | None = None, step_seconds: float = 1.0, replan: str | int = "arrival",
+               clock: Callable[[], float] = time.perf_counter, cancel: threading.Event | None = None,
+               on_step: Callable[[int, OnlineRun], None] | None = None) -> OnlineRun:
+    """Run ``instance`` online (see the module docstring); ``releases``: order -> step (an
+    order not named is known from the start); ``on_step(step, run)`` after every step;
+    setting ``cancel`` ends the run after the step under way (what ran is kept)."""
+    releases = {order: releases.get(order, 0) if releases else 0 for order in sorted(instance.orders)}
+    world = _World(instance, domain, releases)
+    run = OnlineRun(Plan([]), releases, 0)
+    cancel = cancel or threading.Event()
+    limit = MOST_STEPS if steps is None else steps
+    step, planned_at = 0, None
+    while step < limit:
+        if _due(step, planned_at, releases, replan):
+            planned_at = step
+            step = _plan(world, run, planner, step, step_seconds, clock, cancel, limit)
+            if step >= limit:
+                break
+        actions = world.ahead.get(step + 1, [])
+        world.done += actions
+        step += 1
+        run.steps = step
+        if on_step is not None:
+            on_step(step, run)
+        if cancel.is_set():
+            run.ended = "interrupted"
+            break
+        if steps is None and not world.ahead_after(step) and all(r <= step for r in releases.values()):
+            if world.finished(step):
+                run.ended = "every order is done"
+                break
+            if all(release <= planned_at for release in releases.values()):
+                run.ended = "the planner found no plan for what is left; nothing else can change"
+                break
+    else:
+        run.ended = run.ended or ("the step limit" if steps is not None else f"the guard of {MOST_STEPS} steps")
+    run.plan = Plan(list(world.done))
+    return run
+
+
+def _due(step: int, planned_at: int | None, releases: dict[int, int], replan: str | int) -> bool:
+    """Whether the planner is asked after ``step``."""
+    if planned_at is None:
+        return True
+    if any(planned_at < release <= step for release in releases.values()):
+        return True
+    return isinstance(replan, int) and step - planned_at >= replan
+
+
+def _plan(world: _World, run: OnlineRun, planner: Planner, step: int, step_seconds: float,
+          clock: Callable[[], float], cancel: threading.Event, limit: int) -> int:
+    """Ask the planner after ``step``; the steps robots wait meanwhile pass; the step at which
+    its plan starts."""
+    started = clock()
+    plan = planner(world.now(step), world.domain, cancel)
+    seconds = clock() - started
+    run.calls.append(PlannerCall(step, seconds, plan is not None))
+    waited = min(math.floor(seconds / step_seconds), limit - step)
+    run.waiting += range(step + 1, step + waited + 1)
+    step += waited
+    run.steps = step
+    world.ahead = {}
+    for action in shifted(plan, step) if plan is not None else ():
+        world.ahead.setdefault(action.step, []).append(action)
+    return step
