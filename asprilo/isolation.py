@@ -31,11 +31,12 @@ ends, whatever ended the parent (``PR_SET_PDEATHSIG``), even ``kill -9``.  A chi
 limit also has one of its own, :data:`BACKSTOP` seconds later (``SIGALRM``, whose default
 action ends it even inside clingo): should its parent be stopped (``kill -STOP``) or hang, the
 child still ends.  A memory limit the child cannot start under (below what it has mapped
-already: a forked child starts with its parent's mappings) is said as such, not as a crash.
+already: a forked child starts with its parent's mappings) is a mem-out that says so, not a crash.
 """
 
 from __future__ import annotations
 
+import atexit
 import contextlib
 import ctypes
 import math
@@ -326,6 +327,7 @@ class Child:
             self.receiver = self.process.receiver
         else:
             self.process, self.receiver = _start(function, args, memory_mb, backstop)
+        _LIVE.add(self.process)
 
     def wait(self, time_limit: float | None = None, on_message: Callable[[Any], None] | None = None,
              cancel: threading.Event | None = None, on_tick: Callable[[float], None] | None = None) -> Isolated:
@@ -337,6 +339,7 @@ class Child:
             outcome = _wait(process, receiver, self.started, time_limit, on_message, cancel, on_tick)
             outcome = _blame_memory(outcome, self.memory_mb)
         finally:
+            _LIVE.discard(process)
             if self.standalone or process.is_alive():  # standalone: nothing it started outlives it either
                 process.kill()
             process.join(_GRACE)
@@ -349,6 +352,19 @@ class Child:
         if isinstance(outcome.value, _Failure):
             raise outcome.value.error
         return outcome
+
+
+#: the children started and not yet waited for: killed when this process exits (an interrupt
+#: that skipped a wait; multiprocessing's own exit handler would wait for a child that ignores
+#: its SIGTERM until the child's time ran out)
+_LIVE: set[Any] = set()
+
+
+@atexit.register
+def _kill_live_children() -> None:
+    for process in list(_LIVE):
+        with contextlib.suppress(OSError, ValueError, AttributeError):
+            process.kill()
 
 
 def _wait(process, receiver, started: float, time_limit: float | None, on_message, cancel,
@@ -383,7 +399,7 @@ def _answer(payload: Any, messages: list[Any]) -> Isolated:
     if isinstance(payload, _OutOfMemory):
         return Isolated("memout", messages=messages, detail="out of memory")
     if isinstance(payload, _TooLittleMemory):
-        return Isolated("crashed", messages=messages,
+        return Isolated("memout", messages=messages,
                         detail=f"too little memory to start: it needs at least {payload.mapped_mb} MB")
     return Isolated("done", payload, messages=messages)
 

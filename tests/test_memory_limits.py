@@ -119,5 +119,5 @@ def test_a_child_whose_memory_limit_is_below_what_it_maps_says_so():
     mapped = isolation._mapped_mb()
     assert mapped is not None
     outcome = isolation.run_isolated(_spin, memory_mb=mapped - 1, time_limit=60)
-    assert outcome.status == "crashed"
+    assert outcome.status == "memout"
     assert outcome.detail.startswith("too little memory to start: it needs at least ")

@@ -265,11 +265,12 @@ def _long_command(name: str, folder: Path) -> list[str]:
     }[name]
 
 
-@pytest.mark.parametrize("stop", [signal.SIGTERM, signal.SIGHUP, signal.SIGKILL])
+@pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGKILL])
 @pytest.mark.parametrize("name", ["solve", "grade", "watch", "gen", "bench"])
 def test_no_process_outlives_a_stopped_command(tmp_path, name, stop):
     """The signal goes to the command alone (not its group): whatever it started ends with it,
-    SIGKILL included; stopped by SIGTERM or SIGHUP it exits as interrupted (130)."""
+    SIGKILL included; stopped by Ctrl-C (SIGINT), SIGTERM or SIGHUP it exits as interrupted
+    (130, README: Exit status)."""
     command = Command(_long_command(name, tmp_path), tmp_path)
     command.busy_with_children()
     os.kill(command.process.pid, stop)

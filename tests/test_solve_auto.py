@@ -146,9 +146,9 @@ def test_m_with_anonymous_goals_is_max_flow(capsys):
     assert (answer["method"], answer["horizon"], answer["minimal"]) == ("flow", 6, True)
 
 
-def test_the_command_answers_with_a_plan_not_proven_minimal_exit_0(tmp_path):
+def test_the_command_answers_with_a_plan_not_proven_minimal_exit_130(tmp_path):
     """Ctrl-C (SIGINT) once the anytime planner reported a plan: the answer is that plan, not
-    proven minimal, with the bound and the gap; exit status 0."""
+    proven minimal, with the bound and the gap; exit status 130, interrupted (README: Exit status)."""
     plan = tmp_path / "plan.lp"
     process = subprocess.Popen([sys.executable, "-m", "asprilo.cli", "solve", str(SMALL_A), "--domain", "a",
                                 "--json", "-o", str(plan)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
@@ -162,7 +162,7 @@ def test_the_command_answers_with_a_plan_not_proven_minimal_exit_0(tmp_path):
             process.send_signal(signal.SIGINT)
             break
     out, err = process.communicate(timeout=120)
-    assert process.returncode == 0, "".join(lines) + err
+    assert process.returncode == 130, "".join(lines) + err
     answer = json.loads(out)
     assert (answer["status"], answer["minimal"], answer["lower_bound"]) == ("found", False, SMALL_A_BOUND)
     assert answer["gap"] == answer["horizon"] - answer["proven_bound"] > 0

@@ -133,11 +133,17 @@ class Portfolio:
                    for name, (child, limit) in self._start().items()]
         for thread in threads:
             thread.start()
-        while any(thread.is_alive() for thread in threads):
-            if self.watch.cancelled:
-                self.stop.set()
+        try:
+            while any(thread.is_alive() for thread in threads):
+                if self.watch.cancelled:
+                    self.stop.set()
+                for thread in threads:
+                    thread.join(_POLL / len(threads))
+        except BaseException:  # an interrupt: both children are killed before it goes on (issue 46)
+            self.stop.set()
             for thread in threads:
-                thread.join(_POLL / len(threads))
+                thread.join()
+            raise
         if self.outbox is not None:
             self.outbox.close()
         if self.error is not None:
