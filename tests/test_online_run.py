@@ -5,6 +5,7 @@ from __future__ import annotations
 
 from asprilo.domain import Domain
 from asprilo.model import Action, Plan
+from asprilo.online.ceiling import ceiling, earliest_steps
 from asprilo.online.metrics import Latency, PlannerCall, Window, measure
 from asprilo.online.planner import encodings_planner
 from asprilo.online.run import run_online
@@ -81,3 +82,17 @@ def test_units_count_when_delivered_and_lines_when_done():
     assert metrics.windows == [Window(1, 2, 0, 0), Window(3, 4, 1, 2), Window(5, 5, 1, 1)]
     assert metrics.latency == Latency(2, 4.0, 5, 5) and metrics.units_done == 3
     assert (metrics.planner_mean, metrics.planner_max) == (1.0, 1.5)
+
+
+def test_the_ceiling_counts_releases_trips_and_one_delivery_a_step_at_a_station():
+    """The robot carries the shelf 2 cells from the station: a line is done at step 3 at the
+    earliest (2 moves and the delivery); order 2 released at step 4 at step 5 at the earliest.
+    Released together, the station takes the second delivery a step after the first."""
+    assert earliest_steps(corridor(), Domain.A, {2: 4}) == {(1, 1): 3.0, (2, 1): 5.0}
+    assert [ceiling(corridor(), Domain.A, {2: 4}, steps).lines for steps in (2, 3, 4, 5, 9)] == [0, 1, 1, 2, 2]
+    assert [ceiling(corridor(), Domain.A, {}, steps).lines for steps in (2, 3, 4)] == [0, 1, 2]
+    assert ceiling(corridor(), Domain.A, {2: 4}, 5).lines_per_100 == 40.0  # the first run above meets it
+    # C: one delivery may close several lines, so the station's capacity is not counted
+    assert ceiling(corridor(), Domain.C, {}, 3).lines == 2
+    # M: the robot stands under the shelf from the start; a line is known after step 0
+    assert earliest_steps(corridor(), Domain.M, {}) == {(1, 1): 1.0, (2, 1): 1.0}
