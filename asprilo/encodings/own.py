@@ -16,13 +16,21 @@ option.  What is recognised, and said in the summary of a solve:
   ``&distinct``...: clingcon 5.
 
 Refused in words: programs for clingcon 3 (``#include <csp>.``, ``$``-constraints), which
-clingcon 5 cannot read; options clingo refuses; syntax errors (clingo's message, located).
+clingcon 5 cannot read; options clingo refuses; syntax errors (clingo's message, located);
+files that are not there or no files (:mod:`asprilo.paths`).
+
+An encoding is read in a child process under :data:`READ_SECONDS` and :data:`READ_MB`
+(:func:`asprilo.isolation.run_isolated`): clingo's parser recurses, and a term nested deep
+enough (``p(- - - ... 1)``) crashes the process that parses it; whatever the program, the
+command that reads it answers in one sentence.  :func:`program_files` (what ``check --watch``
+watches) reads in the calling process with :mod:`.program_scan`, linear and bounded.
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Iterable, Mapping, Sequence
+import signal
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -31,8 +39,10 @@ import clingo.ast
 from clingo.ast import ASTType
 
 from asprilo.errors import InputError
+from asprilo.paths import included_file, input_file, real, shown
 from asprilo.syntax_hint import missing_period
 
+from .program_scan import Scan, scan
 from .registry import Encoding
 
 #: the theory atoms clingo-dl reads; every other one is clingcon's
@@ -41,13 +51,9 @@ DL_ATOMS = {"diff"}
 ICLINGO_PARTS = {"cumulative": "step", "volatile": "check"}
 INCREMENTAL_PARTS = {"step", "check", *ICLINGO_PARTS}
 
-#: strings and comments, which say nothing of a program's style
-_QUOTED = re.compile(r'%\*.*?\*%|%[^\n]*|"(?:[^"\\\n]|\\.)*"', re.S)
-_CSP = re.compile(r"#include\s*<csp>\s*\.")
-_CSP3 = re.compile(r"\$(?:<=|>=|!=|<|>|=|\+|\*|-|\w)")
-_INCMODE = re.compile(r"#include\s*<incmode>\s*\.")
-_INCLUDES = re.compile(r'#include\s*(?:"[^"]*"|<[^>]*>)\s*\.')
-_INCLUDED = re.compile(r'#include\s*"([^"]*)"\s*\.')
+#: the limits of the child process that reads an encoding (its style, its syntax)
+READ_SECONDS = 60.0
+READ_MB = 2048
 
 
 @dataclass
@@ -94,19 +100,44 @@ class Style:
 def own_encoding(paths: Sequence[str | Path], constants: Iterable[tuple[str, str]] = (),
                  options: Sequence[str] = ()) -> Encoding:
     """A user's encoding made of ``paths`` (loaded in this order), with ``-c`` ``constants``
-    and clingo ``options``; its style recognised (bad input: :class:`InputError`)."""
-    files = [_existing(Path(path)) for path in paths]
+    and clingo ``options``; its style recognised in a child process (see the module
+    docstring).  Bad input: :class:`InputError` (a path that names no readable file:
+    :class:`asprilo.paths.PathError`)."""
+    files = [input_file(path) for path in paths]
     if not files:
         raise InputError("no encoding file given")
-    program = _program_files(files)
-    codes = {file: _code(_text(file)) for file in program}
-    for file, code in codes.items():
-        _refuse_clingcon3(file, code)
     constants = tuple((name, str(value)) for name, value in constants)
     check_options(options)
-    features = _features(program)
-    style = _style(features, any(_INCMODE.search(code) for code in codes.values()),
-                   any(_CSP.search(code) for code in codes.values()))
+    from asprilo.isolation import run_isolated  # starting a child costs imports: only here
+
+    outcome = run_isolated(_read_encoding, (files, constants, tuple(options)), time_limit=READ_SECONDS,
+                           memory_mb=READ_MB)
+    if outcome.done:
+        return outcome.value
+    reading = outcome.messages[-1] if outcome.messages else files[0]
+    raise InputError(_failure(outcome.status, outcome.detail), shown(reading))
+
+
+def _failure(status: str, detail: str) -> str:
+    """Why the child that read an encoding gave no answer, in words."""
+    if status == "timeout":
+        return f"clingo's parser took longer than {READ_SECONDS:g} s to read it"
+    if status == "memout" and f"signal {signal.SIGSEGV.value}" not in detail:  # (a segfault is a crash)
+        return f"clingo's parser needed more than {READ_MB} MB to read it"
+    return (f"clingo's parser crashed on it ({detail or 'no reason given'}); a term nested too deep, such as a "
+            "long chain of operators, does that")
+
+
+def _read_encoding(files: list[Path], constants: tuple[tuple[str, str], ...], options: tuple[str, ...],
+                   report: Callable[[Path], None]) -> Encoding:
+    """The side of the child process: the encoding read, its style recognised (``report``
+    names each file before clingo's parser reads it)."""
+    program = _program(files)
+    for file, scanned in program:
+        _refuse_clingcon3(file, scanned)
+    system = {include.name for _file, scanned in program for include in scanned.includes if include.system}
+    features = _features(program, report)
+    style = _style(features, "incmode" in system, "csp" in system)
     given = {name for name, _ in constants}
     if style.incremental and "horizon" in given:
         raise InputError("-c horizon=H is for single-shot encodings; an incremental one takes --horizon H")
@@ -117,38 +148,11 @@ def own_encoding(paths: Sequence[str | Path], constants: Iterable[tuple[str, str
                     assumed=style.assumed, dropped=("csp",) if style.csp else ())
 
 
-def _existing(path: Path) -> Path:
-    if not path.exists():
-        raise InputError("no such file", str(path))
-    if not path.is_file():
-        raise InputError("is not a file", str(path))
-    return path
-
-
-def _text(path: Path) -> str:
-    try:
-        return path.read_text(encoding="utf-8")
-    except UnicodeDecodeError:
-        raise InputError("not a UTF-8 text file", str(path)) from None
-
-
-def _code(text: str) -> str:
-    """``text`` without its strings and comments."""
-    return _QUOTED.sub(" ", text)
-
-
-def _uncommented(text: str) -> str:
-    """``text`` without its comments (strings kept)."""
-    return _QUOTED.sub(lambda match: match.group(0) if match.group(0).startswith('"') else " ", text)
-
-
-def _refuse_clingcon3(path: Path, code: str) -> None:
-    match = _CSP3.search(code)
-    if match:
-        line = code.count("\n", 0, match.start()) + 1
+def _refuse_clingcon3(path: Path, scanned: Scan) -> None:
+    if scanned.csp3_line is not None:
         raise InputError("written for clingcon 3 ('#include <csp>.' and $-constraints such as $<=), which "
                          "clingcon 5 cannot read: state the constraints with &sum{...} and &dom{...} "
-                         "(docs/OWN_ENCODINGS.md)", str(path), line)
+                         "(docs/OWN_ENCODINGS.md)", shown(path), scanned.csp3_line)
 
 
 def check_options(options: Sequence[str]) -> None:
@@ -163,14 +167,15 @@ def check_options(options: Sequence[str]) -> None:
                          f"{message}") from None
 
 
-def _features(program: list[Path]) -> _Features:
-    """Parse every file of the program (the given ones and those they include) and collect
+def _features(program: list[tuple[Path, Scan]], report: Callable[[Path], None]) -> _Features:
+    """Parse every file of the program (its text without comments and includes) and collect
     what they use; a syntax error is clingo's message, located in its file."""
     features = _Features()
     messages: list[str] = []
-    for file in program:
+    for file, scanned in program:
         messages.clear()
-        text = _INCLUDES.sub(lambda match: "\n" * match.group(0).count("\n"), file.read_text(encoding="utf-8"))
+        text = scanned.code or ""
+        report(file)
         try:
             clingo.ast.parse_string(text, lambda statement: _collect(statement, features),
                                     logger=lambda _code, message: messages.append(message))
@@ -183,30 +188,35 @@ def program_files(paths: Sequence[str | Path]) -> list[Path]:
     """The files of an encoding made of ``paths`` and those they ``#include``, as far as
     they can be read now: a missing file or one that cannot be read is listed, not followed
     (what ``check --watch --encoding`` watches; never an error)."""
-    return _program_files([Path(path) for path in paths], strict=False)
+    return [file for file, _scanned in _program([Path(path) for path in paths], strict=False)]
 
 
-def _program_files(files: list[Path], strict: bool = True) -> list[Path]:
+def _program(files: list[Path], strict: bool = True) -> list[tuple[Path, Scan]]:
     """The files and, after each, those it includes (``#include "file".``, relative to it),
-    each once (``strict``: a missing file is an error)."""
-    seen: list[Path] = []
-    stack: list[tuple[Path, Path | None]] = [(file, None) for file in reversed(files)]
+    each once, with what a scan found in each (``strict``: with the text for clingo's parser;
+    an include that names no readable file is an error, else it is listed, not followed)."""
+    seen: set[Path] = set()
+    program: list[tuple[Path, Scan]] = []
+    stack: list[tuple[Path, Path | None, int | None]] = [(file, None, None) for file in reversed(files)]
     while stack:
-        file, includer = stack.pop()
-        file = file.resolve()
-        if file in seen:
+        file, includer, line = stack.pop()  # an included file: its name, and where it is included
+        key = real(file if includer is None else includer.parent / file)
+        if key in seen:
             continue
-        seen.append(file)
+        seen.add(key)
         try:
-            if not file.is_file():
-                raise InputError(f"#include of a missing file {str(file)!r}", str(includer or file))
-            text = _uncommented(_text(file))
-        except (InputError, OSError):
+            if includer is not None:
+                included_file(str(file), includer, line)
+            scanned = scan(key, keep_code=strict)
+        except InputError:
             if strict:
                 raise
+            program.append((key, Scan()))
             continue
-        stack.extend((file.parent / name, file) for name in reversed(_INCLUDED.findall(text)))
-    return seen
+        program.append((key, scanned))
+        stack.extend((Path(include.name), key, include.line)
+                     for include in reversed(scanned.includes) if not include.system)
+    return program
 
 
 def _located(messages: list[str], file: Path, program: str) -> InputError:
@@ -215,10 +225,10 @@ def _located(messages: list[str], file: Path, program: str) -> InputError:
     text = next((m for m in messages if ": error:" in m), messages[0] if messages else "syntax error")
     match = re.match(r"^.*?:(\d+):(\d+)(?:-\d+(?::\d+)?)?: error: (.*)", text, re.S)
     if not match:
-        return InputError(text.strip().splitlines()[0], str(file))
+        return InputError(text.strip().splitlines()[0], shown(file))
     line, column, what = match.groups()
     hint = missing_period(program, int(line), int(column)) or ""
-    return InputError(f"column {column}: {' '.join(what.split())}{hint}", str(file), int(line))
+    return InputError(f"column {column}: {' '.join(what.split())}{hint}", shown(file), int(line))
 
 
 def _collect(statement: clingo.ast.AST, features: _Features) -> None:
