@@ -3,13 +3,16 @@ corridor whose minimal plans are unique, so every figure is derived by hand belo
 
 from __future__ import annotations
 
+import json
+
+from asprilo.cli import main
 from asprilo.domain import Domain
 from asprilo.model import Action, Plan
 from asprilo.online.ceiling import ceiling, earliest_steps
 from asprilo.online.metrics import Latency, PlannerCall, Window, measure
 from asprilo.online.planner import encodings_planner
 from asprilo.online.run import run_online
-from asprilo.reader import read_instance
+from asprilo.reader import read_instance, read_plan
 from asprilo.sources import Source
 
 #: 5x1: picking station 1 at (1,1); robot 1 at (3,1) carries shelf 1, which holds 5 units of
@@ -27,6 +30,11 @@ init(object(order,2),value(line,(1,2))). init(object(order,2),value(pickingStati
 WEST = (-1, 0)
 
 
+def PLANNER(seconds: float):  # noqa: N802 - a planner maker, named as the constants beside it
+    """The exact search from scratch, within ``seconds``."""
+    return encodings_planner(time_limit=seconds)
+
+
 def corridor():
     return read_instance(Source("corridor.lp", CORRIDOR))
 
@@ -34,7 +42,7 @@ def corridor():
 def test_a_planner_as_fast_as_the_world_lets_no_robot_wait():
     """Order 2 released at step 4: the robot is at the station after step 2, delivers order 1
     at step 3; asked again after step 4, it delivers order 2's 2 units at step 5."""
-    run = run_online(corridor(), Domain.A, encodings_planner(time_limit=60), {2: 4}, step_seconds=1e6)
+    run = run_online(corridor(), Domain.A, PLANNER, {2: 4}, budget=60, step_seconds=1e6)
     assert sorted(run.plan.actions) == [Action(1, 1, "move", WEST), Action(2, 1, "move", WEST),
                                         Action(3, 1, "deliver", (1, 1, 1)), Action(5, 1, "deliver", (2, 1, 2))]
     assert (run.steps, run.ended, run.waiting) == (5, "every order is done", [])
@@ -51,7 +59,7 @@ def test_robots_wait_while_the_planner_thinks_and_those_steps_are_counted():
     Asked after step 0, robots wait at steps 1-2, move at 3-4, deliver order 1 at 5; order 2,
     released at step 6, is planned for after step 6, robots wait at 7-8, deliver at 9."""
     readings = iter([0.0, 2.5, 100.0, 102.5])
-    run = run_online(corridor(), Domain.A, encodings_planner(time_limit=60), {2: 6}, clock=readings.__next__)
+    run = run_online(corridor(), Domain.A, PLANNER, {2: 6}, budget=60, clock=readings.__next__)
     assert sorted(run.plan.actions) == [Action(3, 1, "move", WEST), Action(4, 1, "move", WEST),
                                         Action(5, 1, "deliver", (1, 1, 1)), Action(9, 1, "deliver", (2, 1, 2))]
     assert (run.steps, run.waiting) == (9, [1, 2, 7, 8])
@@ -64,7 +72,7 @@ def test_robots_wait_while_the_planner_thinks_and_those_steps_are_counted():
 
 def test_a_step_limit_ends_the_run_and_what_is_not_done_stays_open():
     readings = iter([0.0, 2.5])
-    run = run_online(corridor(), Domain.A, encodings_planner(time_limit=60), {2: 6}, steps=4,
+    run = run_online(corridor(), Domain.A, PLANNER, {2: 6}, budget=60, steps=4,
                      clock=readings.__next__)
     assert (run.steps, run.ended, sorted(run.plan.actions)) == (
         4, "the step limit", [Action(3, 1, "move", WEST), Action(4, 1, "move", WEST)])
@@ -96,3 +104,36 @@ def test_the_ceiling_counts_releases_trips_and_one_delivery_a_step_at_a_station(
     assert ceiling(corridor(), Domain.C, {}, 3).lines == 2
     # M: the robot stands under the shelf from the start; a line is known after step 0
     assert earliest_steps(corridor(), Domain.M, {}) == {(1, 1): 1.0, (2, 1): 1.0}
+
+
+def test_the_command_writes_the_plan_the_record_and_the_figures(tmp_path, capsys):
+    scenario = tmp_path / "corridor.lp"
+    scenario.write_text(CORRIDOR)
+    plan, record = tmp_path / "run.lp", tmp_path / "run.json"
+    assert main(["online", str(scenario), "--at", "4:2", "--planner", "asp", "--budget", "60", "-o", str(plan),
+                 "--record", str(record), "--json"]) == 0
+    out, err = capsys.readouterr()
+    figures = json.loads(out)
+    # the first test's run, figures derived there
+    assert (figures["lines_done"], figures["units_done"], figures["lines_per_100"], figures["latency"]) == (
+        2, 3, 40.0, {"orders": 2, "mean": 2.0, "p95": 3, "max": 3})
+    assert (figures["ceiling_lines"], figures["waiting_steps"], figures["planner"]["calls"]) == (2, 0, 2)
+    assert read_plan(str(plan)).actions == [Action(1, 1, "move", WEST), Action(2, 1, "move", WEST),
+                                            Action(3, 1, "deliver", (1, 1, 1)), Action(5, 1, "deliver", (2, 1, 2))]
+    kept = json.loads(record.read_text())
+    assert (kept["steps"], kept["ended"], kept["releases"], [c["step"] for c in kept["calls"]]) == (
+        5, "every order is done", {"1": 0, "2": 4}, [0, 4])
+    assert err.splitlines()[0] == "online run: 5 steps (every order is done); 2 planner calls, 0 waiting steps"
+    assert err.splitlines()[1] == ("throughput: 40.0 order lines per 100 steps; ceiling 40.0: 100 % of it; "
+                                   "60.0 units per 100 steps (2 of 2 lines done)")
+
+
+def test_the_command_refuses_bad_release_steps_in_words(tmp_path, capsys):
+    scenario = tmp_path / "corridor.lp"
+    scenario.write_text(CORRIDOR)
+    assert main(["online", str(scenario), "--at", "x:2"]) == 2
+    assert capsys.readouterr().err == "error: --at x:2: expected STEP:ORDER[,ORDER...], e.g. --at 3:2\n"
+    assert main(["online", str(scenario), "--at", "3:9"]) == 2
+    assert capsys.readouterr().err == "error: the instance has no order 9\n"
+    assert main(["online", str(scenario), "--replan", "often"]) == 2
+    assert capsys.readouterr().err == "error: --replan often: expected 'arrival' or a number of steps\n"

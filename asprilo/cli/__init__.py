@@ -49,6 +49,8 @@ COMMANDS: dict[str, tuple[str, str]] = {
               "export for btool"),
     "convert": ("asprilo.interop.convert", "convert between asprilo and the MAPF world: MovingAI maps and scenarios, "
                 "LaCAM results, domains M and Md"),
+    "online": ("asprilo.online.cli", "run a warehouse online without a window: orders released over time, a planner "
+               "asked for the next actions"),
     "serve": ("asprilo.online.serve", "serve the online link: a solver that re-plans as orders arrive, or a simulator "
               "releasing orders over time"),
     "solve": ("asprilo.encodings.cli", "find a plan fast and prove its makespan minimal: reference encodings, your "

@@ -44,13 +44,10 @@ Examples:
 from __future__ import annotations
 
 import argparse
-import contextlib
 import json
-import signal
 import sys
 import threading
 import time
-from collections.abc import Iterator
 from pathlib import Path
 from typing import TextIO
 
@@ -64,7 +61,7 @@ from asprilo.arguments import (
 )
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
-from asprilo.exits import INTERRUPTED
+from asprilo.exits import INTERRUPTED, stopping_on_interrupt
 from asprilo.reader import read_instance
 from asprilo.writer import check_output, format_plan, write_text
 
@@ -149,7 +146,7 @@ def run(args: argparse.Namespace) -> int:
     progress = SearchProgress(sys.stderr, time_limit, own=encoding is not None and encoding.own)
     cancel = threading.Event()
     try:
-        with _stopping_on_interrupt(cancel):
+        with stopping_on_interrupt(cancel):
             outcome = solve(instance, domain, encoding=encoding, horizon=horizon, assign=args.assign,
                             time_limit=time_limit, method=method, isolate=True, memory_limit=args.memory_limit,
                             on_progress=progress.attempt, on_phase=progress.phase, cancel=cancel, stage=stage)
@@ -338,25 +335,3 @@ def _width() -> int:
     import shutil
 
     return max(40, shutil.get_terminal_size((120, 24)).columns)
-
-
-@contextlib.contextmanager
-def _stopping_on_interrupt(cancel: threading.Event) -> Iterator[None]:
-    """While solving, the first Ctrl-C stops the search, which answers with the best plan it
-    found (the second one interrupts as usual)."""
-    if threading.current_thread() is not threading.main_thread():
-        yield
-        return
-    previous = signal.getsignal(signal.SIGINT)
-
-    def stop(_signal: int, _frame: object) -> None:
-        cancel.set()
-        signal.signal(signal.SIGINT, previous if previous is not None else signal.SIG_DFL)
-
-    signal.signal(signal.SIGINT, stop)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGINT, previous if previous is not None else signal.SIG_DFL)
-
-

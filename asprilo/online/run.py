@@ -5,13 +5,15 @@ Time: the world takes one step every ``step_seconds`` of the planner's wall time
 the planner after step t that takes s seconds lets floor(s / step_seconds) steps pass in
 which the robots stand still (the *waiting steps*: counted); the plan it answers is carried
 out from the step after.  Standing still changes nothing, so the plan made from the state
-after step t fits the state after the waiting steps.
+after step t fits the state after the waiting steps.  A call may take ``budget`` seconds; one
+that finds no plan is made again at once with twice the time (the planner keeps thinking
+while the robots wait), up to ``most_budget``; a plan found brings the budget back.
 
 The planner is asked after step 0 and then (``replan``): ``"arrival"`` whenever orders were
 released since it last planned (the default), or an integer k: also every k steps.  An order
 released at step r is known to the planner after step r.  The run ends after ``steps``
 steps, or (``steps=None``) once every order is released and done; a run whose planner finds
-no plan while nothing else can change ends there, and says so.
+no plan within ``most_budget`` while nothing else can change ends there, and says so.
 """
 
 from __future__ import annotations
@@ -77,27 +79,30 @@ class _World:
         return any(t > step and actions for t, actions in self.ahead.items())
 
 
-def run_online(instance: Instance, domain: Domain, planner: Planner, releases: dict[int, int] | None = None, *,
+def run_online(instance: Instance, domain: Domain, planner_for: Callable[[float], Planner],
+               releases: dict[int, int] | None = None, *, budget: float = 1.0, most_budget: float | None = None,
                steps: int | None = None, step_seconds: float = 1.0, replan: str | int = "arrival",
                clock: Callable[[], float] = time.perf_counter, cancel: threading.Event | None = None,
                on_step: Callable[[int, OnlineRun], None] | None = None) -> OnlineRun:
-    """Run ``instance`` online (see the module docstring); ``releases``: order -> step (an
-    order not named is known from the start); ``on_step(step, run)`` after every step;
+    """Run ``instance`` online (see the module docstring) with the planners ``planner_for(seconds)``
+    gives; ``releases``: order -> step (an order not named is known from the start);
+    ``most_budget``: by default 16 times ``budget``; ``on_step(step, run)`` after every step;
     setting ``cancel`` ends the run after the step under way (what ran is kept)."""
     releases = {order: releases.get(order, 0) if releases else 0 for order in sorted(instance.orders)}
     world = _World(instance, domain, releases)
     run = OnlineRun(Plan([]), releases, 0)
     cancel = cancel or threading.Event()
+    most = 16 * budget if most_budget is None else most_budget
     limit = MOST_STEPS if steps is None else steps
-    step, planned_at = 0, None
+    step, planned_at, seconds = 0, None, budget
     while step < limit:
-        if _due(step, planned_at, releases, replan):
+        if _due(step, planned_at, releases, replan) or (run.calls and not run.calls[-1].found and seconds <= most):
             planned_at = step
-            step = _plan(world, run, planner, step, step_seconds, clock, cancel, limit)
+            found, step = _plan(world, run, planner_for(seconds), step, step_seconds, clock, cancel, limit)
+            seconds = budget if found else 2 * seconds
             if step >= limit:
                 break
-        actions = world.ahead.get(step + 1, [])
-        world.done += actions
+        world.done += world.ahead.get(step + 1, [])
         step += 1
         run.steps = step
         if on_step is not None:
@@ -109,8 +114,8 @@ def run_online(instance: Instance, domain: Domain, planner: Planner, releases: d
             if world.finished(step):
                 run.ended = "every order is done"
                 break
-            if all(release <= planned_at for release in releases.values()):
-                run.ended = "the planner found no plan for what is left; nothing else can change"
+            if seconds > most and all(release <= planned_at for release in releases.values()):
+                run.ended = f"the planner found no plan for what is left within {most:g} s"
                 break
     else:
         run.ended = run.ended or ("the step limit" if steps is not None else f"the guard of {MOST_STEPS} steps")
@@ -119,7 +124,7 @@ def run_online(instance: Instance, domain: Domain, planner: Planner, releases: d
 
 
 def _due(step: int, planned_at: int | None, releases: dict[int, int], replan: str | int) -> bool:
-    """Whether the planner is asked after ``step``."""
+    """Whether the planner is asked after ``step`` (a call that found nothing aside)."""
     if planned_at is None:
         return True
     if any(planned_at < release <= step for release in releases.values()):
@@ -128,9 +133,9 @@ def _due(step: int, planned_at: int | None, releases: dict[int, int], replan: st
 
 
 def _plan(world: _World, run: OnlineRun, planner: Planner, step: int, step_seconds: float,
-          clock: Callable[[], float], cancel: threading.Event, limit: int) -> int:
-    """Ask the planner after ``step``; the steps robots wait meanwhile pass; the step at which
-    its plan starts."""
+          clock: Callable[[], float], cancel: threading.Event, limit: int) -> tuple[bool, int]:
+    """Ask the planner after ``step``; the steps robots wait meanwhile pass; whether it found
+    a plan, and the step at which its plan starts."""
     started = clock()
     plan = planner(world.now(step), world.domain, cancel)
     seconds = clock() - started
@@ -142,4 +147,4 @@ def _plan(world: _World, run: OnlineRun, planner: Planner, step: int, step_secon
     world.ahead = {}
     for action in shifted(plan, step) if plan is not None else ():
         world.ahead.setdefault(action.step, []).append(action)
-    return step
+    return plan is not None, step

@@ -1,0 +1,177 @@
+"""Run a warehouse online without a window: orders released over time, a planner asked for the next actions.
+
+The world is carried out step by step (asprilo/online/run.py): orders are revealed at their
+release step, the planner plans from the state the world is in when orders arrived (or every
+K steps: --replan K), within --budget seconds a call.  The world takes a step every
+--step-seconds of the planner's time: robots stand still while the planner thinks, and those
+waiting steps are counted.  The run ends after --steps steps, or once every order is released
+and done.
+
+Release steps: --at STEP:ORDER[,ORDER...] (repeatable) or --every K (orders in id order, one
+every K steps from step 0); orders not named are known from the start.
+
+Output: the plan carried out (occurs/3 facts: stdout, or -o PLAN), the figures on stderr
+(throughput in lines and units per 100 steps beside the ceiling no planner can beat, order
+latency, planner time per call, waiting steps; --json: on stdout as JSON), and with --record
+FILE the run record (releases, planner calls, waiting steps, the figures) as JSON.  Progress
+every 100 steps on stderr; Ctrl-C (SIGTERM, SIGHUP) ends the run after the step under way and
+keeps what ran (exit status 130).
+
+Examples:
+  asprilo online instance.lp --every 4
+  asprilo online instance.lp --at 3:2 --at 8:3,4 --planner asp -o run.lp
+  asprilo online instance.lp --every 2 --steps 1000 --budget 1 --record run.json --json
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import threading
+
+from asprilo.arguments import chosen_domain, domain_argument
+from asprilo.domain import detect_domain
+from asprilo.errors import InputError
+from asprilo.exits import INTERRUPTED, stopping_on_interrupt
+from asprilo.reader import read_instance
+from asprilo.writer import check_output, format_plan, write_text
+
+from .ceiling import Ceiling, ceiling
+from .metrics import Metrics, measure
+from .planner import Planner, Schedule, encodings_planner, parse_arrivals
+from .run import OnlineRun, run_online
+
+#: steps between two progress lines
+PROGRESS_EVERY = 100
+
+
+def configure(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("instance", metavar="SCENARIO", help="the instance (its orders are released over time)")
+    released = parser.add_mutually_exclusive_group()
+    released.add_argument("--at", action="append", default=[], metavar="STEP:ORDER[,ORDER...]",
+                          help="release these orders at STEP (repeatable)")
+    released.add_argument("--every", type=_positive, metavar="K", help="release one order every K steps, in id order")
+    parser.add_argument("--steps", type=_positive, metavar="N", help="run N steps (default: until every order is done)")
+    parser.add_argument("--planner", choices=("anytime", "asp"), default="anytime",
+                        help="anytime: the anytime planner (default); asp: the exact search from scratch")
+    parser.add_argument("--budget", type=_seconds, default=1.0, metavar="S",
+                        help="seconds a planner call may take (default 1)")
+    parser.add_argument("--step-seconds", type=_seconds, default=1.0, metavar="D",
+                        help="seconds of planner time one step of the world takes (default 1)")
+    parser.add_argument("--replan", default="arrival", metavar="arrival|K",
+                        help="plan again when orders arrive (default), or also every K steps")
+    parser.add_argument("--domain", type=domain_argument, help="a|b|c|m|md (default: detected)")
+    parser.add_argument("-o", "--output", metavar="PLAN", help="write the plan carried out here (default: stdout)")
+    parser.add_argument("--record", metavar="FILE", help="write the run record (JSON) here")
+    parser.add_argument("--json", action="store_true", help="the figures as JSON on stdout")
+
+
+def _positive(text: str) -> int:
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a whole number of at least 1, not {text!r}")
+    return value
+
+
+def _seconds(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = 0.0
+    if not 0 < value < 1e6:
+        raise argparse.ArgumentTypeError(f"expected seconds above 0, not {text!r}")
+    return value
+
+
+def _replan(text: str) -> str | int:
+    if text == "arrival":
+        return text
+    try:
+        return _positive(text)
+    except argparse.ArgumentTypeError:
+        raise InputError(f"--replan {text}: expected 'arrival' or a number of steps") from None
+
+
+def run(args: argparse.Namespace) -> int:
+    replan = _replan(args.replan)
+    inputs = [args.instance]
+    check_output(args.output, inputs)
+    check_output(args.record, inputs)
+    instance = read_instance(args.instance)
+    detected = detect_domain(instance)
+    domain = chosen_domain(args, detected) or detected
+    releases = Schedule.every(instance, args.every).arrivals if args.every else \
+        Schedule(instance, parse_arrivals(args.at)).arrivals
+    cancel = threading.Event()
+
+    def planner_for(seconds: float) -> Planner:
+        return encodings_planner(time_limit=seconds, method=args.planner)
+
+    def progress(step: int, so_far: OnlineRun) -> None:
+        if step % PROGRESS_EVERY == 0:
+            print(f"step {step}: {len(so_far.calls)} planner calls, {len(so_far.waiting)} waiting steps",
+                  file=sys.stderr, flush=True)
+
+    with stopping_on_interrupt(cancel):
+        outcome = run_online(instance, domain, planner_for, releases, budget=args.budget, steps=args.steps,
+                             step_seconds=args.step_seconds, replan=replan, cancel=cancel, on_step=progress)
+    metrics = measure(instance, outcome.plan, domain, outcome.releases, outcome.steps, outcome.calls,
+                      len(outcome.waiting))
+    bound = ceiling(instance, domain, outcome.releases, outcome.steps)
+    if args.output:
+        write_text(args.output, format_plan(outcome.plan), inputs)
+    if args.record:
+        write_text(args.record, json.dumps(record(outcome, metrics, bound), indent=2) + "\n", inputs)
+    print("\n".join(summary(outcome, metrics, bound)), file=sys.stderr)
+    if args.json:
+        print(json.dumps(figures(metrics, bound), indent=2))
+    elif not args.output:
+        sys.stdout.write(format_plan(outcome.plan))
+    return INTERRUPTED if cancel.is_set() else 0
+
+
+def summary(outcome: OnlineRun, metrics: Metrics, bound: Ceiling | None) -> list[str]:
+    """The figures in words."""
+    share = "" if bound is None or not bound.lines else f"; ceiling {bound.lines_per_100:.1f}: " \
+        f"{100 * metrics.lines_done / bound.lines:.0f} % of it"
+    latency = metrics.latency
+    lines = [f"online run: {outcome.steps} steps ({outcome.ended}); {metrics.calls} planner calls, "
+             f"{metrics.waiting_steps} waiting steps",
+             f"throughput: {metrics.lines_per_100:.1f} order lines per 100 steps{share}; "
+             f"{metrics.units_per_100:.1f} units per 100 steps ({metrics.lines_done} of {metrics.lines} lines done)"]
+    if latency.orders:
+        lines.append(f"order latency: mean {latency.mean:.1f}, p95 {latency.p95}, max {latency.most} steps "
+                     f"({latency.orders} orders done, {metrics.orders_open} open)")
+    else:
+        lines.append(f"order latency: no order done ({metrics.orders_open} open)")
+    if metrics.calls:
+        lines.append(f"planner: {metrics.planner_mean:.2f} s a call on average, {metrics.planner_max:.2f} s at most")
+    return lines
+
+
+def figures(metrics: Metrics, bound: Ceiling | None) -> dict:
+    """The figures as JSON values."""
+    latency = metrics.latency
+    return {"steps": metrics.steps, "lines": metrics.lines, "lines_done": metrics.lines_done,
+            "units_done": metrics.units_done, "orders_open": metrics.orders_open,
+            "lines_per_100": metrics.lines_per_100, "units_per_100": metrics.units_per_100,
+            "ceiling_lines": None if bound is None else bound.lines,
+            "ceiling_lines_per_100": None if bound is None else bound.lines_per_100,
+            "latency": {"orders": latency.orders, "mean": latency.mean, "p95": latency.p95, "max": latency.most},
+            "planner": {"calls": metrics.calls, "mean_seconds": metrics.planner_mean,
+                        "max_seconds": metrics.planner_max},
+            "waiting_steps": metrics.waiting_steps,
+            "windows": [{"first": w.first, "last": w.last, "lines": w.lines, "units": w.units}
+                        for w in metrics.windows]}
+
+
+def record(outcome: OnlineRun, metrics: Metrics, bound: Ceiling | None) -> dict:
+    """The run record: what ran, and its figures."""
+    return {"version": 1, "steps": outcome.steps, "ended": outcome.ended,
+            "releases": {str(order): step for order, step in sorted(outcome.releases.items())},
+            "calls": [{"step": call.step, "seconds": call.seconds, "found": call.found} for call in outcome.calls],
+            "waiting": outcome.waiting, "figures": figures(metrics, bound)}
