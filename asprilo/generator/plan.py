@@ -125,11 +125,40 @@ def make_plan(config: GeneratorConfig) -> GenerationPlan:
     lines = orders(config, r, stock, existing, objects["station_total"])
     given = vars(config)  # (a dataclass made at run time: its fields by name)
     drawn = drawn_attributes(given["domain"] or DEFAULT, given["variants"], given["energy"])
-    return GenerationPlan(
+    plan = GenerationPlan(
         layout=floor.layout, width=floor.width, height=floor.height, nodes=floor.nodes, gap_size=floor.gap_size,
         zone_x=floor.zone_x, zone_y=floor.zone_y, border=floor.border, template=template,
         reachable=config.reachable, quantities=_with_quantities(config.domain, existing),
         attributes=drawn, **objects, **solving, **stock, **lines)
+    _check_memory(plan)
+    return plan
+
+
+#: what generating costs, measured (``benchmarks/limits_edges.py``; clingo 5.8): a base, and
+#: per cell of the floor kilobytes for the floor and for each stage that places objects on it
+#: (the floor of a partial grid once per gap shape), and more for -R's reachability
+_BASE_MB, _CELL_KB, _REACHABLE_KB = 60, 1.15, 7.0
+
+
+def estimated_mb(plan: GenerationPlan) -> int:
+    """About how many megabytes generating ``plan`` takes at its peak (the floor dominates)."""
+    cells = plan.width * plan.height
+    floor = 1
+    if plan.partial_floor:  # a gap of every shape W x H <= gap_size may start at every cell
+        widths = range(1, min(plan.gap_size, plan.width - 1) + 1)
+        floor += sum(min(plan.gap_size // width, plan.height - 1) for width in widths)
+    placing = sum(1 for count in (plan.stations, plan.robots, plan.shelves) if count)
+    kilobytes = _CELL_KB * (floor + placing) + (_REACHABLE_KB if plan.reachable and plan.shelves else 0)
+    return round(_BASE_MB + cells * kilobytes / 1024)
+
+
+def _check_memory(plan: GenerationPlan) -> None:
+    """Refuse, before any grounding, a plan whose estimate is beyond the limit ``gen-mb``."""
+    limits, needed = current(), estimated_mb(plan)
+    if needed > limits.gen_mb:
+        reachable = " with -R" if plan.reachable and plan.shelves else ""
+        raise limits.exceeded("gen_mb", f"a floor of {plan.width:,}x{plan.height:,} cells{reachable} takes about "
+                                        f"{needed:,} MB to generate")
 
 
 def _solving(c: GeneratorConfig) -> dict:
