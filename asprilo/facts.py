@@ -13,16 +13,17 @@ from __future__ import annotations
 
 import re
 from collections.abc import Callable
+from sys import intern
 from typing import Any
 
 import clingo
 from clingo import SymbolType
 
 from .errors import InputError
-from .limits import Limits
+from .limits import Limits, StepCounter
 from .model import Action, Instance
 from .objects import KINDS
-from .parse import Constant, Fn, Reader, Term, parse_terms, python_value, shown, text_of
+from .parse import Constant, Fn, Reader, Term, line_at, parse_terms, python_value, shown, text_of
 
 INIT_SHAPE = "init(object(Type,Id),value(Attribute,Value))"
 ASSIGN_SHAPE = "assign(robot(R),shelf(S)) or assign(robot(R),destination(D))"
@@ -191,26 +192,35 @@ _PLAIN = re.compile(f"{_INIT}|{_OCCURS}")
 
 def _init_args(match: re.Match) -> tuple[str, int, str, tuple[int, int] | int]:
     kind, ident, attribute, x, y, single = match.groups()[:6]
-    return (kind, int(ident), attribute, (int(x), int(y)) if single is None else int(single))
+    return (intern(kind), int(ident), intern(attribute), (int(x), int(y)) if single is None else int(single))
 
 
 def _occurs_args(match: re.Match) -> tuple:
     kind, ident, name, args, step = match.groups()[-5:]
-    values = tuple(map(int, args.split(","))) if args.strip() else ()
-    return (kind, int(ident), name, values, int(step))
+    values = _ACTION_ARGS.get(args)
+    if values is None:
+        values = tuple(map(int, args.split(","))) if args.strip() else ()
+        if len(_ACTION_ARGS) < 1_000:  # the few an action takes ((0,1), (), ...): each made once
+            _ACTION_ARGS[args] = values
+    return (intern(kind), int(ident), intern(name), values, int(step))
+
+
+#: action arguments as written -> their value (a plan repeats the same few a million times)
+_ACTION_ARGS: dict[str, tuple] = {}
 
 
 def scan_facts(text: str, name: str, limits: Limits, constants: dict[str, Constant] | None = None,
-               names: set[str] | None = None, room: int | None = None, fast: bool = True
-               ) -> list[tuple[str, Any, int]]:
+               names: set[str] | None = None, room: int | None = None, fast: bool = True,
+               steps: StepCounter | None = None) -> list[tuple[str, Any, int]]:
     """The facts of a text (after :func:`asprilo.parse.resolve_constants` found the
     constants of everything read with it): ``(kind, arguments, offset)`` each, where an
     ``init/2`` fact of the instance shape is ``("init", (Type, Id, Attribute, Value))``, an
     ``occurs/3`` fact of the plan shape ``("occurs", (Type, Id, Name, Args, T))`` (both
     with Python values) and any other fact ``("atom", Fn)`` -- kept only
     when ``names`` is ``None`` or holds its name.  Refuses more than ``room`` facts (and
-    #const) and everything :class:`asprilo.parse.Reader` refuses.  ``fast=False`` reads every
-    fact token by token (a test compares both ways)."""
+    #const) and everything :class:`asprilo.parse.Reader` refuses; with ``steps``, a plan
+    beyond ``robot-steps`` at the action that passes it.  ``fast=False`` reads every fact
+    token by token (a test compares both ways)."""
     reader = Reader(text, name, limits, constants, quick=fast)
     facts: list[tuple[str, Any, int]] = []
     count, end, position = 0, len(text), 0
@@ -226,17 +236,27 @@ def scan_facts(text: str, name: str, limits: Limits, constants: dict[str, Consta
         count += 1
         if count > room:
             raise limits.exceeded("facts", f"more than {limits.facts:,} facts").at(name)
+        start = position
         match = plain(text, position) if plain else None
-        if match:
-            after = match.end()
-            if after - position <= most and (not clash or clash.isdisjoint(match.group(1, 3, 7, 9))):
-                facts.append(("init", _init_args(match), position) if match.lastindex < 7 else  # type: ignore[operator]
-                             ("occurs", _occurs_args(match), position))
-                position = after
-                continue
-        position, count = _statement(reader, position, facts, names, count)
-        if position < 0:
-            return facts
+        if match and match.end() - position <= most and (not clash or clash.isdisjoint(match.group(1, 3, 7, 9))):
+            facts.append(("init", _init_args(match), position) if match.lastindex < 7 else  # type: ignore[operator]
+                         ("occurs", _occurs_args(match), position))
+            position = match.end()
+        else:
+            position, count = _statement(reader, position, facts, names, count)
+            if position < 0:
+                return facts
+        if steps is not None and facts[-1:] and facts[-1][0] == "occurs" and facts[-1][2] >= start:
+            _count(steps, facts[-1][1], name, text, facts[-1][2])
+
+
+def _count(steps: StepCounter, args: tuple, name: str, text: str, position: int) -> None:
+    """An action (read at ``position``) counted against ``robot-steps``: refused at its line
+    beyond it."""
+    try:
+        steps.add(args[0], args[1], args[4])
+    except InputError as error:
+        raise error.at(name, line_at(text, position)) from None
 
 
 def _statement(reader: Reader, position: int, facts: list, names: set[str] | None, count: int) -> tuple[int, int]:

@@ -91,7 +91,49 @@ def require_plan_fits(instance: Instance, plan: Plan, limits: Limits | None = No
     limits = limits or current()
     horizon, robots = max(plan.horizon, 0), max(len(instance.robots), 1)
     if horizon * robots > limits.robot_steps:
-        raise limits.exceeded("robot_steps", f"a plan of horizon {horizon:,} for {robots:,} robots")
+        raise _too_many_steps(limits, horizon, robots)
+
+
+def _too_many_steps(limits: Limits, horizon: int, robots: int, moved: bool = False) -> InputError:
+    plural = "s" * (robots != 1)
+    what = f"a plan moving {robots:,} robot{plural} up to step {horizon:,}" if moved else \
+        f"a plan of horizon {horizon:,} for {robots:,} robot{plural}"
+    return limits.exceeded("robot_steps", what)
+
+
+class StepCounter:
+    """``robot-steps`` counted while a plan is read, action by action (:meth:`add`): an
+    action beyond step ``robot-steps`` (either sign), or a horizon so far times the robots
+    is refused at once, before the rest is read.  The robots are the instance's where it is
+    known (``robots``: the test :func:`require_plan_fits` makes later), else those the plan
+    moved so far (never more than its instance has)."""
+
+    __slots__ = ("limits", "robots", "horizon", "seen")
+
+    def __init__(self, limits: Limits, robots: int | None = None):
+        self.limits = limits
+        self.robots = None if robots is None else max(robots, 1)
+        self.horizon = 0
+        self.seen: set = set()
+
+    def add(self, kind: object, robot: object, step: int) -> None:
+        """An action of ``robot`` (of object type ``kind``) at ``step`` (:class:`InputError`
+        beyond the limit)."""
+        if step > self.horizon:
+            if step > self.limits.robot_steps:
+                raise self.limits.exceeded("robot_steps", f"an action at step {step:,}")
+            self.horizon = step
+            self._check()
+        elif step < -self.limits.robot_steps:
+            raise self.limits.exceeded("robot_steps", f"an action at step {step:,}")
+        if self.robots is None and kind == "robot" and robot not in self.seen:
+            self.seen.add(robot)
+            self._check()
+
+    def _check(self) -> None:
+        robots = self.robots or max(len(self.seen), 1)
+        if self.horizon * robots > self.limits.robot_steps:
+            raise _too_many_steps(self.limits, self.horizon, robots, moved=self.robots is None)
 
 
 _current = Limits()

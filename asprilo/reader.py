@@ -14,7 +14,7 @@ from .domain import Domain, detect_domain, domains
 from .errors import InputError, InputWarning
 from .facts import OCCURS_SHAPE, action_of, format_action, shape_error, value_of
 from .instance_builder import INSTANCE_NAMES, build_instance, instance_from_atoms, shown_value, where
-from .limits import Limits, current, require_plan_fits
+from .limits import Limits, StepCounter, current, require_plan_fits
 from .model import Action, Instance, Plan
 from .parse import shown
 from .sources import ScannedFact, Source, SourceLike, as_sources, load_facts, locate
@@ -35,15 +35,18 @@ def read_instance(inputs: SourceLike | Iterable[SourceLike], limits: Limits | No
     return build_instance(sources, load_facts(sources, limits, INSTANCE_NAMES), [], limits)
 
 
-def read_plan(inputs: SourceLike | Iterable[SourceLike], limits: Limits | None = None) -> Plan:
+def read_plan(inputs: SourceLike | Iterable[SourceLike], limits: Limits | None = None,
+              robots: int | None = None) -> Plan:
     """Read a plan from plan files or clingo's printed output.  Instance atoms (``init``,
     ``assign``) are ignored without a word; other atoms are ignored with an
     :class:`InputWarning` that names them, and mistakes a plan's author likely made are
     warned about one by one with a did-you-mean (``occur/3``, ``occurs/2``, an action
-    ``mvoe``): see :class:`_PlanMistakes`."""
+    ``mvoe``): see :class:`_PlanMistakes`.  ``robot-steps`` is counted while the plan is
+    read (:class:`asprilo.limits.StepCounter`), with the ``robots`` of its instance where
+    known."""
     limits = limits or current()
     sources = as_sources(inputs, limits)
-    return _build_plan(sources, load_facts(sources, limits), [], limits)
+    return _build_plan(sources, load_facts(sources, limits, steps=StepCounter(limits, robots)), [], limits)
 
 
 def read_instance_and_plan(instance: SourceLike | Iterable[SourceLike], plan: SourceLike | Iterable[SourceLike],
@@ -53,7 +56,7 @@ def read_instance_and_plan(instance: SourceLike | Iterable[SourceLike], plan: So
     limits = limits or current()
     plan_sources = as_sources(plan, limits)
     the_instance = read_instance(instance, limits)
-    the_plan = read_plan(plan_sources, limits)
+    the_plan = read_plan(plan_sources, limits, len(the_instance.robots))
     require_plan_fits_instance(the_plan, the_instance, plan_sources, domain, limits)
     return the_instance, the_plan
 

@@ -24,7 +24,7 @@ import clingo
 from . import clingo_logger
 from .errors import InputError
 from .facts import fact_atom, fact_text, scan_facts
-from .limits import Limits, current
+from .limits import Limits, StepCounter, current
 from .parse import NotData, Reader, check_program_tokens, find_constants, line_at, resolve_constants, shown, to_symbol
 from .policy import BOM, decode
 
@@ -187,10 +187,11 @@ ScannedFact = tuple[str, Any, tuple[Source, int]]
 
 
 def load_facts(sources: Sequence[Source], limits: Limits | None = None,
-               names: set[str] | None = None) -> list[ScannedFact]:
+               names: set[str] | None = None, steps: StepCounter | None = None) -> list[ScannedFact]:
     """The facts of the sources, read together (a ``#const`` of one applies to all):
     ``(kind, arguments, (source, offset))`` as :func:`asprilo.facts.scan_facts` gives them,
-    atoms of other names than ``names`` (when given) left out.
+    atoms of other names than ``names`` (when given) left out; ``steps`` counts the actions
+    against ``robot-steps`` as they are read.
 
     Sources hold facts, comments, ``#const`` and ``#program base.``; rules too where the
     limits allow them (``--allow-rules``): they are then grounded in a child process under
@@ -204,14 +205,17 @@ def load_facts(sources: Sequence[Source], limits: Limits | None = None,
                                        for definition in find_constants(Reader(program.text, program.name, limits))])
         facts: list[ScannedFact] = []
         for source, program in zip(sources, programs, strict=True):
-            found = scan_facts(program.text, source.name, limits, constants, names, limits.facts - len(facts))
-            facts += [(kind, args, (source, offset)) for kind, args, offset in found]
+            found = scan_facts(program.text, source.name, limits, constants, names, limits.facts - len(facts),
+                               steps=steps)
+            for index, (kind, args, offset) in enumerate(found):  # in place: a plan may hold a million
+                found[index] = (kind, args, (source, offset))  # type: ignore[call-overload]
+            facts += found  # type: ignore[arg-type]
         return facts
     except NotData:
         if not limits.allow_rules:
             raise
     derived = Source(", ".join(p.name for p in programs), _ground_rules(programs, limits))
-    found = scan_facts(derived.text, derived.name, limits, None, names)
+    found = scan_facts(derived.text, derived.name, limits, None, names, steps=steps)
     return [(kind, args, (derived, offset)) for kind, args, offset in found]
 
 
