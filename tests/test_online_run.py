@@ -11,6 +11,7 @@ from asprilo.model import Action, Plan
 from asprilo.online.ceiling import ceiling, earliest_steps
 from asprilo.online.metrics import Latency, PlannerCall, Window, measure
 from asprilo.online.planner import encodings_planner
+from asprilo.online.planning import FromScratch
 from asprilo.online.run import run_online
 from asprilo.reader import read_instance, read_plan
 from asprilo.sources import Source
@@ -30,9 +31,9 @@ init(object(order,2),value(line,(1,2))). init(object(order,2),value(pickingStati
 WEST = (-1, 0)
 
 
-def PLANNER(seconds: float):  # noqa: N802 - a planner maker, named as the constants beside it
-    """The exact search from scratch, within ``seconds``."""
-    return encodings_planner(time_limit=seconds)
+def scratch(instance):
+    """The exact search from scratch, within each call's budget."""
+    return FromScratch(instance, Domain.A, lambda seconds: encodings_planner(time_limit=seconds))
 
 
 def corridor():
@@ -42,7 +43,7 @@ def corridor():
 def test_a_planner_as_fast_as_the_world_lets_no_robot_wait():
     """Order 2 released at step 4: the robot is at the station after step 2, delivers order 1
     at step 3; asked again after step 4, it delivers order 2's 2 units at step 5."""
-    run = run_online(corridor(), Domain.A, PLANNER, {2: 4}, budget=60, step_seconds=1e6)
+    run = run_online(corridor(), Domain.A, scratch(corridor()), {2: 4}, budget=60, step_seconds=1e6)
     assert sorted(run.plan.actions) == [Action(1, 1, "move", WEST), Action(2, 1, "move", WEST),
                                         Action(3, 1, "deliver", (1, 1, 1)), Action(5, 1, "deliver", (2, 1, 2))]
     assert (run.steps, run.ended, run.waiting) == (5, "every order is done", [])
@@ -59,7 +60,7 @@ def test_robots_wait_while_the_planner_thinks_and_those_steps_are_counted():
     Asked after step 0, robots wait at steps 1-2, move at 3-4, deliver order 1 at 5; order 2,
     released at step 6, is planned for after step 6, robots wait at 7-8, deliver at 9."""
     readings = iter([0.0, 2.5, 100.0, 102.5])
-    run = run_online(corridor(), Domain.A, PLANNER, {2: 6}, budget=60, clock=readings.__next__)
+    run = run_online(corridor(), Domain.A, scratch(corridor()), {2: 6}, budget=60, clock=readings.__next__)
     assert sorted(run.plan.actions) == [Action(3, 1, "move", WEST), Action(4, 1, "move", WEST),
                                         Action(5, 1, "deliver", (1, 1, 1)), Action(9, 1, "deliver", (2, 1, 2))]
     assert (run.steps, run.waiting) == (9, [1, 2, 7, 8])
@@ -72,7 +73,7 @@ def test_robots_wait_while_the_planner_thinks_and_those_steps_are_counted():
 
 def test_a_step_limit_ends_the_run_and_what_is_not_done_stays_open():
     readings = iter([0.0, 2.5])
-    run = run_online(corridor(), Domain.A, PLANNER, {2: 6}, budget=60, steps=4,
+    run = run_online(corridor(), Domain.A, scratch(corridor()), {2: 6}, budget=60, steps=4,
                      clock=readings.__next__)
     assert (run.steps, run.ended, sorted(run.plan.actions)) == (
         4, "the step limit", [Action(3, 1, "move", WEST), Action(4, 1, "move", WEST)])

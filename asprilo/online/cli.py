@@ -40,6 +40,7 @@ from asprilo.writer import check_output, format_plan, write_text
 from .ceiling import Ceiling, ceiling
 from .metrics import Metrics, measure
 from .planner import Planner, Schedule, encodings_planner, parse_arrivals
+from .planning import FromScratch
 from .run import OnlineRun, run_online
 
 #: steps between two progress lines
@@ -117,8 +118,9 @@ def run(args: argparse.Namespace) -> int:
                   file=sys.stderr, flush=True)
 
     with stopping_on_interrupt(cancel):
-        outcome = run_online(instance, domain, planner_for, releases, budget=args.budget, steps=args.steps,
-                             step_seconds=args.step_seconds, replan=replan, cancel=cancel, on_step=progress)
+        outcome = run_online(instance, domain, FromScratch(instance, domain, planner_for), releases,
+                             budget=args.budget, steps=args.steps, step_seconds=args.step_seconds, replan=replan,
+                             cancel=cancel, on_step=progress)
     metrics = measure(instance, outcome.plan, domain, outcome.releases, outcome.steps, outcome.calls,
                       len(outcome.waiting))
     bound = ceiling(instance, domain, outcome.releases, outcome.steps)

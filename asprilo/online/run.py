@@ -25,11 +25,11 @@ from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
 from asprilo.domain import Domain, Goal
-from asprilo.model import Action, Instance, Plan
+from asprilo.model import Action, Instance, Order, Plan
 from asprilo.simulate import simulate
 
 from .metrics import PlannerCall
-from .planner import Planner, world_at
+from .planning import OnlinePlanning
 from .protocol import shifted
 
 #: the longest a run goes on without a step limit (steps): a guard, said when it ends a run
@@ -59,33 +59,30 @@ class _World:
     done: list[Action] = field(default_factory=list)
     ahead: dict[int, list[Action]] = field(default_factory=dict)
 
-    def known(self, step: int) -> Instance:
-        """The instance as the planner knows it after ``step``: the orders released by then."""
-        orders = {o: order for o, order in self.instance.orders.items() if self.releases.get(o, 0) <= step}
-        return replace(self.instance, orders=orders)
-
-    def now(self, step: int) -> Instance:
-        """The world after ``step`` as an instance of its own (what the planner plans from)."""
-        known = self.known(step)
-        return world_at(known, simulate(known, Plan(list(self.done)), self.domain).state(step))
+    def released_at(self, step: int) -> list[Order]:
+        """The orders released at ``step``."""
+        return [order for o, order in sorted(self.instance.orders.items()) if self.releases[o] == step]
 
     def finished(self, step: int) -> bool:
         """Every order known after ``step`` is done (M, Md: the plan carried out to its end)."""
         if self.domain.goal is not Goal.LINES:
             return not self.ahead_after(step)
-        return not self.now(step).orders
+        known = replace(self.instance, orders={o: order for o, order in self.instance.orders.items()
+                                               if self.releases[o] <= step})
+        return not simulate(known, Plan(list(self.done)), self.domain).state(step).open_lines
 
     def ahead_after(self, step: int) -> bool:
         return any(t > step and actions for t, actions in self.ahead.items())
 
 
-def run_online(instance: Instance, domain: Domain, planner_for: Callable[[float], Planner],
+def run_online(instance: Instance, domain: Domain, planner: OnlinePlanning,
                releases: dict[int, int] | None = None, *, budget: float = 1.0, most_budget: float | None = None,
                steps: int | None = None, step_seconds: float = 1.0, replan: str | int = "arrival",
                clock: Callable[[], float] = time.perf_counter, cancel: threading.Event | None = None,
                on_step: Callable[[int, OnlineRun], None] | None = None) -> OnlineRun:
-    """Run ``instance`` online (see the module docstring) with the planners ``planner_for(seconds)``
-    gives; ``releases``: order -> step (an order not named is known from the start);
+    """Run ``instance`` online (see the module docstring) with ``planner`` (told of the orders
+    and the actions as they come: :mod:`asprilo.online.planning`); ``releases``: order -> step
+    (an order not named is known from the start);
     ``most_budget``: by default 16 times ``budget``; ``on_step(step, run)`` after every step;
     setting ``cancel`` ends the run after the step under way (what ran is kept)."""
     releases = {order: releases.get(order, 0) if releases else 0 for order in sorted(instance.orders)}
@@ -95,15 +92,21 @@ def run_online(instance: Instance, domain: Domain, planner_for: Callable[[float]
     most = 16 * budget if most_budget is None else most_budget
     limit = MOST_STEPS if steps is None else steps
     step, planned_at, seconds = 0, None, budget
+    planner.released(world.released_at(0), 0)
     while step < limit:
         if _due(step, planned_at, releases, replan) or (run.calls and not run.calls[-1].found and seconds <= most):
             planned_at = step
-            found, step = _plan(world, run, planner_for(seconds), step, step_seconds, clock, cancel, limit)
+            found, step = _plan(world, run, planner, step, seconds, step_seconds, clock, cancel, limit)
             seconds = budget if found else 2 * seconds
             if step >= limit:
                 break
-        world.done += world.ahead.get(step + 1, [])
+        actions = world.ahead.get(step + 1, [])
+        world.done += actions
         step += 1
+        planner.carried_out(step, actions)
+        arriving = world.released_at(step)
+        if arriving:
+            planner.released(arriving, step)
         run.steps = step
         if on_step is not None:
             on_step(step, run)
@@ -132,16 +135,21 @@ def _due(step: int, planned_at: int | None, releases: dict[int, int], replan: st
     return isinstance(replan, int) and step - planned_at >= replan
 
 
-def _plan(world: _World, run: OnlineRun, planner: Planner, step: int, step_seconds: float,
+def _plan(world: _World, run: OnlineRun, planner: OnlinePlanning, step: int, budget: float, step_seconds: float,
           clock: Callable[[], float], cancel: threading.Event, limit: int) -> tuple[bool, int]:
-    """Ask the planner after ``step``; the steps robots wait meanwhile pass; whether it found
-    a plan, and the step at which its plan starts."""
+    """Ask the planner after ``step``; the steps robots wait meanwhile pass (the planner is
+    told of them); whether it found a plan, and the step at which its plan starts."""
     started = clock()
-    plan = planner(world.now(step), world.domain, cancel)
+    plan = planner.plan(step, budget, cancel)
     seconds = clock() - started
     run.calls.append(PlannerCall(step, seconds, plan is not None))
     waited = min(math.floor(seconds / step_seconds), limit - step)
-    run.waiting += range(step + 1, step + waited + 1)
+    for stood in range(step + 1, step + waited + 1):
+        run.waiting.append(stood)
+        planner.carried_out(stood, [])
+        arriving = world.released_at(stood)
+        if arriving:
+            planner.released(arriving, stood)
     step += waited
     run.steps = step
     world.ahead = {}
