@@ -136,8 +136,9 @@ def make_plan(config: GeneratorConfig) -> GenerationPlan:
 
 #: what generating costs, measured (``benchmarks/limits_edges.py``; clingo 5.8): a base, and
 #: per cell of the floor kilobytes for the floor and for each stage that places objects on it
-#: (the floor of a partial grid once per gap shape), and more for -R's reachability
-_BASE_MB, _CELL_KB, _REACHABLE_KB = 60, 1.15, 7.0
+#: (the floor of a partial grid once per gap shape), and more for -R's reachability; the limit is on
+#: address space, which runs ahead of resident memory: 1000x800 with one robot failed at 1.99 GB resident
+_BASE_MB, _CELL_KB, _REACHABLE_KB = 60, 1.4, 7.0
 
 
 def estimated_mb(plan: GenerationPlan) -> int:
