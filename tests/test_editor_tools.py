@@ -26,7 +26,7 @@ from asprilo.domain import Domain  # noqa: E402
 from asprilo.generator import populate  # noqa: E402
 from asprilo.model import PickingStation  # noqa: E402
 from asprilo.reader import read_instance  # noqa: E402
-from asprilo.visualizer.jobs.runner import wait_for_jobs  # noqa: E402
+from asprilo.visualizer.jobs.job import wait_for_jobs  # noqa: E402
 from asprilo.visualizer.state import edits  # noqa: E402
 from asprilo.visualizer.window import MainWindow  # noqa: E402
 from asprilo.writer import format_instance  # noqa: E402

@@ -185,7 +185,7 @@ def _export_strip(args: argparse.Namespace, scenario) -> int:
 
 def _show(args: argparse.Namespace, scenario) -> int:
     from .export.render import application
-    from .jobs.runner import wait_for_jobs
+    from .jobs.job import wait_for_jobs
     from .window import MainWindow
     app = application()
     window = MainWindow()

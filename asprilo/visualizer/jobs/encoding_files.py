@@ -15,6 +15,8 @@ from pathlib import Path
 from PyQt5.QtCore import QSettings
 from PyQt5.QtWidgets import QFileDialog, QWidget
 
+from asprilo.paths import real
+
 from ..panels.files import start_folder
 
 #: the most encoding sets remembered
@@ -47,7 +49,7 @@ def recent_encodings(settings: QSettings) -> list[list[str]]:
 
 def remember_encoding(settings: QSettings, paths: list[str]) -> None:
     """Put the set ``paths`` first among the recent encodings."""
-    entry = [str(Path(path).resolve()) for path in paths]
+    entry = [str(real(path)) for path in paths]
     entries = [entry] + [e for e in recent_encodings(settings) if e != entry]
     settings.setValue(_RECENT, json.dumps(entries[:RECENT_LIMIT]))
 

@@ -26,45 +26,32 @@ see; a file that cannot be used is reported in the error dialog (``FILE:LINE: �
 
 from __future__ import annotations
 
-import contextlib
 import copy
 import functools
-import threading
-import time
 from collections.abc import Callable, Sequence
 from typing import Any
 
-import clingo
-from PyQt5.QtCore import QObject, QSettings, QThread, QTimer, pyqtSignal
+from PyQt5.QtCore import QObject, QSettings
 from PyQt5.QtWidgets import (
     QAction,
     QActionGroup,
-    QHBoxLayout,
-    QLabel,
     QMainWindow,
     QMenu,
-    QProgressBar,
-    QToolButton,
-    QWidget,
 )
 
 from asprilo.domain import Domain
-from asprilo.errors import InputError
-from asprilo.reader import value_of
-from asprilo.simulate import Violation
 
 from ..panels.commands import Table, make_actions, menu_entry, submenu
 from ..panels.dialogs import GenerateDialog
-from ..panels.status import ElidedLabel
 from ..scene.player import Player
 from ..state import edits
 from ..state.viewer import ViewerState
 from . import encoding_files
+from .job import Job, JobBar, keep, silence
+from .job_words import broken, doing, explain, found, no_plan, tried
 
 #: seconds the solver and the generator may take from the window
 SOLVE_SECONDS, GENERATE_SECONDS = 300.0, 120.0
-#: the least and the most pixels a running job's progress takes in the status bar (more ends in …)
-JOB_TEXT_PX = (160, 360)
 #: the Solve methods: setting -> menu entry (``asp``: minimal makespan with the encoding chosen;
 #: ``auto``, the default: the exact search with that encoding and the anytime planner together)
 SOLVE_METHODS = {"auto": "&Best plan fast, proven minimal when possible (exact search and anytime together)",
@@ -82,103 +69,6 @@ JOB_ACTIONS: Table = {
     "check": ("&Check with the ASP checker", ("F7",)),
     "cancel": ("C&ancel", ("Ctrl+.",)),
 }
-
-
-class Job(QThread):
-    """Runs ``work(job)`` in a worker thread and reports its result or failure (and, from
-    an anytime search, each better result so far through ``better``)."""
-
-    progress = pyqtSignal(str)
-    better = pyqtSignal(object)
-    succeeded = pyqtSignal(object)
-    failed = pyqtSignal(str)
-
-    def __init__(self, title: str, work: Callable[[Job], Any], parent: QObject | None = None):
-        super().__init__(parent)
-        self.title = title
-        self.work = work
-        self.cancel = threading.Event()
-        self.seconds = 0.0
-
-    def run(self) -> None:
-        started = time.perf_counter()
-        try:
-            result = self.work(self)
-        except InputError as error:
-            self.failed.emit(str(error))
-        except Exception as error:  # a bug must not take the window down: say what happened
-            self.failed.emit(f"{self.title} failed: {type(error).__name__}: {error}")
-        else:
-            self.seconds = time.perf_counter() - started
-            self.succeeded.emit(result)
-
-
-#: the jobs started, until their threads are seen finished (see the module's docstring)
-_STARTED: list[Job] = []
-
-
-def _keep(job: Job) -> None:
-    """Hold on to ``job`` until its thread has finished (dropping the finished ones)."""
-    _STARTED[:] = [started for started in _STARTED if started.isRunning()]
-    _STARTED.append(job)
-
-
-def _silence(job: Job) -> None:
-    """Disconnect everything ``job`` reports to: its result is no longer wanted."""
-    for signal in (job.progress, job.better, job.succeeded, job.failed):
-        with contextlib.suppress(TypeError):  # TypeError: nothing connected
-            signal.disconnect()
-
-
-def wait_for_jobs() -> None:
-    """Cancel the jobs still running and let them end (a solve stops at once); for the
-    application's last moments, before Qt destroys every object it still has."""
-    for job in _STARTED:
-        job.cancel.set()
-        job.wait()
-
-
-class JobBar(QWidget):
-    """What a running job does, with a busy bar and a Cancel button (in the status bar)."""
-
-    def __init__(self, parent: QWidget | None = None):
-        super().__init__(parent)
-        layout = QHBoxLayout(self)
-        layout.setContentsMargins(16, 0, 4, 0)  # apart from the status message on its left
-        self.label = ElidedLabel(self, *JOB_TEXT_PX)  # ends in … first: the verdict beside it never does
-        self.bar = QProgressBar(self)
-        self.bar.setRange(0, 0)  # busy: how long a search takes is not known in advance
-        self.bar.setMaximumWidth(120)
-        self.bar.setMaximumHeight(14)
-        self.cancel = QToolButton(self)
-        self.cancel.setText("Cancel")
-        self.clock = QLabel(self)  # a solve's best plan so far, seconds elapsed and left
-        for widget in (self.label, self.clock, self.bar, self.cancel):
-            layout.addWidget(widget)
-        self.started = 0.0
-        self.time_limit: float | None = None
-        self.best: int | None = None
-        self.ticker = QTimer(self)
-        self.ticker.setInterval(1000)
-        self.ticker.timeout.connect(self.tick)
-        self.hide()
-
-    def begin(self, time_limit: float | None) -> None:
-        """A job starts: the clock from 0, counting down to ``time_limit`` (when it has one)."""
-        self.started, self.time_limit, self.best = time.perf_counter(), time_limit, None
-        self.tick()
-        self.ticker.start()
-
-    def end(self) -> None:
-        self.ticker.stop()
-        self.clock.clear()
-
-    def tick(self) -> None:
-        """Redraw the clock: ``best makespan 30 · 12 s, 288 s left``."""
-        elapsed = time.perf_counter() - self.started
-        text = f"{elapsed:.0f} s" + ("" if self.time_limit is None else
-                                     f", {max(0.0, self.time_limit - elapsed):.0f} s left")
-        self.clock.setText(text if self.best is None else f"best makespan {self.best} · {text}")
 
 
 class JobRunner(QObject):
@@ -296,7 +186,7 @@ class JobRunner(QObject):
         if self.job is not None or self.state.document.scenario is None:
             return None
         job = Job(title, work)
-        _keep(job)
+        keep(job)
         job.progress.connect(lambda text: self.bar.label.setText(f"{title}: {text}"))
         if better is not None:
             job.better.connect(better)
@@ -348,7 +238,7 @@ class JobRunner(QObject):
             self._abandon(self.job)
 
     def _abandon(self, job: Job) -> None:
-        _silence(job)
+        silence(job)
         self._idle()
 
     # --- generate ----------------------------------------------------------------------------------
@@ -547,88 +437,3 @@ class JobRunner(QObject):
         verdict = "valid plan" if report.valid else f"{len(violations)} violation{'s' if len(violations) != 1 else ''}"
         seen = f"the verdict shown ({track.domain.label})" if track.checked else "the viewer's replay"
         self.state.say(f"ASP checker: {verdict}; it {agree} {seen}", 10000)
-
-
-def doing(phase) -> str:
-    """What the progress line says while the search grounds or solves one horizon."""
-    if phase.name == "bounding":
-        return "computing the lower bound…"
-    if phase.horizon == 0:
-        return f"{phase.name}…"
-    return f"horizon {phase.horizon}: {phase.name}…"
-
-
-def tried(attempt) -> str:
-    """What the progress line says of one horizon tried, or of a better plan (anytime)."""
-    if attempt.result == "improved":
-        return f"makespan {attempt.horizon}, {attempt.note} ({attempt.seconds:.1f} s)"
-    return f"horizon {attempt.horizon}: {attempt.result} ({attempt.seconds:.1f} s)"
-
-
-def found(outcome, job: Job, domain: str, own=None) -> str:
-    """What the status bar says of the plan a solve found (``own``: with the user's encoding)."""
-    minimal = "minimal " if outcome.minimal else ""
-    if outcome.method == "auto":
-        head = f"Solve stopped after {job.seconds:.1f} s, best plan" if job.cancel.is_set() else \
-            f"plan found in {job.seconds:.1f} s"
-        by = {"asp": "the exact search", "anytime": "the anytime planner"}.get(outcome.found_by, "")
-        bound = outcome.proven_bound
-        proof = "" if outcome.minimal or not bound else f" (no plan is shorter than {bound:g}: not proven minimal)"
-        return (f"{head}: {minimal}makespan {outcome.horizon}{proof}, {len(outcome.plan)} actions "
-                f"({domain}, {outcome.encoding} and anytime, found by {by})")
-    if outcome.method != "anytime":
-        from asprilo.encodings.solving.minimality import proof as proof_words
-
-        said = "" if outcome.trusted or outcome.minimal else f" ({proof_words(outcome)})"  # an own encoding's
-        return (f"plan found in {job.seconds:.1f} s: {minimal}makespan {outcome.horizon}{said}, "
-                f"{len(outcome.plan)} actions ({domain}, {encoding_words(outcome, own)})")
-    head = f"Solve stopped after {job.seconds:.1f} s, best plan" if job.cancel.is_set() else \
-        f"plan found in {job.seconds:.1f} s"
-    gap = outcome.history[-1]["gap"] if outcome.history else None
-    above = f", {100 * gap:.1f}% above the lower bound {outcome.lower_bound:g}" if gap and not minimal else ""
-    plans = len(outcome.history)
-    return (f"{head}: {minimal}makespan {outcome.horizon}{above}, {len(outcome.plan)} actions, "
-            f"{plans} plan{'s' if plans != 1 else ''} reported ({domain}, anytime)")
-
-
-def encoding_words(outcome, own=None) -> str:
-    """The encoding that solved: its name, and for a user's own its style in words."""
-    return outcome.encoding if own is None else f"{outcome.encoding}: {own.summary}"
-
-
-def broken(outcome, job: Job, domain: str, own=None) -> str:
-    """What the status bar says of a plan that breaks the rules (its violations are listed)."""
-    count = len(outcome.check.errors)
-    return (f"the plan found in {job.seconds:.1f} s breaks {count} rule{'s' if count != 1 else ''}: makespan "
-            f"{outcome.horizon}, {len(outcome.plan)} actions ({domain}, {encoding_words(outcome, own)}); "
-            f"the checker's violations are in the Violations panel")
-
-
-def no_plan(outcome, own) -> str:
-    """What the error dialog says when the user's encoding gave no plan: why, in words."""
-    from asprilo.encodings.solving.minimality import no_plan_headline, refuted_words
-
-    names = encoding_files.entry_text([str(path) for path in own.files])
-    why = {"none": no_plan_headline(outcome), "limit": "no plan within the time limit",
-           "invalid": "no plan"}.get(outcome.status.value, outcome.status.value)
-    text = f"{names}: {why}" + (f": {outcome.message}" if outcome.message else "")
-    refuted = outcome.refuted
-    if refuted and outcome.status.value == "limit":
-        several = len(refuted) > 1
-        horizons = f"{refuted[0]}–{refuted[-1]}" if refuted == list(range(refuted[0], refuted[-1] + 1)) and several \
-            else ", ".join(map(str, refuted))
-        text += f" ({refuted_words(outcome, horizons, several)})"
-    return text
-
-
-def explain(timeline, atom: str) -> Violation:
-    """An ``err(Module,Check,Params)`` atom as the replay words it (with what to highlight)."""
-    term = clingo.parse_term(atom)
-    module, check, params = term.arguments
-    values = value_of(params)
-    values = values if isinstance(values, tuple) else (values,)
-    try:
-        return timeline.explain(module.name, check.name, values)
-    except (KeyError, IndexError, TypeError, ValueError):
-        step = values[-1] if values and isinstance(values[-1], int) else 0
-        return Violation(module.name, check.name, values, step, f"{module.name} rule '{check.name}' is broken ({atom})")
