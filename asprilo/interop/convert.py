@@ -22,16 +22,20 @@ import argparse
 import math
 from collections import Counter
 from pathlib import Path
+from typing import Any
 
 from asprilo.errors import InputError
 from asprilo.facts import format_action
+from asprilo.instance_builder import INSTANCE_NAMES, build_instance
 from asprilo.limits import current
 from asprilo.model import DIRECTIONS, Action, Destination, Instance, Order, PickingStation, Plan, Product, Robot, Shelf
-from asprilo.reader import instance_from_atoms, read_instance, read_plan
-from asprilo.sources import Source, as_sources, ground_atoms
+from asprilo.parse import Fn, Str
+from asprilo.reader import read_instance, read_plan
+from asprilo.sources import Source, as_sources, load_facts
 from asprilo.writer import check_output, format_instance, format_plan, header_lines, write_output
 
 from .movingai import (
+    PASSABLE,
     LacamResult,
     Map,
     Task,
@@ -39,10 +43,12 @@ from .movingai import (
     format_result,
     format_scenario,
     from_cell,
+    is_cell_char,
     octile_lengths,
     parse_map,
     parse_result,
     parse_scenario,
+    require_map_size,
     to_cell,
 )
 
@@ -60,16 +66,18 @@ def map_to_instance(grid: Map) -> Instance:
 
 
 def terrain_facts(grid: Map, name: str) -> list[str]:
-    """Facts that keep what asprilo's floor cannot say (map name, type, size, blocked
-    characters), so that ``.map -> asprilo -> .map`` gives the same bytes.  asprilo's tools
-    ignore them."""
-    blocked = Counter(char for row in grid.rows for char in row if char not in ".")
+    """Facts that keep what asprilo's floor cannot say (map name, type, size, the characters
+    of blocked cells and of passable cells other than ``.``: ``G``, ``S``), so that ``.map ->
+    asprilo -> .map`` gives the same bytes.  asprilo's tools ignore them."""
+    blocked = Counter(char for row in grid.rows for char in row if char not in PASSABLE)
     usual = blocked.most_common(1)[0][0] if blocked else "@"
     facts = [f"movingai(map,{_quote(name)}).", f"movingai(type,{_quote(grid.kind)}).",
              f"movingai(size,({grid.width},{grid.height})).", f"movingai(blocked,{_quote(usual)})."]
-    facts += [f"movingai(blocked,({x + 1},{y + 1}),{_quote(char)})."
-              for y, row in enumerate(grid.rows) for x, char in enumerate(row)
-              if char not in (".", usual)]
+    for y, row in enumerate(grid.rows):
+        for x, char in enumerate(row):
+            if char not in (".", usual):
+                kind = "passable" if char in PASSABLE else "blocked"
+                facts.append(f"movingai({kind},({x + 1},{y + 1}),{_quote(char)}).")
     return facts
 
 
@@ -86,27 +94,65 @@ def instance_to_map(instance: Instance, terrain: dict | None = None) -> Map:
     cells = instance.cells
     if any(not (1 <= x <= width and 1 <= y <= height) for x, y in cells):
         raise InputError(f"the floor does not fit the map size {width}x{height}")
-    limits = current()
-    if width * height > limits.facts:
-        raise limits.exceeded("facts", f"a map of {width}x{height} cells")
-    rows = ["".join("." if (x, y) in cells else exceptions.get((x, y), usual)
+    require_map_size(width, height, current())
+    passable = terrain.get("passable", {})
+    rows = ["".join(_node_char(passable.get((x, y)) or exceptions.get((x, y))) if (x, y) in cells
+                    else _blocked_char(exceptions.get((x, y)), usual)
                     for x in range(1, width + 1)) for y in range(1, height + 1)]
     return Map(rows, terrain.get("type", "octile"))
 
 
-def _terrain(atoms) -> dict:
-    terrain: dict = {"cells": {}}
+def _node_char(kept: str | None) -> str:
+    """The character of a node's cell: ``G`` or ``S`` where the terrain facts keep one (as
+    ``passable``, or as ``blocked`` in files written before issue 46), else ``.``."""
+    return kept if kept is not None and kept in PASSABLE else "."
+
+
+def _blocked_char(kept: str | None, usual: str) -> str:
+    """The character of a cell without a node: the one kept for it if it is a blocked one."""
+    return kept if kept is not None and kept not in PASSABLE else usual
+
+
+def _terrain(atoms: list[Fn]) -> dict:
+    """What the ``movingai`` atoms of an instance keep; atoms of other shapes are ignored."""
+    terrain: dict = {"cells": {}, "passable": {}}
     for atom in atoms:
-        if atom.name != "movingai":
+        args = atom.args
+        if atom.negative or not args or type(args[0]) is not Fn:
             continue
-        args = atom.arguments
-        if len(args) == 2 and args[0].name == "size":
-            terrain["size"] = tuple(a.number for a in args[1].arguments)
-        elif len(args) == 2 and args[0].name in ("map", "type", "blocked"):
-            terrain[args[0].name] = args[1].string
-        elif len(args) == 3 and args[0].name == "blocked":
-            terrain["cells"][tuple(a.number for a in args[1].arguments)] = args[2].string
+        what, last = args[0].name, args[-1]
+        if len(args) == 2 and what == "size" and _pair(last):
+            terrain["size"] = _pair(last)
+        elif type(last) is not Str:
+            continue
+        elif len(args) == 2 and what in _SETTINGS and _SETTINGS[what](last.value):
+            terrain[what] = last.value
+        elif len(args) == 3 and what == "blocked" and _pair(args[1]) and is_cell_char(last.value):
+            terrain["cells"][_pair(args[1])] = last.value
+        elif len(args) == 3 and what == "passable" and _pair(args[1]) and last.value in PASSABLE:
+            terrain["passable"][_pair(args[1])] = last.value
     return terrain
+
+
+def _pair(term: Any) -> tuple[int, int] | None:
+    """``(X, Y)`` of a pair of numbers, else ``None``."""
+    if type(term) is not Fn or term.name or term.negative or len(term.args) != 2 or \
+            any(type(value) is not int for value in term.args):
+        return None
+    return term.args[0], term.args[1]
+
+
+def _word(text: str) -> bool:
+    return bool(text) and all(map(is_cell_char, text))
+
+
+def _blocked(char: str) -> bool:
+    return is_cell_char(char) and char not in PASSABLE
+
+
+#: the map's settings kept in movingai/2 facts, each with what it may be (a map header's
+#: word, a blocked cell's character)
+_SETTINGS = {"map": _word, "type": _word, "blocked": _blocked}
 
 
 # --- scenarios ---------------------------------------------------------------------------
@@ -349,9 +395,12 @@ def _format(path: str, given: str | None, what: str) -> str:
 
 
 def _instance_and_terrain(path: str) -> tuple[Instance, dict]:
-    sources = as_sources(path)
-    atoms = ground_atoms(sources)
-    return instance_from_atoms(atoms, sources), _terrain(atoms)
+    """The instance, read as every command reads it, and what its ``movingai`` facts keep."""
+    limits = current()
+    sources = as_sources(path, limits)
+    facts = load_facts(sources, limits, INSTANCE_NAMES | {"movingai"})
+    terrain = _terrain([args for kind, args, _origin in facts if kind == "atom" and args.name == "movingai"])
+    return build_instance(sources, facts, [], limits), terrain
 
 
 def convert(args: argparse.Namespace) -> str:

@@ -14,6 +14,7 @@ from scipy.sparse import csr_matrix
 from scipy.sparse.csgraph import shortest_path
 
 from asprilo.errors import InputError
+from asprilo.limits import Limits, current
 from asprilo.model import Cell
 from asprilo.sources import Source
 
@@ -44,8 +45,10 @@ class Map:
         return [(x, y) for y, row in enumerate(self.rows) for x, char in enumerate(row) if char in PASSABLE]
 
 
-def parse_map(source: Source) -> Map:
-    """Parse ``type``, ``height``, ``width``, ``map`` and the rows of a ``.map`` file."""
+def parse_map(source: Source, limits: Limits | None = None) -> Map:
+    """Parse ``type``, ``height``, ``width``, ``map`` and the rows of a ``.map`` file; a map
+    wider or higher than ``coordinate`` or of more cells than ``facts`` is refused after its
+    header (its floor would be an instance every command refuses)."""
     lines = source.text.splitlines()
     header: dict[str, str] = {}
     for number, line in enumerate(lines[:4], 1):
@@ -62,6 +65,7 @@ def parse_map(source: Source) -> Map:
         height, width = int(header["height"]), int(header["width"])
     except (KeyError, ValueError):
         raise InputError("the header needs integer 'height' and 'width'", source.name, 2) from None
+    require_map_size(width, height, limits or current(), source.name)
     rows = lines[4:4 + height]
     if len(rows) != height:
         raise InputError(f"the header promises {height} rows, the file has {len(rows)}", source.name)
@@ -71,6 +75,21 @@ def parse_map(source: Source) -> Map:
     if any(line.strip() for line in lines[4 + height:]):
         raise InputError(f"text after the {height} map rows", source.name, 5 + height)
     return Map(rows, header.get("type", "octile"))
+
+
+def require_map_size(width: int, height: int, limits: Limits, name: str | None = None) -> None:
+    """Refuse a map size beyond ``coordinate`` (width or height) or ``facts`` (cells)."""
+    if width < 0 or height < 0:
+        raise InputError(f"a map of width {width} and height {height}: neither may be negative", name)
+    if max(width, height) > limits.coordinate:
+        raise limits.exceeded("coordinate", f"a map {width:,} cells wide and {height:,} high").at(name)
+    if width * height > limits.facts:
+        raise limits.exceeded("facts", f"a map of {width:,}x{height:,} = {width * height:,} cells").at(name)
+
+
+def is_cell_char(char: str) -> bool:
+    """Whether ``char`` can stand for one cell in a map's row (one visible character)."""
+    return len(char) == 1 and char.isprintable() and not char.isspace()
 
 
 def format_map(grid: Map) -> str:
