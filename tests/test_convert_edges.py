@@ -95,3 +95,12 @@ def test_unknown_attributes_keep_every_leaf(tmp_path, capsys):
     for attribute in attributes:
         assert f"init(object(robot,1),{attribute}).\n" in written
     assert "#inf" not in written
+
+
+def test_a_scenario_of_more_rows_than_facts_is_refused_as_it_is_read(tmp_path, capsys):
+    (tmp_path / "m.map").write_text("type octile\nheight 1\nwidth 4\nmap\n....\n")
+    rows = "".join(f"0\tm.map\t4\t1\t{x}\t0\t{3 - x}\t0\t3\n" for x in range(4))
+    (tmp_path / "m.scen").write_text("version 1\n" + rows + "not a row\n")  # line 6: never reached
+    assert main(["convert", str(tmp_path / "m.scen"), str(tmp_path / "m.lp"), "--limit", "facts=3"]) == 2
+    assert capsys.readouterr().err == (f"error: {tmp_path / 'm.scen'}:5: a scenario of more than 3 rows, beyond "
+                                       "the limit facts=3 (raise it with --limit facts=N)\n")

@@ -97,7 +97,7 @@ def format_map(grid: Map) -> str:
                    [f"type {grid.kind}", f"height {grid.height}", f"width {grid.width}", "map", *grid.rows])
 
 
-@dataclass
+@dataclass(slots=True)
 class Task:
     """One scenario row: an agent's start and goal (0-based) and its octile optimum."""
 
@@ -110,12 +110,16 @@ class Task:
     height: int = 0
 
 
-def parse_scenario(source: Source) -> list[Task]:
-    """Parse a ``.scen`` file (``version 1`` then tab-separated rows)."""
+def parse_scenario(source: Source, limits: Limits | None = None) -> list[Task]:
+    """Parse a ``.scen`` file (``version 1`` then tab-separated rows); more rows than the
+    ``facts`` limit (each an agent: a robot and its goal) are refused as they are read."""
+    limits = limits or current()
     tasks = []
     for number, line in enumerate(source.text.splitlines(), 1):
         if not line.strip() or (number == 1 and line.startswith("version")):
             continue
+        if len(tasks) >= limits.facts:
+            raise limits.exceeded("facts", f"a scenario of more than {limits.facts:,} rows").at(source.name, number)
         fields = line.split("\t") if "\t" in line else line.split()
         if len(fields) != 9:
             raise InputError(f"a scenario row has 9 fields (bucket map width height start_x start_y "
