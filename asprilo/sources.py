@@ -207,9 +207,10 @@ def load_facts(sources: Sequence[Source], limits: Limits | None = None,
         for source, program in zip(sources, programs, strict=True):
             found = scan_facts(program.text, source.name, limits, constants, names, limits.facts - len(facts),
                                steps=steps)
-            for index, (kind, args, offset) in enumerate(found):  # in place: a plan may hold a million
-                found[index] = (kind, args, (source, offset))  # type: ignore[call-overload]
-            facts += found  # type: ignore[arg-type]
+            scanned: list[Any] = found  # given their origin in place: a plan may hold a million
+            for index, (kind, args, offset) in enumerate(found):
+                scanned[index] = (kind, args, (source, offset))
+            facts += scanned
         return facts
     except NotData:
         if not limits.allow_rules:

@@ -114,7 +114,7 @@ def parse_scenario(source: Source, limits: Limits | None = None) -> list[Task]:
     """Parse a ``.scen`` file (``version 1`` then tab-separated rows); more rows than the
     ``facts`` limit (each an agent: a robot and its goal) are refused as they are read."""
     limits = limits or current()
-    tasks = []
+    tasks: list[Task] = []
     for number, line in enumerate(source.text.splitlines(), 1):
         if not line.strip() or (number == 1 and line.startswith("version")):
             continue
