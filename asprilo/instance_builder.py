@@ -181,6 +181,10 @@ class _InstanceBuilder:
                         f"order {ident} names two picking stations")
             order.station = value
             return
+        if attribute == "release":
+            self.single(("order", ident, "release"), value, origin, f"order {ident} has two release steps")
+            order.release = value
+            return
         product, units = value if isinstance(value, tuple) else (value, None)
         self.single(("order", ident, product), units, origin,
                     f"order {ident} has two quantities for product {product}")

@@ -25,6 +25,10 @@ def _is_int(value: Any) -> bool:
     return isinstance(value, int)
 
 
+def _is_step(value: Any) -> bool:
+    return _is_int(value) and value >= 0
+
+
 def _is_count(value: Any) -> bool:
     return _is_int(value) or is_cell(value)
 
@@ -106,7 +110,8 @@ KINDS: dict[str, ObjectKind] = {kind.name: kind for kind in (
     ObjectKind("product", "product", "products on shelves",
                {"on": Attribute(_is_count, "(Shelf,Units) or Shelf")}, "products"),
     ObjectKind("order", "order", "orders", {"line": Attribute(_is_count, "(Product,Units) or Product"),
-                                            "pickingStation": Attribute(_is_int, "a picking station id")}, "orders"),
+                                            "pickingStation": Attribute(_is_int, "a picking station id"),
+                                            "release": Attribute(_is_step, "a step (0 or more)")}, "orders"),
     _placed("destination", "destination", "destinations", "destinations", Destination),
     ObjectKind("grid", "grid", "grid", {"xsize": Attribute(_is_int, "an integer"),
                                         "ysize": Attribute(_is_int, "an integer")}),

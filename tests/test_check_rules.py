@@ -41,6 +41,12 @@ def _with_destinations(instance, *cells):
     return instance
 
 
+def _released(instance, step):
+    """``instance`` with order 1 released at ``step`` (an online scenario)."""
+    instance.orders[1].release = step
+    return instance
+
+
 def _without_shelf(instance, shelf):
     del instance.shelves[shelf]
     return instance
@@ -161,6 +167,13 @@ CASES = {
     "deliver lineClosed in C": (C, world("BP", products={1: {1: None}}, orders={1: ({1: None}, 1), 2: ({1: None}, 1)}),
                                 plan(*FETCH, (3, 1, "deliver", (1, 1)), (4, 1, "deliver", (2, 1))),
                                 ["err(deliver,lineClosed,(1,4))"]),
+    # released at step 3: known after step 3, so the delivery at step 3 comes too early
+    "deliver beforeRelease in A": (A, _released(deliveries(), 3), plan(*FETCH, (3, 1, "deliver", (1, 1, 1))),
+                                   ["err(deliver,beforeRelease,(1,3))"]),
+    "deliver beforeRelease in B": (B, _released(deliveries(None, None), 5), plan(*FETCH, (3, 1, "deliver", (1, 1))),
+                                   ["err(deliver,beforeRelease,(1,3))"]),
+    "deliver beforeRelease in C": (C, _released(deliveries(None, None), 3), plan(*FETCH, (3, 1, "deliver", (1, 1))),
+                                   ["err(deliver,beforeRelease,(1,3))"]),
     # the goal ---------------------------------------------------------------------------
     "goal unfilledOrder in A": (A, deliveries(order_units=2), plan(*FETCH, (3, 1, "deliver", (1, 1, 1))),
                                 ["err(goal,unfilledOrder,(1,1,1,3))"]),
@@ -174,6 +187,8 @@ CASES = {
 
 VALID = {
     "A": (A, deliveries(), plan(*FETCH, (3, 1, "deliver", (1, 1, 1)))),
+    "A, released at step 2, delivered at 3": (A, _released(deliveries(), 2),
+                                              plan(*FETCH, (3, 1, "deliver", (1, 1, 1)))),
     "A from two shelves": (A, world("BPB", products={1: {1: 1, 2: 1}}, orders={1: ({1: 2}, 1)}),
                            plan(*FETCH, (1, 2, "pickup"), (3, 1, "deliver", (1, 1, 1)), (4, 1, "W"), (5, 2, "W"),
                                 (6, 2, "deliver", (1, 1, 1)))),

@@ -7,7 +7,7 @@ from .descriptor import ReferenceEncoding
 #: then "goal")
 WORLD_RULES = ("world", "instance", "action", "state", "collision", "directions", "move")
 #: ... and those of the domains whose robots carry shelves
-CARRYING_RULES = (*WORLD_RULES, "pickup", "putdown", "deliver")
+CARRYING_RULES = (*WORLD_RULES, "pickup", "putdown", "deliver", "release")
 
 #: the object kinds and actions of the delivering domains A, B and C
 DELIVERING = frozenset({"node", "highway", "robot", "shelf", "pickingStation", "product", "order"})

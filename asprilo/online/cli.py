@@ -7,8 +7,10 @@ K steps: --replan K), within --budget seconds a call.  The world takes a step ev
 waiting steps are counted.  The run ends after --steps steps, or once every order is released
 and done.
 
-Release steps: --at STEP:ORDER[,ORDER...] (repeatable) or --every K (orders in id order, one
-every K steps from step 0); orders not named are known from the start.
+Release steps: the instance's own (init(object(order,O),value(release,Step)), SPEC.md), or
+--at STEP:ORDER[,ORDER...] (repeatable) or --every K (orders in id order, one every K steps
+from step 0) instead; orders not named are known from the start.  --scenario FILE writes the
+instance with the release steps used, so that `check FILE PLAN` checks them too.
 
 Output: the plan carried out (occurs/3 facts: stdout, or -o PLAN), the figures on stderr
 (throughput in lines and units per 100 steps beside the ceiling no planner can beat, order
@@ -29,13 +31,15 @@ import argparse
 import json
 import sys
 import threading
+from dataclasses import replace
 
 from asprilo.arguments import chosen_domain, domain_argument
 from asprilo.domain import detect_domain
 from asprilo.errors import InputError
 from asprilo.exits import INTERRUPTED, stopping_on_interrupt
+from asprilo.model import Instance
 from asprilo.reader import read_instance
-from asprilo.writer import check_output, format_plan, write_text
+from asprilo.writer import check_output, format_instance, format_plan, write_text
 
 from .ceiling import Ceiling, ceiling
 from .metrics import Metrics, measure
@@ -65,6 +69,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--domain", type=domain_argument, help="a|b|c|m|md (default: detected)")
     parser.add_argument("-o", "--output", metavar="PLAN", help="write the plan carried out here (default: stdout)")
     parser.add_argument("--record", metavar="FILE", help="write the run record (JSON) here")
+    parser.add_argument("--scenario", metavar="FILE", help="write the instance with the release steps used here")
     parser.add_argument("--json", action="store_true", help="the figures as JSON on stdout")
 
 
@@ -102,11 +107,11 @@ def run(args: argparse.Namespace) -> int:
     inputs = [args.instance]
     check_output(args.output, inputs)
     check_output(args.record, inputs)
+    check_output(args.scenario, inputs)
     instance = read_instance(args.instance)
     detected = detect_domain(instance)
     domain = chosen_domain(args, detected) or detected
-    releases = Schedule.every(instance, args.every).arrivals if args.every else \
-        Schedule(instance, parse_arrivals(args.at)).arrivals
+    releases = _releases(instance, args)
     cancel = threading.Event()
 
     def planner_for(seconds: float) -> Planner:
@@ -126,6 +131,9 @@ def run(args: argparse.Namespace) -> int:
     bound = ceiling(instance, domain, outcome.releases, outcome.steps)
     if args.output:
         write_text(args.output, format_plan(outcome.plan), inputs)
+    if args.scenario:
+        released = {o: replace(order, release=outcome.releases[o]) for o, order in instance.orders.items()}
+        write_text(args.scenario, format_instance(replace(instance, orders=released)), inputs)
     if args.record:
         write_text(args.record, json.dumps(record(outcome, metrics, bound), indent=2) + "\n", inputs)
     print("\n".join(summary(outcome, metrics, bound)), file=sys.stderr)
@@ -134,6 +142,15 @@ def run(args: argparse.Namespace) -> int:
     elif not args.output:
         sys.stdout.write(format_plan(outcome.plan))
     return INTERRUPTED if cancel.is_set() else 0
+
+
+def _releases(instance: Instance, args: argparse.Namespace) -> dict[int, int]:
+    """The release steps: --every or --at, else the instance's own (``value(release,Step)``)."""
+    if args.every:
+        return Schedule.every(instance, args.every).arrivals
+    if args.at:
+        return Schedule(instance, parse_arrivals(args.at)).arrivals
+    return {order.id: order.release for order in instance.orders.values()}
 
 
 def summary(outcome: OnlineRun, metrics: Metrics, bound: Ceiling | None) -> list[str]:

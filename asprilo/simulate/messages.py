@@ -282,6 +282,12 @@ def deliver_wrong_station(timeline, robot, step):
         {"robots": [robot], "cells": [cell] + ([target.at] if target else [])}
 
 
+def deliver_before_release(timeline, robot, step):
+    order = timeline.instance.orders[_delivery(timeline, robot, step)[0]]
+    return (f"{_delivers(timeline, robot, step)}, but order {order.id} is released at step {order.release}: "
+            f"it is known after that step only"), {"robots": [robot]}
+
+
 def deliver_not_on_shelf(timeline, robot, step):
     _order, product, _units, shelf = _delivery(timeline, robot, step)
     return f"{_delivers(timeline, robot, step)}, but its shelf {shelf} holds no product {product}", \
@@ -369,6 +375,7 @@ MESSAGES: dict[tuple[str, str], Describe] = {
     ("deliver", "notCarrying"): deliver_not_carrying,
     ("deliver", "unknownOrder"): deliver_unknown_order,
     ("deliver", "wrongStation"): deliver_wrong_station,
+    ("deliver", "beforeRelease"): deliver_before_release,
     ("deliver", "notOnShelf"): deliver_not_on_shelf,
     ("deliver", "orderAmount"): deliver_order_amount,
     ("deliver", "shelfAmount"): deliver_shelf_amount,

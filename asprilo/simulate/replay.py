@@ -256,6 +256,8 @@ class _ShelfReplay:
                           and self.station_cell.get(order.station) == self.positions.at(robot, step - 1))
             if not at_station:
                 report("deliver", "wrongStation", robot, step)
+            if step <= order.release:
+                report("deliver", "beforeRelease", robot, step)
             self._check_line(step, action)
         listed = shelf is not None and (shelf, action.args[1]) in self.now.stock
         if shelf is not None:

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 from asprilo.checker import check
 from asprilo.domain import Domain, detect_domain
+from asprilo.errors import InputError
 from asprilo.model import Instance
 from asprilo.reader import read_instance
 from asprilo.solver import Statistics
@@ -74,6 +75,7 @@ def request_for(instance: Instance | str | Path, domain: Domain | str | None = N
     checked."""
     if not isinstance(instance, Instance):
         instance = read_instance(instance)
+    _refuse_releases(instance)
     domain = detect_domain(instance) if domain is None else Domain.parse(domain)
     fields: dict[str, Any] = dict(options)  # the request's other fields, as given
     encoding = fields.pop("encoding", None)
@@ -92,6 +94,16 @@ def request_for(instance: Instance | str | Path, domain: Domain | str | None = N
         request = replace(request, encoding=default_encoding(domain) if encoding is None
                           else find_encoding(domain, encoding))
     return request
+
+
+def _refuse_releases(instance: Instance) -> None:
+    """An online scenario (orders released over time) is no offline problem: the searches
+    know no release steps, and their plans would deliver orders before they exist."""
+    released = sorted((order.release, order.id) for order in instance.orders.values() if order.release)
+    if released:
+        step, order = released[0]
+        raise InputError(f"the instance releases orders over time (order {order} at step {step}): run it with "
+                         "'asprilo online', or leave out its release facts to solve it offline")
 
 
 def solve_request(request: SolveRequest, listeners: Listeners | None = None,
