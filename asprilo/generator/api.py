@@ -16,6 +16,7 @@ from .config import GeneratorConfig, RunOptions
 from .options import DEFAULT_SEED
 from .pipeline import GenerationFailed, Generator
 from .plan import GenerationPlan, make_plan
+from .releases import release_orders
 from .sampling import derive_seed
 
 TOOL = "asprilo gen"
@@ -68,6 +69,9 @@ def generate_one(plan: GenerationPlan, seed: int, number: int = 1, command: str 
     generator = Generator(plan, instance_seed(seed, number), on_stage)
     instance = assemble(plan, generator.run())
     draw(instance, plan.attributes, instance_seed(seed, number))
+    if plan.releases is not None:
+        process, over, burst = plan.releases
+        release_orders(instance, process, over, burst, instance_seed(seed, number))
     header = header_lines(instance, command, seed, tool=TOOL)
     header.insert(3 if command is not None else 2, f"instance: {number}")
     stages = {r.stage: (r.rounds, r.seconds) for r in generator.reports.values() if r.rounds}

@@ -20,6 +20,8 @@ from asprilo.domain import Domain
 from asprilo.errors import InputError
 from asprilo.yamlfile import shown
 
+from .releases import PROCESSES
+
 #: The seed used when none is given (that of the original tool).
 DEFAULT_SEED = 123456789
 
@@ -39,6 +41,10 @@ def positive(value: float) -> str | None:
     if not value > 0:
         return f"must be positive, got {value}"
     return None if math.isfinite(value) else f"must be a finite number, got {value}"
+
+
+def one_of(choices: tuple[str, ...]) -> Check:
+    return lambda value: None if value in choices else f"must be one of {', '.join(choices)}, got {shown(value)}"
 
 
 def percentage(value: float) -> str | None:
@@ -152,6 +158,13 @@ OPTIONS: tuple[Option, ...] = (
        default=1),
     _o("--ol --order-lines", "ol", "int", "--olmin N --olmax N", ORDERS, "N"),
     _o("--oap --order-all-products", "order_all", "flag", "every product is ordered at least once", ORDERS),
+    _o("--release", "release", "str", "online scenarios: release the orders over time, steady (evenly spaced), "
+       "poisson (a Poisson process) or bursts (of --burst orders); each order gets value(release,Step)",
+       ORDERS, "PROCESS", checks=(one_of(PROCESSES),)),
+    _o("--release-over", "release_over", "int", "with --release: the steps the orders are released over "
+       "(default: twice the orders)", ORDERS, "STEPS", checks=SIZE),
+    _o("--burst", "burst", "int", "with --release bursts: orders per burst (default {default})", ORDERS, "N",
+       default=5, checks=SIZE),
     _o("--domain", "domain", "domain",
        "m: the M alignment (as many products as shelves, one unit of one product per shelf, as many "
        "orders as robots, one line of one unit each); a, b, c: no alignment (default a)", ORDERS, "D"),

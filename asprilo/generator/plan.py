@@ -63,6 +63,7 @@ class GenerationPlan:
     split: int | None           # objects per round (None: one round per stage)
     one_shot: bool
     attributes: tuple = ()      # (kind, attribute, least, most): drawn for every object (attributes.py)
+    releases: tuple | None = None  # (process, over, burst): the orders' release steps (releases.py)
 
     @property
     def partial_floor(self) -> bool:
@@ -129,7 +130,7 @@ def make_plan(config: GeneratorConfig) -> GenerationPlan:
         layout=floor.layout, width=floor.width, height=floor.height, nodes=floor.nodes, gap_size=floor.gap_size,
         zone_x=floor.zone_x, zone_y=floor.zone_y, border=floor.border, template=template,
         reachable=config.reachable, quantities=_with_quantities(config.domain, existing),
-        attributes=drawn, **objects, **solving, **stock, **lines)
+        attributes=drawn, releases=_releases(config, lines["order_total"]), **objects, **solving, **stock, **lines)
     _check_memory(plan)
     return plan
 
@@ -160,6 +161,17 @@ def _check_memory(plan: GenerationPlan) -> None:
         reachable = " with -R" if plan.reachable and plan.shelves else ""
         raise limits.exceeded("gen_mb", f"a floor of {plan.width:,}x{plan.height:,} cells{reachable} takes about "
                                         f"{needed:,} MB to generate")
+
+
+def _releases(c: GeneratorConfig, orders: int) -> tuple | None:
+    """``--release``: (process, over, burst); refused where it releases nothing."""
+    if c.release is None:
+        if c.release_over is not None:
+            raise InputError("--release-over: give --release too (steady, poisson or bursts)")
+        return None
+    if not orders:
+        raise InputError("--release: there are no orders to release (give -o)")
+    return c.release, c.release_over or 2 * orders, c.burst
 
 
 def _solving(c: GeneratorConfig) -> dict:
