@@ -25,8 +25,8 @@ class Limits:
     """Bounds on data (see the module docstring); the names are those of ``--limit``."""
 
     coordinate: int = 10_000  # largest |X| and |Y| of any cell, and grid xsize / ysize
-    facts: int = 2_000_000  # facts of an instance (grid nodes counted) or a plan, cells of a map
-    robot_steps: int = 1_000_000  # a plan's horizon times the robots of its instance; also the largest |T|
+    facts: int = 1_500_000  # facts of an instance (grid nodes counted) or a plan, cells of a map
+    robot_steps: int = 500_000  # a plan's horizon times the robots of its instance; also the largest |T|
     depth: int = 100  # nesting of terms: f(g(h(1))) has depth 3
     string_chars: int = 100_000  # characters of one string (as written, between its quotes)
     fact_chars: int = 1_000_000  # characters of one fact or #const, constants written out
@@ -41,8 +41,8 @@ class Limits:
     yaml_depth: int = 50  # nesting of lists and mappings in a YAML file
     pixels: int = 40_000_000  # pixels of an exported picture, or of one frame of an animation
     frames: int = 10_000  # frames of an exported animation
-    animation_pixels: int = 1_000_000_000  # pixels of all frames of an exported animation together
-    gen_cells: int = 1_000_000  # cells of a floor gen makes (-x times -y)
+    animation_pixels: int = 800_000_000  # pixels of all frames of an exported animation together
+    gen_cells: int = 700_000  # cells of a floor gen makes (-x times -y)
     gen_objects: int = 100_000  # the most gen makes of anything: -p, -r, -s, -P, -u, -o, the per-shelf/order counts
     gen_mb: int = 2_048  # memory (megabytes) gen may use to make one instance
     allow_rules: bool = False  # rules in data (never #include or #script)

@@ -59,6 +59,17 @@ def robot_steps_edge(folder: Path) -> tuple[list[str], str]:
     return ["check", "instance.lp", "plan.lp"], f"check: 1 robot x {steps:,} steps"
 
 
+def two_robot_steps_edge(folder: Path) -> tuple[list[str], str]:
+    """Two robots, each moving to and fro on a row of its own for ``robot-steps`` / 2 steps:
+    the same robot-steps as one robot, with twice the robots to keep apart at every step."""
+    steps = LIMITS.robot_steps // 2
+    robots = _robot() + "init(object(robot,2),value(at,(1,2))).\n"
+    (folder / "instance.lp").write_text(_node_facts(2, 2) + robots)
+    (folder / "plan.lp").write_text("".join(f"occurs(object(robot,{r}),action(move,({1 if t % 2 else -1},0)),{t}).\n"
+                                            for t in range(1, steps + 1) for r in (1, 2)))
+    return ["check", "instance.lp", "plan.lp"], f"check: 2 robots x {steps:,} steps"
+
+
 def file_mb_edge(folder: Path) -> tuple[list[str], str]:
     """A file of ``file-mb`` MB less a kilobyte: comments, then a small instance."""
     size = LIMITS.file_mb * 2**20 - 1024
@@ -114,6 +125,7 @@ def _pixels(images, width: int, height: int, cell: int, caption: bool) -> int:
 CASES: dict[str, tuple[str, Callable[[Path], tuple[list[str], str]]]] = {
     "facts": ("facts", facts_edge),
     "robot-steps": ("robot_steps", robot_steps_edge),
+    "robot-steps-2": ("robot_steps", two_robot_steps_edge),
     "file-mb": ("file_mb", file_mb_edge),
     "gen-cells": ("gen_cells", gen_cells_edge),
     "pixels": ("pixels", pixels_edge),

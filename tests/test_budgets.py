@@ -72,8 +72,8 @@ GEN_REFUSED = [
     (["-x", "4", "-y", "4", "-H", "-Y", "10001"], _beyond("coordinate", "10,000", "-Y 10,001")),
     (["-x", "4", "-y", "4", "-H", "-B", "10001"], _beyond("coordinate", "10,000", "-B 10,001")),
     # 2,000 x 1,000 = 2,000,000 cells (this hung at 2.9 GB before gen had budgets)
-    (["-x", "2000", "-y", "1000"], _beyond("gen-cells", "1,000,000", "-x 2,000 -y 1,000: a floor of 2,000,000 cells")),
-    (["-x", "1001", "-y", "1000"], _beyond("gen-cells", "1,000,000", "-x 1,001 -y 1,000: a floor of 1,001,000 cells")),
+    (["-x", "2000", "-y", "1000"], _beyond("gen-cells", "700,000", "-x 2,000 -y 1,000: a floor of 2,000,000 cells")),
+    (["-x", "1001", "-y", "1000"], _beyond("gen-cells", "700,000", "-x 1,001 -y 1,000: a floor of 1,001,000 cells")),
     *[(["-x", "4", "-y", "4", flag, "100001"], _beyond("gen-objects", "100,000", f"{flag} 100,001"))
       for flag in ("-n", "--gs", "-p", "-r", "-s", "-P", "-u", "-o", "--pusmin", "--pusmax", "--prsmin",
                    "--prsmax", "--sprmin", "--sprmax", "--olmin", "--olmax", "--split-threshold")],
@@ -160,7 +160,7 @@ def test_a_huge_floor_is_refused_under_a_hard_memory_cap(tmp_path):
     """gen -x 2000 -y 1000 once ground until it had 2.9 GB; now one line, in a fraction of
     a second, within 1 GB of address space (about 30 MB used)."""
     code, err, peak, _seconds = _capped(1024, ["gen", "-x", "2000", "-y", "1000", "-d", tmp_path / "out"])
-    assert (code, err) == (2, "error: " + _beyond("gen-cells", "1,000,000",
+    assert (code, err) == (2, "error: " + _beyond("gen-cells", "700,000",
                                                   "-x 2,000 -y 1,000: a floor of 2,000,000 cells") + "\n")
     assert peak < 300
 
@@ -208,7 +208,7 @@ YAML_REFUSED = {
                                           "per folder"),
     "bad-batch-control-key.yml": (4, "'\\x1b[2J' cannot name a directory"),
     "bad-batch-x-beyond.yml": (4, _beyond("coordinate", "10,000", "-x 20,000")),
-    "bad-batch-cells-beyond.yml": (4, _beyond("gen-cells", "1,000,000", "-x 2,000 -y 1,000: a floor of "
+    "bad-batch-cells-beyond.yml": (4, _beyond("gen-cells", "700,000", "-x 2,000 -y 1,000: a floor of "
                                                                       "2,000,000 cells")),
     "bad-batch-wait-inf.yml": (4, "-w must be a finite number, got inf"),
 }

@@ -38,7 +38,7 @@ def test_files_written_before_keep_their_g_cells(tmp_path):
 
 
 @pytest.mark.parametrize(("width", "height", "message"), [
-    (2000, 2000, "a map of 2,000x2,000 = 4,000,000 cells, beyond the limit facts=2,000,000 "
+    (2000, 2000, "a map of 2,000x2,000 = 4,000,000 cells, beyond the limit facts=1,500,000 "
                  "(raise it with --limit facts=N)"),
     (10001, 1, "a map 10,001 cells wide and 1 high, beyond the limit coordinate=10,000 "
                "(raise it with --limit coordinate=N)"),

@@ -139,7 +139,7 @@ def test_limits_are_named_and_can_be_raised(capsys, tmp_path):
     step = CORPUS / "bad-plan-step-1e7.lp"
     code, _out, err, _seconds = _run(capsys, ["check", BASE_INSTANCE, step])
     assert (code, err) == (2, f"error: {step}:1: an action at step 10,000,000, beyond the limit "
-                              "robot-steps=1,000,000 (raise it with --limit robot-steps=N)\n")
+                              "robot-steps=500,000 (raise it with --limit robot-steps=N)\n")
 
 
 def test_rules_when_allowed_are_grounded_under_time_and_memory_limits(capsys, tmp_path):
