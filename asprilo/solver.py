@@ -37,6 +37,7 @@ import clingo
 
 from . import clingo_logger
 from .errors import InputError
+from .paths import included_file, input_file, real
 
 if TYPE_CHECKING:
     import tempfile
@@ -123,14 +124,12 @@ def included_text(path: Path, seen: set[Path] | None = None) -> str | None:
         if not _INCLUDE.search(text):
             return None
         seen = set()
-    seen.add(path.resolve())
+    seen.add(real(path))
 
     def insert(match: re.Match) -> str:
-        target = (path.parent / match.group(1)).resolve()
+        target = real(included_file(match.group(1), path))
         if target in seen:
             return ""
-        if not target.is_file():
-            raise InputError(f"#include of a missing file {match.group(1)!r}", str(path))
         return included_text(target, seen) or ""
 
     return _INCLUDE.sub(insert, text)
@@ -204,9 +203,7 @@ class Solver:
         ``#include "file".`` is resolved here, next to the including file: clingo itself
         looks in the working directory first, where a user's own ``core.lp`` would win.
         """
-        path = Path(path)
-        if not path.is_file():
-            raise InputError("no such file" if not path.exists() else "is not a file", str(path))
+        path = input_file(path)
         loaded = self._loadable(path, {}, tuple(dropped))
         self.messages.clear()
         try:
@@ -225,7 +222,7 @@ class Solver:
         look in the working directory first), so that clingo still reads every file and names
         it in its messages; a copy is made for every included file that includes others (or
         one of the ``dropped`` system includes)."""
-        path = path.resolve()
+        path = real(path)
         if path in done:
             return done[path]
         original = path.read_text(encoding="utf-8")
@@ -243,9 +240,7 @@ class Solver:
         self._originals[str(copy)] = str(path)
 
         def absolute(match: re.Match) -> str:
-            target = (path.parent / match.group(1)).resolve()
-            if not target.is_file():
-                raise InputError(f"#include of a missing file {match.group(1)!r}", str(path))
+            target = real(included_file(match.group(1), path))
             return f'#include "{self._loadable(target, done, dropped)}".'
 
         copy.write_text(_INCLUDE.sub(absolute, text), encoding="utf-8")

@@ -17,6 +17,7 @@ from . import __version__
 from .errors import InputError
 from .facts import fact_groups, format_action, format_value
 from .model import Instance, Plan
+from .paths import real
 
 #: format_action and format_value are the tools' way to write single terms and actions
 __all__ = ["check_output", "format_action", "format_instance", "format_plan", "format_value", "header_lines",
@@ -114,7 +115,7 @@ def _same_file(target: Path, source: Path) -> bool:
     try:
         return os.path.samefile(target, source)
     except OSError:
-        return target.absolute() == source.absolute() or target.resolve() == source.resolve()
+        return target.absolute() == source.absolute() or real(target) == real(source)
 
 
 def _shown(path: Path) -> str:

@@ -32,14 +32,15 @@ from __future__ import annotations
 
 import json
 import os
-import re
 import sys
 import xml.etree.ElementTree as ElementTree
 from pathlib import Path
 from xml.sax.saxutils import quoteattr
 
 from asprilo import __version__
+from asprilo.encodings.program_scan import scan
 from asprilo.errors import InputError
+from asprilo.paths import problem, real
 from asprilo.writer import write_bytes, write_text
 
 from .btool_files import PARSER, SLURM, TEMPLATE
@@ -112,25 +113,23 @@ def export(suite: Suite, folder: str | Path, runner: Runner, jobs: int = 1) -> P
     return runscript
 
 
-#: ``#include "file".`` (not ``<incmode>``): the files an encoding includes, relative to it
-_INCLUDED = re.compile(r'#include\s*"([^"]*)"\s*\.')
-#: comments, which include nothing
-_COMMENT = re.compile(r"%\*.*?\*%|%[^\n]*", re.S)
-
-
 def _included(files: tuple[str, ...]) -> list[Path]:
     """The files of an encoding and those they include by relative paths (each once; an
-    absolute ``#include`` is found where it says, on the cluster too)."""
+    absolute ``#include`` is found where it says, on the cluster too; a file that cannot be
+    read is left out: the suite's check said so already)."""
     seen: list[Path] = []
-    stack = [Path(file).resolve() for file in reversed(files)]
+    stack = [real(file) for file in reversed(files)]
     while stack:
         file = stack.pop()
-        if file in seen or not file.is_file():
+        if file in seen or problem(file) is not None:
             continue
         seen.append(file)
-        text = _COMMENT.sub(" ", file.read_text(encoding="utf-8", errors="replace"))
-        stack += [(file.parent / name).resolve() for name in reversed(_INCLUDED.findall(text))
-                  if not Path(name).is_absolute()]
+        try:
+            includes = scan(file).includes
+        except InputError:
+            continue
+        stack += [real(file.parent / include.name) for include in reversed(includes)
+                  if not include.system and not Path(include.name).is_absolute()]
     return seen
 
 

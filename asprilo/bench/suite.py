@@ -68,6 +68,7 @@ from asprilo.encodings import Encoding, encoding_names
 from asprilo.encodings.own import own_encoding
 from asprilo.encodings.registry import default_encoding
 from asprilo.errors import InputError
+from asprilo.paths import real
 from asprilo.yamlfile import YamlList, YamlMapping, line_of, load_yaml, printable, shown
 
 from .files import existing_files, pattern_start
@@ -361,7 +362,7 @@ class _SuiteFile:
         names (its item of ``files``, or of ``stage``), the options (no file named), else ``files``."""
         if error.file is not None:
             for number, (path, line) in enumerate(files):
-                if Path(error.file).resolve() == path.resolve():
+                if real(error.file) == real(path):
                     return self.fail(f"{where}.{key}[{number}]", str(error), line)
             return self.fail(f"{where}.{key}", str(error), entry.line_of(key))
         if key == "stage":

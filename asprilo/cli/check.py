@@ -137,9 +137,12 @@ def _watched(args: argparse.Namespace, clingo_options: list[str]) -> Rerun:
         return checking
     from asprilo.encodings.choice import is_encoding_file
     from asprilo.encodings.own import program_files
+    from asprilo.paths import input_file
     from asprilo.writer import check_output
     encodings = [value for value in args.encoding if is_encoding_file(value)]
-    _require_files([args.instance, *encodings])
+    _require_files([args.instance])
+    for encoding in encodings:  # a folder, a FIFO, a loop of links: refused in words
+        input_file(encoding)
     check_output(args.plan, [args.instance, *program_files(encodings)])
     solver = EncodingSolve(Path(args.instance), None if args.plan is None else Path(args.plan), args.domain, shown,
                            args.encoding, args.const, clingo_options, args.horizon,

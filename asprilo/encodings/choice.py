@@ -5,6 +5,7 @@ own with ``-c NAME=VALUE`` constants and clingo's options -- the one reading tha
 
 from __future__ import annotations
 
+import os
 from collections.abc import Sequence
 from dataclasses import replace
 from pathlib import Path
@@ -61,10 +62,12 @@ def stage_encoding(files: Sequence[str | Path], constants: Sequence[tuple[str, s
 
 
 def is_encoding_file(value: str) -> bool:
-    """Whether ``--encoding VALUE`` names a file (a path, or a name with a suffix) rather
-    than a reference encoding."""
+    """Whether ``--encoding VALUE`` names a file (a path, a name with a suffix, or anything
+    there but a reference encoding's name: a folder or a FIFO is then refused as no file)
+    rather than a reference encoding."""
     path = Path(value)
-    return path.suffix != "" or len(path.parts) > 1 or path.is_file()
+    return (path.suffix != "" or len(path.parts) > 1 or path.is_file()
+            or (os.path.lexists(path) and value not in encoding_names()))
 
 
 def _constant(text: str) -> tuple[str, str]:

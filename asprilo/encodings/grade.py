@@ -58,6 +58,7 @@ from asprilo.arguments import (
 )
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
+from asprilo.paths import PathError
 from asprilo.reader import read_instance
 
 from .choice import choose_encoding, stage_encoding
@@ -299,7 +300,7 @@ def _reference(values: list[str] | None, domain: Domain, time_limit: float, memo
 def _in_encoding(error: InputError) -> bool:
     """Whether ``error`` is about what an encoding's files say (a syntax error, a missing
     #include: a grade), not about the command line (a file not there, an option)."""
-    return error.file is not None and error.message not in ("no such file", "is not a file")
+    return error.file is not None and not isinstance(error, PathError)
 
 
 def refused_encoding(values: list[str], summary: str = "refused by clingo") -> Encoding:

@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import TextIO
 
 from asprilo.errors import InputError
+from asprilo.paths import output_folder
 from asprilo.writer import format_instance, write_text
 
 from .api import Generated
@@ -51,6 +52,7 @@ def save(item: Generated, directory: str | Path, prefix: str = "", instance_dir:
 
 def check_output_folder(folder: str | Path, flag: str) -> None:
     """Refuse an output folder (given with ``flag``) that cannot be made or written to, before any work."""
+    output_folder(folder, flag)  # a file, a loop of links, a special file, a name that is not UTF-8
     folder = Path(folder)
     if folder.exists() and not folder.is_dir():
         raise InputError(f"is a file, not a folder ({flag} names the output folder)", str(folder))
