@@ -74,11 +74,13 @@ def earliest_steps(instance: Instance, domain: Domain, releases: dict[int, int])
     return earliest
 
 
-def ceiling(instance: Instance, domain: Domain, releases: dict[int, int], steps: int) -> Ceiling | None:
-    """The ceiling of a run of ``steps`` steps (``None`` for a domain without orders: Md)."""
+def ceiling(instance: Instance, domain: Domain, releases: dict[int, int], steps: int,
+            earliest: dict[Line, float] | None = None) -> Ceiling | None:
+    """The ceiling of a run of ``steps`` steps (``None`` for a domain without orders: Md);
+    ``earliest``: :func:`earliest_steps`, when found already."""
     if domain.goal is Goal.DESTINATIONS:
         return None
-    earliest = earliest_steps(instance, domain, releases)
+    earliest = earliest_steps(instance, domain, releases) if earliest is None else earliest
     if domain.goal is Goal.SHELVES or domain.delivery is Delivery.STATION:
         return Ceiling(steps, sum(step <= steps for step in earliest.values()))
     by_station: dict[int | None, list[float]] = defaultdict(list)

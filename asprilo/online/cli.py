@@ -10,7 +10,9 @@ and done.
 Release steps: the instance's own (init(object(order,O),value(release,Step)), SPEC.md), or
 --at STEP:ORDER[,ORDER...] (repeatable) or --every K (orders in id order, one every K steps
 from step 0) instead; orders not named are known from the start.  --scenario FILE writes the
-instance with the release steps used, so that `check FILE PLAN` checks them too.
+instance with the release steps used, so that `check FILE PLAN` checks them too.  With --live
+the plan file (-o) is rewritten every few steps while the run goes, so that the viewer follows
+it: viz SCENARIO PLAN (File > Reload on save, on by default).
 
 Output: the plan carried out (occurs/3 facts: stdout, or -o PLAN), the figures on stderr
 (throughput in lines and units per 100 steps beside the ceiling no planner can beat, order
@@ -34,21 +36,24 @@ import threading
 from dataclasses import replace
 
 from asprilo.arguments import chosen_domain, domain_argument
-from asprilo.domain import detect_domain
+from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
 from asprilo.exits import INTERRUPTED, stopping_on_interrupt
-from asprilo.model import Instance
+from asprilo.model import Instance, Plan
 from asprilo.reader import read_instance
 from asprilo.writer import check_output, format_instance, format_plan, write_text
 
 from .ceiling import Ceiling, ceiling
-from .metrics import Metrics, measure
+from .metrics import Metrics, counted, measure
 from .planner import Planner, Schedule, encodings_planner, parse_arrivals
 from .planning import FromScratch
+from .record import figures, record
 from .run import OnlineRun, run_online
 
 #: steps between two progress lines
 PROGRESS_EVERY = 100
+#: steps between two writes of the plan so far (--live)
+LIVE_EVERY = 5
 
 
 def configure(parser: argparse.ArgumentParser) -> None:
@@ -70,6 +75,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-o", "--output", metavar="PLAN", help="write the plan carried out here (default: stdout)")
     parser.add_argument("--record", metavar="FILE", help="write the run record (JSON) here")
     parser.add_argument("--scenario", metavar="FILE", help="write the instance with the release steps used here")
+    parser.add_argument("--live", action="store_true",
+                        help=f"with -o: write the plan so far every {LIVE_EVERY} steps, and --scenario before the "
+                             "run, so that viz SCENARIO PLAN follows the run (File > Reload on save)")
     parser.add_argument("--json", action="store_true", help="the figures as JSON on stdout")
 
 
@@ -104,14 +112,18 @@ def _replan(text: str) -> str | int:
 
 def run(args: argparse.Namespace) -> int:
     replan = _replan(args.replan)
+    if args.live and not args.output:
+        raise InputError("--live writes the plan as the run goes: give it a file with -o PLAN")
     inputs = [args.instance]
-    check_output(args.output, inputs)
-    check_output(args.record, inputs)
-    check_output(args.scenario, inputs)
+    for output in (args.output, args.record, args.scenario):
+        check_output(output, inputs)
     instance = read_instance(args.instance)
     detected = detect_domain(instance)
     domain = chosen_domain(args, detected) or detected
     releases = _releases(instance, args)
+    if args.scenario:
+        released = {o: replace(order, release=releases[o]) for o, order in instance.orders.items()}
+        write_text(args.scenario, format_instance(replace(instance, orders=released)), inputs)
     cancel = threading.Event()
 
     def planner_for(seconds: float) -> Planner:
@@ -119,21 +131,28 @@ def run(args: argparse.Namespace) -> int:
 
     def progress(step: int, so_far: OnlineRun) -> None:
         if step % PROGRESS_EVERY == 0:
-            print(f"step {step}: {len(so_far.calls)} planner calls, {len(so_far.waiting)} waiting steps",
+            print(f"step {step}: {counted(len(so_far.calls), 'planner call')}, "
+                  f"{counted(len(so_far.waiting), 'waiting step')}",
                   file=sys.stderr, flush=True)
+        if args.live and step % LIVE_EVERY == 0:
+            write_text(args.output, format_plan(Plan(list(so_far.carried))), inputs)
 
     with stopping_on_interrupt(cancel):
         outcome = run_online(instance, domain, FromScratch(instance, domain, planner_for), releases,
                              budget=args.budget, steps=args.steps, step_seconds=args.step_seconds, replan=replan,
                              cancel=cancel, on_step=progress)
+    _answer(args, instance, domain, outcome, inputs)
+    return INTERRUPTED if cancel.is_set() else 0
+
+
+def _answer(args: argparse.Namespace, instance: Instance, domain: Domain, outcome: OnlineRun,
+            inputs: list[str]) -> None:
+    """The plan carried out, the run record and the figures, where the command line asks."""
     metrics = measure(instance, outcome.plan, domain, outcome.releases, outcome.steps, outcome.calls,
                       len(outcome.waiting))
     bound = ceiling(instance, domain, outcome.releases, outcome.steps)
     if args.output:
         write_text(args.output, format_plan(outcome.plan), inputs)
-    if args.scenario:
-        released = {o: replace(order, release=outcome.releases[o]) for o, order in instance.orders.items()}
-        write_text(args.scenario, format_instance(replace(instance, orders=released)), inputs)
     if args.record:
         write_text(args.record, json.dumps(record(outcome, metrics, bound), indent=2) + "\n", inputs)
     print("\n".join(summary(outcome, metrics, bound)), file=sys.stderr)
@@ -141,7 +160,6 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps(figures(metrics, bound), indent=2))
     elif not args.output:
         sys.stdout.write(format_plan(outcome.plan))
-    return INTERRUPTED if cancel.is_set() else 0
 
 
 def _releases(instance: Instance, args: argparse.Namespace) -> dict[int, int]:
@@ -158,39 +176,15 @@ def summary(outcome: OnlineRun, metrics: Metrics, bound: Ceiling | None) -> list
     share = "" if bound is None or not bound.lines else f"; ceiling {bound.lines_per_100:.1f}: " \
         f"{100 * metrics.lines_done / bound.lines:.0f} % of it"
     latency = metrics.latency
-    lines = [f"online run: {outcome.steps} steps ({outcome.ended}); {metrics.calls} planner calls, "
-             f"{metrics.waiting_steps} waiting steps",
+    lines = [f"online run: {outcome.steps} steps ({outcome.ended}); {counted(metrics.calls, 'planner call')}, "
+             f"{counted(metrics.waiting_steps, 'waiting step')}",
              f"throughput: {metrics.lines_per_100:.1f} order lines per 100 steps{share}; "
              f"{metrics.units_per_100:.1f} units per 100 steps ({metrics.lines_done} of {metrics.lines} lines done)"]
     if latency.orders:
         lines.append(f"order latency: mean {latency.mean:.1f}, p95 {latency.p95}, max {latency.most} steps "
-                     f"({latency.orders} orders done, {metrics.orders_open} open)")
+                     f"({counted(latency.orders, 'order')} done, {metrics.orders_open} open)")
     else:
         lines.append(f"order latency: no order done ({metrics.orders_open} open)")
     if metrics.calls:
         lines.append(f"planner: {metrics.planner_mean:.2f} s a call on average, {metrics.planner_max:.2f} s at most")
     return lines
-
-
-def figures(metrics: Metrics, bound: Ceiling | None) -> dict:
-    """The figures as JSON values."""
-    latency = metrics.latency
-    return {"steps": metrics.steps, "lines": metrics.lines, "lines_done": metrics.lines_done,
-            "units_done": metrics.units_done, "orders_open": metrics.orders_open,
-            "lines_per_100": metrics.lines_per_100, "units_per_100": metrics.units_per_100,
-            "ceiling_lines": None if bound is None else bound.lines,
-            "ceiling_lines_per_100": None if bound is None else bound.lines_per_100,
-            "latency": {"orders": latency.orders, "mean": latency.mean, "p95": latency.p95, "max": latency.most},
-            "planner": {"calls": metrics.calls, "mean_seconds": metrics.planner_mean,
-                        "max_seconds": metrics.planner_max},
-            "waiting_steps": metrics.waiting_steps,
-            "windows": [{"first": w.first, "last": w.last, "lines": w.lines, "units": w.units}
-                        for w in metrics.windows]}
-
-
-def record(outcome: OnlineRun, metrics: Metrics, bound: Ceiling | None) -> dict:
-    """The run record: what ran, and its figures."""
-    return {"version": 1, "steps": outcome.steps, "ended": outcome.ended,
-            "releases": {str(order): step for order, step in sorted(outcome.releases.items())},
-            "calls": [{"step": call.step, "seconds": call.seconds, "found": call.found} for call in outcome.calls],
-            "waiting": outcome.waiting, "figures": figures(metrics, bound)}

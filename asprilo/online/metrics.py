@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from asprilo.domain import Domain
 from asprilo.model import Instance, Plan
 from asprilo.simulate import simulate
+from asprilo.simulate.timeline import Timeline
 
 #: the steps of one window of the throughput over time
 WINDOW = 100
@@ -94,10 +95,12 @@ class Metrics:
         return 100 * self.units_done / self.steps if self.steps else 0.0
 
 
-def deliveries(instance: Instance, plan: Plan, domain: Domain, steps: int) -> tuple[dict[Line, int], dict[int, int]]:
+def deliveries(instance: Instance, plan: Plan, domain: Domain, steps: int,
+               timeline: Timeline | None = None) -> tuple[dict[Line, int], dict[int, int]]:
     """When each order line was done (line -> step) and how many units were delivered at
-    each step (step -> units), over steps 1 .. ``steps`` of ``plan``."""
-    timeline = simulate(instance, plan, domain)
+    each step (step -> units), over steps 1 .. ``steps`` of ``plan`` (``timeline``: its
+    replay, when made already)."""
+    timeline = timeline or simulate(instance, plan, domain)
     done: dict[Line, int] = {}
     units: dict[int, int] = {}
     before = timeline.state(0).open_lines
@@ -131,7 +134,15 @@ def measure(instance: Instance, plan: Plan, domain: Domain, releases: dict[int, 
             calls: list[PlannerCall] = (), waiting_steps: int = 0, window: int = WINDOW) -> Metrics:
     """The figures of a run of ``steps`` steps that carried out ``plan`` on ``instance``,
     its orders released at ``releases`` (order -> step; an order not named: step 0)."""
-    done, units = deliveries(instance, plan, domain, steps)
+    return figures(instance, releases, deliveries(instance, plan, domain, steps), steps, calls, waiting_steps, window)
+
+
+def figures(instance: Instance, releases: dict[int, int], delivered: tuple[dict[Line, int], dict[int, int]],
+            steps: int, calls: list[PlannerCall] = (), waiting_steps: int = 0, window: int = WINDOW) -> Metrics:
+    """:func:`measure`'s figures from what :func:`deliveries` found (made once for a plan,
+    the figures after any step of it: the viewer's)."""
+    done = {line: step for line, step in delivered[0].items() if step <= steps}
+    units = {step: count for step, count in delivered[1].items() if step <= steps}
     released = [order for order in instance.orders if releases.get(order, 0) < steps]
     lines = [(order, product) for order in released for product in instance.orders[order].lines]
     latencies, open_orders = [], 0
@@ -150,3 +161,8 @@ def measure(instance: Instance, plan: Plan, domain: Domain, releases: dict[int, 
                    open_orders, Latency.of(latencies), len(seconds),
                    sum(seconds) / len(seconds) if seconds else None, max(seconds, default=None),
                    waiting_steps, windows)
+
+
+def counted(number: int, word: str) -> str:
+    """``1 call``, ``2 calls``: a count in words."""
+    return f"{number} {word}{'' if number == 1 else 's'}"

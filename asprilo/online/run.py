@@ -47,6 +47,7 @@ class OnlineRun:
     calls: list[PlannerCall] = field(default_factory=list)
     waiting: list[int] = field(default_factory=list)
     ended: str = ""
+    carried: list[Action] = field(default_factory=list)  # the actions carried out so far, while it runs
 
 
 @dataclass
@@ -87,7 +88,7 @@ def run_online(instance: Instance, domain: Domain, planner: OnlinePlanning,
     setting ``cancel`` ends the run after the step under way (what ran is kept)."""
     releases = {order: releases.get(order, 0) if releases else 0 for order in sorted(instance.orders)}
     world = _World(instance, domain, releases)
-    run = OnlineRun(Plan([]), releases, 0)
+    run = OnlineRun(Plan([]), releases, 0, carried=world.done)
     cancel = cancel or threading.Event()
     most = 16 * budget if most_budget is None else most_budget
     limit = MOST_STEPS if steps is None else steps

@@ -47,6 +47,8 @@ def configure(parser: argparse.ArgumentParser) -> None:
     add_variant_option(parser)
     parser.add_argument("--step", type=int, metavar="K",
                         help="show the state after step K (pictures: default 0, the initial state)")
+    parser.add_argument("--record", metavar="RUN.json",
+                        help="the run record of 'asprilo online --record': the Online panel shows its planner figures")
     group = parser.add_argument_group("export without a window")
     group.add_argument("--export", metavar="OUT",
                        help="write OUT and exit: .png, .jpg or .svg (one state), .gif or .mp4 (the whole plan); "
@@ -86,6 +88,10 @@ def strip_argument(text: str) -> tuple[int, int]:
 def run(args: argparse.Namespace) -> int:
     _check_options(args)
     check_output(args.export, args.files)  # before any work: a regular file, none of the inputs
+    args.run_record = None
+    if args.record:
+        from asprilo.online.record import read_record
+        args.run_record = read_record(args.record)
     if args.export:
         os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")  # never needs a screen
     else:
@@ -113,6 +119,9 @@ def _load_qt() -> None:
 
 
 def _check_options(args: argparse.Namespace) -> None:
+    if args.record and args.export:
+        raise InputError("--record shows a run record's figures in the window's Online panel; "
+                         "leave it out with --export")
     for option, value, least in (("--frames", args.frames, 1), ("--cell", args.cell, 1), ("--step", args.step, 0)):
         if value is not None and value < least:
             raise InputError(f"{option} must be at least {least}, got {value}")
@@ -190,6 +199,7 @@ def _show(args: argparse.Namespace, scenario) -> int:
     app = application()
     window = MainWindow()
     window.state.document.follow_variants(loaded_variants(args))
+    window.panels.online.set_record(args.run_record)
     sys.excepthook = report_exceptions_to(window)
     if scenario is not None:
         window.show_scenario(scenario)

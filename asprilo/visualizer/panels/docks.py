@@ -1,5 +1,5 @@
-"""The side panels in their docks: orders, inventory, robots, plan and violations, following
-the state's track, step and selection."""
+"""The side panels in their docks: orders, the online figures, inventory, robots, plan and
+violations, following the state's track, step and selection."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ from asprilo.simulate import Violation
 
 from ..state.viewer import ViewerState
 from .inventory import InventoryModel
+from .online_figures import OnlineFigures
 from .orders import OrdersModel
 from .plan_list import PlanModel
 from .robot_list import RobotsModel
@@ -35,6 +36,8 @@ class Panels(QObject):
         for name, (title, _hint) in PANELS.items():
             beside = {"inventory": "orders", "plan": "robots", "violations": "plan"}.get(name)
             self.add_dock(name, title, self.tables[name], self.docks[beside] if beside else None)
+        self.online = OnlineFigures()
+        self.add_dock("online", "Online", self.online, self.docks["orders"])
         self.docks["orders"].raise_()
         self.docks["robots"].raise_()
         self.tables["plan"].row_activated.connect(lambda action: state.seek(action.step))
@@ -65,12 +68,15 @@ class Panels(QObject):
         for panel in self.tables.values():
             panel.set_track(track)
             panel.show_step(self.state.step)
+        self.online.set_track(track)
+        self.online.show_step(self.state.step)
         self.docks["violations"].setWindowTitle(f"Violations ({len(track.violations)})" if track else "Violations")
         self._show_selection()
 
     def _show_step(self, step: int) -> None:
         for panel in self.tables.values():
             panel.show_step(step)
+        self.online.show_step(step)
         plan = self.tables["plan"]
         row = plan.model.first_row(step) if self.state.track else None
         if row is not None and self.docks["plan"].isVisible():

@@ -1,4 +1,5 @@
-"""The orders panel: per order line, units requested, delivered and still open."""
+"""The orders panel: per order line, units requested, delivered and still open; in an online
+scenario, lines of orders not yet released say when they come (and are greyed)."""
 
 from __future__ import annotations
 
@@ -11,6 +12,9 @@ from ..state.describe import units_text
 from ..state.track import Track
 from .tables import DONE, StepModel
 
+#: the background of lines whose order is not released yet
+TO_COME = QColor("#eeeeee")
+
 
 @dataclass(frozen=True)
 class OrderLine:
@@ -18,6 +22,7 @@ class OrderLine:
     station: int | None
     product: int
     requested: int | None
+    release: int = 0
 
 
 class OrdersModel(StepModel):
@@ -32,9 +37,13 @@ class OrdersModel(StepModel):
 
     def build_rows(self, track: Track) -> list[OrderLine]:
         self._finished = None
-        return [OrderLine(order.id, order.station, product, units)
+        return [OrderLine(order.id, order.station, product, units, order.release)
                 for order in sorted(track.instance.orders.values(), key=lambda o: o.id)
                 for product, units in sorted(order.lines.items())]
+
+    def to_come(self, row: OrderLine) -> bool:
+        """Whether the line's order is not released yet after the step shown (known after its release step)."""
+        return self.step < row.release
 
     def line_done(self, row: OrderLine) -> bool:
         return (row.order, row.product) not in self.track.state(self.step).open_lines
@@ -66,6 +75,8 @@ class OrdersModel(StepModel):
             return row.requested - missing
         if column == 5:
             return missing
+        if self.to_come(row):
+            return f"released at {row.release}"
         return "done" if self.line_done(row) else "open"
 
     def text(self, row: OrderLine, column: int) -> str:
@@ -81,6 +92,8 @@ class OrdersModel(StepModel):
         return super().text(row, column)
 
     def background(self, row: OrderLine) -> QColor | None:
+        if self.to_come(row):
+            return TO_COME
         if self.order_done(row.order):
             return DONE
         return DONE.lighter(104) if self.line_done(row) else None
