@@ -13,6 +13,11 @@
       the plots (cactus, time-by-robots, scatter-A-B) in each format of --plots; reads
       DIR/results.jsonl, or what `btool eval` printed (RESULTS.xml, written to
       RESULTS-report/)
+  asprilo bench online SUITE.yml [-o DIR] [--plots png,pdf]
+      run an online suite (scenarios x planners x budgets, asprilo/bench/online.py): each
+      an online run (asprilo online); DIR/online.jsonl, and DIR/report/: the table of
+      throughput beside its ceiling, latency, planner time and waiting steps (text,
+      LaTeX, CSV) and the throughput-over-time plot
   asprilo bench export-btool SUITE.yml DIR
       write a runscript, run templates and a result parser for potassco's
       benchmark-tool (btool 2.x), to run the suite on a cluster (benchmarks/README.md);
@@ -21,6 +26,7 @@
 Examples:
   asprilo bench benchmarks/smoke.yml -o out/smoke
   asprilo bench benchmarks/paper.yml -o out/paper --jobs 2 --time-limit 60
+  asprilo bench online benchmarks/online-small.yml -o out/online
 """
 
 from __future__ import annotations
@@ -89,6 +95,10 @@ def run(args: argparse.Namespace) -> int:
         if len(words) != 2:
             raise InputError("usage: asprilo bench report DIR")
         return _report(Path(words[1]), args)
+    if words[0] == "online":
+        if len(words) != 2:
+            raise InputError("usage: asprilo bench online SUITE.yml")
+        return _online(words[1], args)
     if words[0] == "export-btool":
         if len(words) != 3:
             raise InputError("usage: asprilo bench export-btool SUITE.yml DIR")
@@ -107,6 +117,20 @@ def run(args: argparse.Namespace) -> int:
                                                   "limits": limits, "encodings": _described(suite)}) + "\n")
     runner.run()
     return _report(folder, args)
+
+
+def _online(path: str, args: argparse.Namespace) -> int:
+    """An online suite: its runs, then the report (asprilo/bench/online.py)."""
+    from .online import load_online_suite, report_online, run_suite
+
+    suite = load_online_suite(path)
+    folder = Path(args.output or Path("out") / suite.name)
+    check_output_folder(folder, "-o")
+    folder.mkdir(parents=True, exist_ok=True)
+    records = run_suite(suite, folder)
+    for written in report_online(records, folder / "report", args.plots):
+        print(f"wrote {written}", file=sys.stderr)
+    return 0
 
 
 def _described(suite) -> dict[str, str]:

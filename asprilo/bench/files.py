@@ -50,18 +50,22 @@ def _below(path: Path, folder: Path) -> bool:
 
 
 def existing_files(suite: Suite, instance_set: InstanceSet) -> list[Path]:
-    """The files a ``files:`` set names, sorted; a pattern that matches no regular file is an
-    error.  Patterns walk folders only below the suite's folder (:func:`pattern_start`), and
-    ``**`` follows no symbolic link (as :meth:`pathlib.Path.glob` has it: :func:`glob.glob`
-    follows links back up for ever)."""
+    """The files a ``files:`` set names (:func:`matching_files`)."""
+    return matching_files(suite.path, instance_set.files, f"instances.{printable(instance_set.name)}")
+
+
+def matching_files(suite: Path, patterns: list[str], where: str) -> list[Path]:
+    """The files ``patterns`` of the suite file ``suite`` name (``where``: the key that lists
+    them, for messages), sorted; a pattern that matches no regular file is an error.  Patterns
+    walk folders only below the suite's folder (:func:`pattern_start`), and ``**`` follows no
+    symbolic link (as :meth:`pathlib.Path.glob` has it: :func:`glob.glob` follows links back
+    up for ever)."""
     found: list[Path] = []
-    folder = suite.path.parent
-    for pattern in instance_set.files:
+    for pattern in patterns:
         try:
-            start, rest = pattern_start(folder, pattern)
+            start, rest = pattern_start(suite.parent, pattern)
         except InputError as error:
-            raise InputError(f"instances.{printable(instance_set.name)}.files: {error.message}",
-                             str(suite.path)) from None
+            raise InputError(f"{where}.files: {error.message}", str(suite)) from None
         if not rest:
             matches = [start] if start.exists() else []
         else:
@@ -70,7 +74,6 @@ def existing_files(suite: Suite, instance_set: InstanceSet) -> list[Path]:
                               and (hidden or not any(part.startswith(".") for part in path.relative_to(start).parts))),
                              key=str)
         if not matches:
-            raise InputError(f"instances.{printable(instance_set.name)}: no file matches {shown(pattern)}",
-                             str(suite.path))
+            raise InputError(f"{where}: no file matches {shown(pattern)}", str(suite))
         found += matches
     return found

@@ -156,14 +156,14 @@ def plot(records: list[dict], folder: Path, set_order: list[str] | None = None,
         figure = scatter_figure(records, first, second)
         if figure is not None:
             figures.append((f"scatter-{first}-{second}", figure))
-    return [_save(figure, folder / f"{name}.{kind}") for name, figure in figures for kind in formats]
+    return [save(figure, folder / f"{name}.{kind}") for name, figure in figures for kind in formats]
 
 
 #: no dates in the files: the same results give the same files
 _METADATA = {"pdf": {"CreationDate": None}, "svg": {"Date": None}}
 
 
-def _save(figure, path: Path) -> Path:
+def save(figure, path: Path) -> Path:
     """Save a figure atomically (render to memory, then replace the file) in the format of
     its suffix."""
     from asprilo.writer import write_bytes
