@@ -51,7 +51,8 @@ DL_ATOMS = {"diff"}
 ICLINGO_PARTS = {"cumulative": "step", "volatile": "check"}
 INCREMENTAL_PARTS = {"step", "check", *ICLINGO_PARTS}
 
-#: the limits of the child process that reads an encoding (its style, its syntax)
+#: the limits of the child process that reads an encoding (its style, its syntax; the memory
+#: never above the default limit of a user's encoding, :func:`asprilo.memory.default_memory_mb`)
 READ_SECONDS = 60.0
 READ_MB = 2048
 
@@ -109,21 +110,23 @@ def own_encoding(paths: Sequence[str | Path], constants: Iterable[tuple[str, str
     constants = tuple((name, str(value)) for name, value in constants)
     check_options(options)
     from asprilo.isolation import run_isolated  # starting a child costs imports: only here
+    from asprilo.memory import default_memory_mb
 
+    memory = min(READ_MB, default_memory_mb())  # never above a limit this process has (ulimit -v)
     outcome = run_isolated(_read_encoding, (files, constants, tuple(options)), time_limit=READ_SECONDS,
-                           memory_mb=READ_MB)
+                           memory_mb=memory)
     if outcome.done:
         return outcome.value
     reading = outcome.messages[-1] if outcome.messages else files[0]
-    raise InputError(_failure(outcome.status, outcome.detail), shown(reading))
+    raise InputError(_failure(outcome.status, outcome.detail, memory), shown(reading))
 
 
-def _failure(status: str, detail: str) -> str:
-    """Why the child that read an encoding gave no answer, in words."""
+def _failure(status: str, detail: str, memory: int) -> str:
+    """Why the child that read an encoding (under ``memory`` MB) gave no answer, in words."""
     if status == "timeout":
         return f"clingo's parser took longer than {READ_SECONDS:g} s to read it"
     if status == "memout" and f"signal {signal.SIGSEGV.value}" not in detail:  # (a segfault is a crash)
-        return f"clingo's parser needed more than {READ_MB} MB to read it"
+        return f"clingo's parser needed more than {memory} MB to read it"
     return (f"clingo's parser crashed on it ({detail or 'no reason given'}); a term nested too deep, such as a "
             "long chain of operators, does that")
 
