@@ -68,4 +68,5 @@ def _line_start(text: str, line: int) -> int | None:
 
 def _code(line: str) -> str:
     """The line without its ``%`` comment (outside strings) and trailing blanks."""
-    return line[:_CODE.match(line).end()].rstrip()
+    match = _CODE.match(line)
+    return line[:match.end() if match else 0].rstrip()

@@ -193,9 +193,9 @@ class _Scanner:
     def _run(self, text: str, at: int, end: int, last: bool) -> int:
         """The end of the run of code, complete strings and line comments at ``at`` (copied); a
         run that reaches the end of the piece ends before a comment still open there."""
-        stop = _RUN.match(text, at).end()
+        stop = _matched(_RUN, text, at)
         if stop == end and not last:
-            stop = _LINE_CODE.match(text, max(at, text.rfind("\n", at, end) + 1)).end()
+            stop = _matched(_LINE_CODE, text, max(at, text.rfind("\n", at, end) + 1))
         if self.keep and stop > at:
             self._emit(_uncommented(text[at:stop]))
         return stop
@@ -325,6 +325,12 @@ def _uncommented(run: str) -> str:
     if '"' not in run:
         return _COMMENT.sub("", run)
     return _STRING_OR_COMMENT.sub(lambda match: match.group(1) or "", run)
+
+
+def _matched(pattern: re.Pattern[str], text: str, at: int) -> int:
+    """Where ``pattern`` (which may match nothing) matched at ``at`` ends."""
+    match = pattern.match(text, at)
+    return at if match is None else match.end()
 
 
 def _keyword(text: str, at: int, word: str) -> bool:
