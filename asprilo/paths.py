@@ -102,6 +102,8 @@ def output_folder(folder: str | Path, flag: str) -> None:
         raise PathError(f"has a name that is not UTF-8; choose another output folder ({flag})", name) from None
     try:
         mode = os.stat(folder).st_mode
+    except NotADirectoryError:  # a file on its way: the caller says which
+        return
     except FileNotFoundError:
         if os.path.islink(folder):
             raise PathError(f"is a dangling symbolic link, not a folder ({flag} names the output folder)",
