@@ -14,6 +14,7 @@ parses it; a chain of 20,000 is parsed, and grounding it ends the solver's child
 
 from __future__ import annotations
 
+import io
 import os
 import shutil
 import signal
@@ -192,3 +193,37 @@ def test_a_chain_of_20000_minus_signs_is_parsed_and_ends_the_solvers_child_only(
     code, out, err = _run(arguments(corpus / "minus-20k.lp", tmp_path), tmp_path,
                           interrupt_after=("no plan",) if command == "watch" else ())
     assert code == status and words in "\n" + out + err, out + err
+
+
+def test_a_watched_encoding_that_becomes_a_loop_of_links_is_said_and_the_watch_goes_on(tmp_path):
+    """(The watch ended with a RuntimeError traceback here.)"""
+    from asprilo.cli.reruns import EncodingSolve
+    from asprilo.cli.watching import watch
+
+    single = (ENCODINGS / "m-single.lp").read_text()
+    shutil.copy(ENCODINGS / "m-moves.lp", tmp_path / "m-moves.lp")
+    program = tmp_path / "mine.lp"
+    program.write_text(single)
+
+    def loop() -> None:
+        program.unlink()
+        program.symlink_to(program.name)
+
+    def mend() -> None:
+        program.unlink()
+        program.write_text(single)
+
+    actions = [loop, None, mend, None]  # a save, a quiet poll (the run), ...
+
+    def play(_seconds: float) -> None:
+        action = actions.pop(0)
+        if action is not None:
+            action()
+
+    out = io.StringIO()
+    rerun = EncodingSolve(M_TINY, None, None, 5, [str(program)], [], [], None, 60.0, out, io.StringIO())
+    watch(rerun.paths, rerun, wait=play, stop=lambda: not actions)
+    runs = [run.splitlines()[1:] for run in out.getvalue().split("--- ")[1:]]
+    valid = ["your encoding: single-shot with a horizon constant", "plan: horizon 4 (proven minimal), 4 actions",
+             "valid plan (domain M (detected), horizon 4)"]
+    assert runs == [valid, [f"error: {program}: is a loop of symbolic links"], valid], out.getvalue()
