@@ -129,7 +129,7 @@ def _order_facts(instance: Instance) -> list[str]:
                   for product, units in sorted(order.lines.items())]
         if order.station is not None:
             facts.append(init_fact("order", i, "pickingStation", order.station))
-        if order.release:
+        if order.release is not None:
             facts.append(init_fact("order", i, "release", order.release))
     return facts
 

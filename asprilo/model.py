@@ -57,12 +57,13 @@ class Product:
 @dataclass
 class Order:
     """An order: product id -> requested units (``None``: no quantity), its station, and the
-    step it is released at (online scenarios: known after that step; 0: from the start)."""
+    step it is released at (online scenarios: known after that step; ``None``: an offline
+    order, known from the start and fulfilled at the horizon)."""
 
     id: int
     lines: dict[int, int | None] = field(default_factory=dict)
     station: int | None = None
-    release: int = 0
+    release: int | None = None
 
 
 @dataclass

@@ -181,6 +181,10 @@ CASES = {
     "goal unfilledOrder in C": (C, deliveries(None, None), plan(*FETCH), ["err(goal,unfilledOrder,(1,1,1,2))"]),
     "goal unfilledOrder in M": (M, world("R.S", products={1: {1: 1}}, orders={1: ({1: 1}, None)}),
                                 plan((1, 1, "E")), ["err(goal,unfilledOrder,(1,1,1,1))"]),
+    # M online (released at step 2): the robot under the shelf at step 2, not after the release
+    "goal unfilledOrder in M, reached only at the release": (
+        M, _released(world("R.S", products={1: {1: 1}}, orders={1: ({1: 1}, None)}), 2),
+        plan(*walk(1, "EE"), (3, 1, "W")), ["err(goal,unfilledOrder,(1,1,1,3))"]),
     "goal unoccupiedDestination": (MD, world("R.D"), plan((1, 1, "E")),
                                    ["err(goal,unoccupiedDestination,(1,1))"]),
 }
@@ -198,6 +202,9 @@ VALID = {
         plan(*FETCH, (3, 1, "deliver", (2, 2)))),
     "M, a robot under the shelf": (M, world("R.S", products={1: {1: 1}}, orders={1: ({1: 1}, None)}),
                                    plan(*walk(1, "EE"))),
+    "M online, a goal once reached stays reached": (M, _released(world("R.S", products={1: {1: 1}},
+                                                                       orders={1: ({1: 1}, None)}), 1),
+                                                    plan(*walk(1, "EE"), (3, 1, "W"))),
     "Md": (MD, world("R.D"), plan(*walk(1, "EE"))),
     "a robot drives under a resting shelf": (A, world("RS"), plan((1, 1, "E"), (2, 1, "W"))),
 }

@@ -24,10 +24,13 @@ TOO_EARLY = ("occurs(object(robot,1),action(move,(-1,0)),1). occurs(object(robot
 
 def test_a_release_step_is_read_and_written_back():
     instance = read_instance(Source("scenario.lp", SCENARIO))
-    assert [(order.id, order.release) for order in instance.orders.values()] == [(1, 0), (2, 4)]
+    # order 1 states no release step: an offline order (None), written back without one
+    assert [(order.id, order.release) for order in instance.orders.values()] == [(1, None), (2, 4)]
     text = format_instance(instance)
-    assert "init(object(order,2),value(release,4))." in text and "value(release,0)" not in text
+    assert "init(object(order,2),value(release,4))." in text and "order,1),value(release" not in text
     assert read_instance(Source("again.lp", text)).orders == instance.orders
+    instance.orders[1].release = 0  # released at step 0 (an online order from the start): said
+    assert "init(object(order,1),value(release,0))." in format_instance(instance)
 
 
 @pytest.mark.parametrize(("fact", "words"), [

@@ -113,7 +113,7 @@ def run_suite(suite: OnlineSuite, folder: Path) -> list[dict]:
     from asprilo.online.planner import Schedule, encodings_planner
     from asprilo.online.planning import FromScratch
     from asprilo.online.record import figures
-    from asprilo.online.run import run_online
+    from asprilo.online.run import run_online, scenario_of
 
     records = []
     runs = suite.runs()
@@ -121,7 +121,8 @@ def run_suite(suite: OnlineSuite, folder: Path) -> list[dict]:
         instance = read_instance(str(scenario))
         domain = detect_domain(instance)
         releases = Schedule.every(instance, suite.every).arrivals if suite.every else \
-            {order.id: order.release for order in instance.orders.values()}
+            {order.id: order.release or 0 for order in instance.orders.values()}
+        instance = scenario_of(instance, releases)
 
         def planner_for(seconds: float, method: str = planner):
             return encodings_planner(time_limit=seconds, method=method)

@@ -33,7 +33,6 @@ import argparse
 import json
 import sys
 import threading
-from dataclasses import replace
 
 from asprilo.arguments import chosen_domain, domain_argument
 from asprilo.domain import Domain, detect_domain
@@ -48,7 +47,7 @@ from .metrics import Metrics, counted, measure
 from .planner import Planner, Schedule, encodings_planner, parse_arrivals
 from .planning import FromScratch
 from .record import figures, record
-from .run import OnlineRun, run_online
+from .run import OnlineRun, run_online, scenario_of
 
 #: steps between two progress lines
 PROGRESS_EVERY = 100
@@ -121,9 +120,9 @@ def run(args: argparse.Namespace) -> int:
     detected = detect_domain(instance)
     domain = chosen_domain(args, detected) or detected
     releases = _releases(instance, args)
+    instance = scenario_of(instance, releases)
     if args.scenario:
-        released = {o: replace(order, release=releases[o]) for o, order in instance.orders.items()}
-        write_text(args.scenario, format_instance(replace(instance, orders=released)), inputs)
+        write_text(args.scenario, format_instance(instance), inputs)
     cancel = threading.Event()
 
     def planner_for(seconds: float) -> Planner:
@@ -168,7 +167,7 @@ def _releases(instance: Instance, args: argparse.Namespace) -> dict[int, int]:
         return Schedule.every(instance, args.every).arrivals
     if args.at:
         return Schedule(instance, parse_arrivals(args.at)).arrivals
-    return {order.id: order.release for order in instance.orders.values()}
+    return {order.id: order.release or 0 for order in instance.orders.values()}
 
 
 def summary(outcome: OnlineRun, metrics: Metrics, bound: Ceiling | None) -> list[str]:

@@ -65,8 +65,8 @@ class _World:
         return [order for o, order in sorted(self.instance.orders.items()) if self.releases[o] == step]
 
     def finished(self, step: int) -> bool:
-        """Every order known after ``step`` is done (M, Md: the plan carried out to its end)."""
-        if self.domain.goal is not Goal.LINES:
+        """Every order known after ``step`` is done (Md: the plan carried out to its end)."""
+        if self.domain.goal is Goal.DESTINATIONS:
             return not self.ahead_after(step)
         known = replace(self.instance, orders={o: order for o, order in self.instance.orders.items()
                                                if self.releases[o] <= step})
@@ -74,6 +74,14 @@ class _World:
 
     def ahead_after(self, step: int) -> bool:
         return any(t > step and actions for t, actions in self.ahead.items())
+
+
+def scenario_of(instance: Instance, releases: dict[int, int]) -> Instance:
+    """``instance`` as an online scenario: every order with its release step (an order not
+    named: step 0), so that the simulator and the checker judge it as released (in M, a goal
+    once reached stays reached)."""
+    return replace(instance, orders={o: replace(order, release=releases.get(o, 0))
+                                     for o, order in instance.orders.items()})
 
 
 def run_online(instance: Instance, domain: Domain, planner: OnlinePlanning,
@@ -87,7 +95,7 @@ def run_online(instance: Instance, domain: Domain, planner: OnlinePlanning,
     ``most_budget``: by default 16 times ``budget``; ``on_step(step, run)`` after every step;
     setting ``cancel`` ends the run after the step under way (what ran is kept)."""
     releases = {order: releases.get(order, 0) if releases else 0 for order in sorted(instance.orders)}
-    world = _World(instance, domain, releases)
+    world = _World(scenario_of(instance, releases), domain, releases)
     run = OnlineRun(Plan([]), releases, 0, carried=world.done)
     cancel = cancel or threading.Event()
     most = 16 * budget if most_budget is None else most_budget

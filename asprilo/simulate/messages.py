@@ -319,6 +319,10 @@ def deliver_line_closed(timeline, robot, step):
 
 def goal_unfilled_order(timeline, order, product, missing, _step):
     if timeline.domain.goal is Goal.SHELVES:
+        release = timeline.instance.orders[order].release if order in timeline.instance.orders else None
+        if release is not None:
+            return f"order {order} is not fulfilled: no robot came under a shelf holding product {product} " \
+                   f"after its release (step {release})", {}
         return f"order {order} is not fulfilled: no robot stands under a shelf holding product " \
                f"{product}", {}
     if timeline.domain.counts_units:

@@ -149,7 +149,8 @@ class _ShelfReplay:
         products = instance.products
         mapf_lines = {line: [s for s in products[line[1]].stock if s in start.shelves]
                       if line[1] in products else [] for line in self.now.lines}
-        self.history = History(domain, positions, self.now, mapf_lines)
+        releases = {order.id: order.release for order in instance.orders.values() if order.release is not None}
+        self.history = History(domain, positions, self.now, mapf_lines, releases)
 
     def _initial_stock(self) -> dict[Stock, int | None]:
         counts = self.domain.counts_units
@@ -256,7 +257,7 @@ class _ShelfReplay:
                           and self.station_cell.get(order.station) == self.positions.at(robot, step - 1))
             if not at_station:
                 report("deliver", "wrongStation", robot, step)
-            if step <= order.release:
+            if order.release is not None and step <= order.release:
                 report("deliver", "beforeRelease", robot, step)
             self._check_line(step, action)
         listed = shelf is not None and (shelf, action.args[1]) in self.now.stock

@@ -120,11 +120,13 @@ class History:
     """
 
     def __init__(self, domain: Domain, positions: Positions, start: Snapshot,
-                 mapf_lines: dict[Line, list[int]]):
+                 mapf_lines: dict[Line, list[int]], releases: dict[int, int] | None = None):
         self.domain = domain
         self.positions = positions
         self.horizon = positions.horizon
         self.mapf_lines = mapf_lines  # M: line -> shelves holding its product
+        self.releases = releases or {}  # online orders -> their release steps
+        self._served: dict[Line, int] | None = None  # M: an online line -> the step it was served at
         self.every = max(64, self.horizon // 32)
         self._checkpoints = [start.copy(0)]  # after steps 0, every, 2 * every, ...
         self._changes: dict[int, Changes] = {}  # step -> what it changed besides positions
@@ -172,9 +174,26 @@ class History:
             return {line: units for line, units in snapshot.lines.items() if units is not None and units > 0}
         if self.domain.goal is Goal.SHELVES:
             occupied = set(robots.values())
+            served = self.served(shelves) if self.releases else {}
             return {line: units for line, units in snapshot.lines.items()
-                    if not any(shelves.get(shelf) in occupied for shelf in self.mapf_lines[line])}
+                    if (served.get(line, self.horizon + 1) > snapshot.step if line[0] in self.releases else
+                        not any(shelves.get(shelf) in occupied for shelf in self.mapf_lines[line]))}
         return dict(snapshot.lines)
+
+    def served(self, shelves: dict[int, Cell]) -> dict[Line, int]:
+        """M, online orders: the first step after its order's release at which some robot stands
+        under a shelf holding a line's product (a line served then stays served: lifelong
+        goals); lines never served are missing.  Found once (M's shelves never move)."""
+        if self._served is None:
+            cells = {line: {shelves[shelf] for shelf in self.mapf_lines[line] if shelf in shelves}
+                     for line in self.mapf_lines if line[0] in self.releases}
+            self._served = {}
+            for step in range(1, self.horizon + 1):
+                occupied = {tuple(cell) for cell in self.positions.table[step].tolist()}
+                for line, targets in cells.items():
+                    if line not in self._served and step > self.releases[line[0]] and targets & occupied:
+                        self._served[line] = step
+        return self._served
 
 
 class Timeline:

@@ -99,7 +99,7 @@ def request_for(instance: Instance | str | Path, domain: Domain | str | None = N
 def _refuse_releases(instance: Instance) -> None:
     """An online scenario (orders released over time) is no offline problem: the searches
     know no release steps, and their plans would deliver orders before they exist."""
-    released = sorted((order.release, order.id) for order in instance.orders.values() if order.release)
+    released = sorted((order.release, order.id) for order in instance.orders.values() if order.release is not None)
     if released:
         step, order = released[0]
         raise InputError(f"the instance releases orders over time (order {order} at step {step}): run it with "

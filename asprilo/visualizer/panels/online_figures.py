@@ -44,7 +44,7 @@ class OnlineFigures(QLabel):
         self.track = track
         if track is not None:
             self.delivered = deliveries(track.instance, track.plan, track.domain, track.horizon, track.timeline)
-            releases = {order.id: order.release for order in track.instance.orders.values()}
+            releases = {order.id: order.release or 0 for order in track.instance.orders.values()}
             self.earliest = {} if track.domain.goal is Goal.DESTINATIONS else \
                 earliest_steps(track.instance, track.domain, releases)
 
@@ -53,7 +53,7 @@ class OnlineFigures(QLabel):
         if track is None:
             self.setText("no warehouse")
             return
-        releases = {order.id: order.release for order in track.instance.orders.values()}
+        releases = {order.id: order.release or 0 for order in track.instance.orders.values()}
         released = sorted(set(releases.values()))
         calls, waiting = self._planner(step)
         shown = figures(track.instance, releases, self.delivered, step, calls, waiting) if step else None

@@ -37,7 +37,7 @@ class OrdersModel(StepModel):
 
     def build_rows(self, track: Track) -> list[OrderLine]:
         self._finished = None
-        return [OrderLine(order.id, order.station, product, units, order.release)
+        return [OrderLine(order.id, order.station, product, units, order.release or 0)
                 for order in sorted(track.instance.orders.values(), key=lambda o: o.id)
                 for product, units in sorted(order.lines.items())]
 
