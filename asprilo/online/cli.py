@@ -25,6 +25,7 @@ Examples:
   asprilo online instance.lp --every 4
   asprilo online instance.lp --at 3:2 --at 8:3,4 --planner asp -o run.lp
   asprilo online instance.lp --every 2 --steps 1000 --budget 1 --record run.json --json
+  asprilo online m-instance.lp --every 2 --planner multishot [--encoding my-online.lp]
 """
 
 from __future__ import annotations
@@ -44,6 +45,7 @@ from asprilo.writer import check_output, format_instance, format_plan, write_tex
 
 from .ceiling import Ceiling, ceiling
 from .metrics import Metrics, counted, measure
+from .multishot import MultiShot
 from .planner import Planner, Schedule, encodings_planner, parse_arrivals
 from .planning import FromScratch
 from .record import figures, record
@@ -62,8 +64,11 @@ def configure(parser: argparse.ArgumentParser) -> None:
                           help="release these orders at STEP (repeatable)")
     released.add_argument("--every", type=_positive, metavar="K", help="release one order every K steps, in id order")
     parser.add_argument("--steps", type=_positive, metavar="N", help="run N steps (default: until every order is done)")
-    parser.add_argument("--planner", choices=("anytime", "asp"), default="anytime",
-                        help="anytime: the anytime planner (default); asp: the exact search from scratch")
+    parser.add_argument("--planner", choices=("anytime", "asp", "multishot"), default="anytime",
+                        help="anytime: the anytime planner (default); asp: the exact search from scratch; "
+                             "multishot: one clingo Control for the whole run (domain M, docs/ONLINE.md)")
+    parser.add_argument("--encoding", nargs="+", metavar="FILE",
+                        help="with --planner multishot: your own online encoding (default: the reference one)")
     parser.add_argument("--budget", type=_seconds, default=1.0, metavar="S",
                         help="seconds a planner call may take (default 1)")
     parser.add_argument("--step-seconds", type=_seconds, default=1.0, metavar="D",
@@ -124,6 +129,8 @@ def run(args: argparse.Namespace) -> int:
     if args.scenario:
         write_text(args.scenario, format_instance(instance), inputs)
     cancel = threading.Event()
+    if args.encoding and args.planner != "multishot":
+        raise InputError("--encoding goes with --planner multishot")
 
     def planner_for(seconds: float) -> Planner:
         return encodings_planner(time_limit=seconds, method=args.planner)
@@ -136,8 +143,10 @@ def run(args: argparse.Namespace) -> int:
         if args.live and step % LIVE_EVERY == 0:
             write_text(args.output, format_plan(Plan(list(so_far.carried))), inputs)
 
+    planner = MultiShot(instance, domain, args.encoding or ()) if args.planner == "multishot" else \
+        FromScratch(instance, domain, planner_for)
     with stopping_on_interrupt(cancel):
-        outcome = run_online(instance, domain, FromScratch(instance, domain, planner_for), releases,
+        outcome = run_online(instance, domain, planner, releases,
                              budget=args.budget, steps=args.steps, step_seconds=args.step_seconds, replan=replan,
                              cancel=cancel, on_step=progress)
     _answer(args, instance, domain, outcome, inputs)
