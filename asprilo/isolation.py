@@ -412,10 +412,15 @@ def _died(process, messages: list[Any]) -> Isolated:
     return Isolated("crashed", messages=messages, detail=detail)
 
 
+#: how a child that ran out of its address space ends: C++ code that cannot allocate aborts
+#: (std::bad_alloc: SIGABRT).  Other signals are crashes of their own: a SIGSEGV (a term nested
+#: too deep overflows clingo's parser's stack), a SIGKILL from outside.
+_OUT_OF_MEMORY = f"killed by signal {signal.SIGABRT.value}"
+
+
 def _blame_memory(outcome: Isolated, memory_mb: int | None) -> Isolated:
-    """A child under a memory limit that died of a signal ran out of memory: C++ code that
-    cannot allocate aborts (std::bad_alloc) instead of raising MemoryError."""
-    if memory_mb and outcome.status == "crashed" and outcome.detail.startswith("killed by signal"):
+    """A child under a memory limit that aborted ran out of memory (:data:`_OUT_OF_MEMORY`)."""
+    if memory_mb and outcome.status == "crashed" and outcome.detail.split(":")[0] == _OUT_OF_MEMORY:
         outcome.status = "memout"
     return outcome
 
