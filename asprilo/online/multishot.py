@@ -64,7 +64,12 @@ class MultiShot:
         self.most_lookahead, self.clock = most_lookahead, clock
         self.control = clingo.Control(["--warn=none", "--heuristic=Domain", *arguments])
         for path in encoding or (str(REFERENCE),):
-            self.control.load(path)
+            if not Path(path).is_file():
+                raise InputError(f"{path}: no such encoding file")
+            try:
+                self.control.load(path)
+            except RuntimeError as error:
+                raise InputError(f"{path}: clingo cannot read it ({error})") from None
         self.control.add("base", [], " ".join(instance_facts(replace(instance, orders={}))))
         self.control.ground([("base", [])])
         self.lookahead = 0                 # steps after now grounded
