@@ -6,6 +6,7 @@ wildcards."""
 from __future__ import annotations
 
 import re
+from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -54,7 +55,7 @@ def existing_files(suite: Suite, instance_set: InstanceSet) -> list[Path]:
     return matching_files(suite.path, instance_set.files, f"instances.{printable(instance_set.name)}")
 
 
-def matching_files(suite: Path, patterns: list[str], where: str) -> list[Path]:
+def matching_files(suite: Path, patterns: Sequence[str], where: str) -> list[Path]:
     """The files ``patterns`` of the suite file ``suite`` name (``where``: the key that lists
     them, for messages), sorted; a pattern that matches no regular file is an error.  Patterns
     walk folders only below the suite's folder (:func:`pattern_start`), and ``**`` follows no

@@ -7,7 +7,9 @@ options involved (:class:`~asprilo.errors.InputError`).  The floor is worked out
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 from asprilo.domain import DEFAULT, Domain
 from asprilo.errors import InputError
@@ -130,7 +132,7 @@ def make_plan(config: GeneratorConfig) -> GenerationPlan:
         layout=floor.layout, width=floor.width, height=floor.height, nodes=floor.nodes, gap_size=floor.gap_size,
         zone_x=floor.zone_x, zone_y=floor.zone_y, border=floor.border, template=template,
         reachable=config.reachable, quantities=_with_quantities(config.domain, existing),
-        attributes=drawn, releases=_releases(config, lines["order_total"]), **objects, **solving, **stock, **lines)
+        attributes=drawn, releases=_releases(given, lines["order_total"]), **objects, **solving, **stock, **lines)
     _check_memory(plan)
     return plan
 
@@ -163,15 +165,16 @@ def _check_memory(plan: GenerationPlan) -> None:
                                         f"{needed:,} MB to generate")
 
 
-def _releases(c: GeneratorConfig, orders: int) -> tuple | None:
-    """``--release``: (process, over, burst); refused where it releases nothing."""
-    if c.release is None:
-        if c.release_over is not None:
+def _releases(given: Mapping[str, Any], orders: int) -> tuple | None:
+    """``--release`` (of a config's fields by name): (process, over, burst); refused where it
+    releases nothing."""
+    if given["release"] is None:
+        if given["release_over"] is not None:
             raise InputError("--release-over: give --release too (steady, poisson or bursts)")
         return None
     if not orders:
         raise InputError("--release: there are no orders to release (give -o)")
-    return c.release, c.release_over or 2 * orders, c.burst
+    return given["release"], given["release_over"] or 2 * orders, given["burst"]
 
 
 def _solving(c: GeneratorConfig) -> dict:

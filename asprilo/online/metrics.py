@@ -19,6 +19,7 @@ delivery closes it (B, C); a unit counts at the step it is delivered.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 from asprilo.domain import Domain
@@ -131,14 +132,14 @@ def _units(missing: int | None, instance: Instance, line: Line) -> int:
 
 
 def measure(instance: Instance, plan: Plan, domain: Domain, releases: dict[int, int], steps: int,
-            calls: list[PlannerCall] = (), waiting_steps: int = 0, window: int = WINDOW) -> Metrics:
+            calls: Sequence[PlannerCall] = (), waiting_steps: int = 0, window: int = WINDOW) -> Metrics:
     """The figures of a run of ``steps`` steps that carried out ``plan`` on ``instance``,
     its orders released at ``releases`` (order -> step; an order not named: step 0)."""
     return figures(instance, releases, deliveries(instance, plan, domain, steps), steps, calls, waiting_steps, window)
 
 
 def figures(instance: Instance, releases: dict[int, int], delivered: tuple[dict[Line, int], dict[int, int]],
-            steps: int, calls: list[PlannerCall] = (), waiting_steps: int = 0, window: int = WINDOW) -> Metrics:
+            steps: int, calls: Sequence[PlannerCall] = (), waiting_steps: int = 0, window: int = WINDOW) -> Metrics:
     """:func:`measure`'s figures from what :func:`deliveries` found (made once for a plan,
     the figures after any step of it: the viewer's)."""
     done = {line: step for line, step in delivered[0].items() if step <= steps}
@@ -147,8 +148,8 @@ def figures(instance: Instance, releases: dict[int, int], delivered: tuple[dict[
     lines = [(order, product) for order in released for product in instance.orders[order].lines]
     latencies, open_orders = [], 0
     for order in released:
-        finished = [done.get((order, product)) for product in instance.orders[order].lines]
-        if finished and all(step is not None for step in finished):
+        finished = [done[(order, product)] for product in instance.orders[order].lines if (order, product) in done]
+        if finished and len(finished) == len(instance.orders[order].lines):
             latencies.append(max(finished) - releases.get(order, 0))
         else:
             open_orders += 1

@@ -126,7 +126,7 @@ def run_online(instance: Instance, domain: Domain, planner: OnlinePlanning,
             if world.finished(step):
                 run.ended = "every order is done"
                 break
-            if seconds > most and all(release <= planned_at for release in releases.values()):
+            if seconds > most and planned_at is not None and all(r <= planned_at for r in releases.values()):
                 run.ended = f"the planner found no plan for what is left within {most:g} s"
                 break
     else:
