@@ -43,7 +43,7 @@ from asprilo.online.metrics import Metrics, measure  # noqa: E402
 from asprilo.online.multishot import MultiShot  # noqa: E402
 from asprilo.online.planner import encodings_planner  # noqa: E402
 from asprilo.online.planning import FromScratch  # noqa: E402
-from asprilo.online.run import OnlineRun, run_online  # noqa: E402
+from asprilo.online.run import OnlineRun, run_online, scenario_of  # noqa: E402
 from asprilo.reader import read_instance  # noqa: E402
 
 LAYOUT = ROOT / "examples/paper-m/4x5x8/x46_y15_n690_r23_s320_ps10_pr320_u320_o23_N001.lp"
@@ -98,8 +98,9 @@ def main() -> int:
     print(f"scenario: 46x15, {len(instance.robots)} robots, {len(instance.orders)} orders, one every {args.every} "
           f"steps, {args.steps} steps, budget {args.budget:g} s a call, domain M", flush=True)
     run, wall = multishot_run(instance, releases, args.steps, args.budget)
-    metrics = measure(instance, run.plan, Domain.M, run.releases, run.steps, run.calls, len(run.waiting))
-    top = ceiling(instance, Domain.M, run.releases, run.steps)
+    online = scenario_of(instance, run.releases)  # the figures judge each order after its release
+    metrics = measure(online, run.plan, Domain.M, run.releases, run.steps, run.calls, len(run.waiting))
+    top = ceiling(online, Domain.M, run.releases, run.steps)
     report = check(replace(instance, orders={}), run.plan, Domain.M, bound=None)  # the moves; M's goal is online
     print(f"multi-shot run: {wall:.0f} s wall, peak memory {peak_mb():.0f} MB, plan "
           f"{'valid' if report.valid else 'INVALID'}, ceiling {top.lines} lines "
@@ -113,10 +114,10 @@ def main() -> int:
     if args.scratch_steps:
         prefix = args.scratch_steps
         early = [call for call in run.calls if call.step < prefix]
-        short = measure(instance, Plan([a for a in run.plan.actions if a.step <= prefix]), Domain.M, run.releases,
+        short = measure(online, Plan([a for a in run.plan.actions if a.step <= prefix]), Domain.M, run.releases,
                         prefix, early, sum(step <= prefix for step in run.waiting))
         scratch = scratch_run(instance, releases, prefix, args.budget)
-        versus = measure(instance, scratch.plan, Domain.M, scratch.releases, scratch.steps, scratch.calls,
+        versus = measure(online, scratch.plan, Domain.M, scratch.releases, scratch.steps, scratch.calls,
                          len(scratch.waiting))
         print(row(f"multishot, first {prefix}", short))
         print(row(f"scratch asp, first {prefix}", versus))

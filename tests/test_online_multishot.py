@@ -72,7 +72,7 @@ def test_a_run_plans_each_release_and_grounds_every_part_once(parts):
     assert planner.done == {(1, 1): 2, (2, 2): 6}
     assert Counter(parts) == Counter([("base", ()), ("line", ("1", "1", "1", "0", "0")), ("step", ("1",)),
                                       ("step", ("2",)), ("check", ("2",)), ("line", ("2", "2", "1", "0", "4"))])
-    metrics = measure(corridor(), run.plan, Domain.M, run.releases, run.steps, run.calls)
+    metrics = measure(scenario_of(corridor(), run.releases), run.plan, Domain.M, run.releases, run.steps, run.calls)
     assert metrics.latency == Latency(2, 2.0, 2, 2)  # 2 - 0 and 6 - 4
     assert (metrics.lines, metrics.lines_done, metrics.orders_open) == (2, 2, 0)
     assert check(scenario_of(corridor(), run.releases), run.plan, Domain.M).valid
@@ -88,7 +88,8 @@ def test_robots_wait_while_the_planner_thinks():
     assert run.plan.actions == [Action(3, 1, "move", EAST), Action(4, 1, "move", EAST),
                                 Action(9, 1, "move", EAST), Action(10, 1, "move", EAST)]
     assert (run.steps, run.waiting, run.calls) == (10, [1, 2, 7, 8], [PlannerCall(0, 2.5), PlannerCall(6, 2.5)])
-    metrics = measure(corridor(), run.plan, Domain.M, run.releases, run.steps, run.calls, len(run.waiting))
+    metrics = measure(scenario_of(corridor(), run.releases), run.plan, Domain.M, run.releases, run.steps, run.calls,
+                      len(run.waiting))
     assert metrics.latency == Latency(2, 4.0, 4, 4)  # 4 - 0 and 10 - 6
     assert (metrics.waiting_steps, metrics.planner_mean) == (4, 2.5)
 
