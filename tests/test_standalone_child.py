@@ -102,7 +102,7 @@ def test_a_bench_run_that_fails_is_an_error_with_the_last_line_of_its_error(tmp_
            "horizon": 1}
     run = limits.run_limited(job, 30, 2048)
     assert (run.status, run.report, run.detail) == (
-        "error", {}, f"asprilo.errors.InputError: {tmp_path / 'missing.lp'}: no such file")
+        "error", {}, f"{tmp_path / 'missing.lp'}: no such file")
 
 
 def _where_asprilo_is(report):

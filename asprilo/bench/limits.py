@@ -21,6 +21,7 @@ import time
 import traceback
 from dataclasses import dataclass
 
+from asprilo.errors import InputError
 from asprilo.isolation import run_isolated
 
 from .results import ERROR, MEMOUT, TIMEOUT
@@ -70,7 +71,10 @@ def run_limited(job: dict, time_limit: float, memory_mb: int | None) -> LimitedR
 
 def failure(error: Exception, wall: float) -> LimitedRun:
     """A run whose job raised ``error``: a mem-out when it ran out of memory (C++ code says
-    ``bad_alloc``), else an error with the last line of the error's traceback."""
+    ``bad_alloc``), else an error with its reason: bad input's sentence as it is, else the last
+    line of the error's traceback."""
+    if isinstance(error, InputError):
+        return LimitedRun(ERROR, wall, {}, str(error))
     text = "".join(traceback.format_exception_only(type(error), error))
     if isinstance(error, MemoryError) or "bad_alloc" in text:
         return LimitedRun(MEMOUT, wall, {})
