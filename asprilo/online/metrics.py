@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 from asprilo.domain import Domain
 from asprilo.model import Instance, Plan
@@ -96,6 +96,14 @@ class Metrics:
         return 100 * self.units_done / self.steps if self.steps else 0.0
 
 
+def scenario_of(instance: Instance, releases: dict[int, int]) -> Instance:
+    """``instance`` as an online scenario: every order with its release step (an order not
+    named: step 0), so that the simulator and the checker judge it as released (in M, a goal
+    once reached stays reached)."""
+    return replace(instance, orders={o: replace(order, release=releases.get(o, 0))
+                                     for o, order in instance.orders.items()})
+
+
 def deliveries(instance: Instance, plan: Plan, domain: Domain, steps: int,
                timeline: Timeline | None = None) -> tuple[dict[Line, int], dict[int, int]]:
     """When each order line was done (line -> step) and how many units were delivered at
@@ -134,8 +142,10 @@ def _units(missing: int | None, instance: Instance, line: Line) -> int:
 def measure(instance: Instance, plan: Plan, domain: Domain, releases: dict[int, int], steps: int,
             calls: Sequence[PlannerCall] = (), waiting_steps: int = 0, window: int = WINDOW) -> Metrics:
     """The figures of a run of ``steps`` steps that carried out ``plan`` on ``instance``,
-    its orders released at ``releases`` (order -> step; an order not named: step 0)."""
-    return figures(instance, releases, deliveries(instance, plan, domain, steps), steps, calls, waiting_steps, window)
+    its orders released at ``releases`` (order -> step; an order not named: step 0) and judged
+    so (:func:`scenario_of`)."""
+    scenario = scenario_of(instance, releases)
+    return figures(scenario, releases, deliveries(scenario, plan, domain, steps), steps, calls, waiting_steps, window)
 
 
 def figures(instance: Instance, releases: dict[int, int], delivered: tuple[dict[Line, int], dict[int, int]],

@@ -28,7 +28,7 @@ from asprilo.domain import Domain, Goal
 from asprilo.model import Action, Instance, Order, Plan
 from asprilo.simulate import simulate
 
-from .metrics import PlannerCall
+from .metrics import PlannerCall, scenario_of
 from .planning import OnlinePlanning
 from .protocol import shifted
 
@@ -74,14 +74,6 @@ class _World:
 
     def ahead_after(self, step: int) -> bool:
         return any(t > step and actions for t, actions in self.ahead.items())
-
-
-def scenario_of(instance: Instance, releases: dict[int, int]) -> Instance:
-    """``instance`` as an online scenario: every order with its release step (an order not
-    named: step 0), so that the simulator and the checker judge it as released (in M, a goal
-    once reached stays reached)."""
-    return replace(instance, orders={o: replace(order, release=releases.get(o, 0))
-                                     for o, order in instance.orders.items()})
 
 
 def run_online(instance: Instance, domain: Domain, planner: OnlinePlanning,
