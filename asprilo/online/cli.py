@@ -35,7 +35,7 @@ import json
 import sys
 import threading
 
-from asprilo.arguments import chosen_domain, domain_argument
+from asprilo.arguments import chosen_domain, domain_argument, seconds_argument
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
 from asprilo.exits import INTERRUPTED, stopping_on_interrupt
@@ -69,9 +69,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
                              "multishot: one clingo Control for the whole run (domain M, docs/ONLINE.md)")
     parser.add_argument("--encoding", nargs="+", metavar="FILE",
                         help="with --planner multishot: your own online encoding (default: the reference one)")
-    parser.add_argument("--budget", type=_seconds, default=1.0, metavar="S",
+    parser.add_argument("--budget", type=seconds_argument, default=1.0, metavar="S",
                         help="seconds a planner call may take (default 1)")
-    parser.add_argument("--step-seconds", type=_seconds, default=1.0, metavar="D",
+    parser.add_argument("--step-seconds", type=seconds_argument, default=1.0, metavar="D",
                         help="seconds of planner time one step of the world takes (default 1)")
     parser.add_argument("--replan", default="arrival", metavar="arrival|K",
                         help="plan again when orders arrive (default), or also every K steps")
@@ -92,16 +92,6 @@ def _positive(text: str) -> int:
         value = 0
     if value < 1:
         raise argparse.ArgumentTypeError(f"expected a whole number of at least 1, not {text!r}")
-    return value
-
-
-def _seconds(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        value = 0.0
-    if not 0 < value < 1e6:
-        raise argparse.ArgumentTypeError(f"expected seconds above 0, not {text!r}")
     return value
 
 
