@@ -46,6 +46,9 @@ from asprilo.online.planning import FromScratch  # noqa: E402
 from asprilo.online.run import OnlineRun, run_online, scenario_of  # noqa: E402
 from asprilo.reader import read_instance  # noqa: E402
 
+#: the scenario's domain (the multi-shot planner's only one so far)
+DOMAIN = Domain.parse("m")
+
 LAYOUT = ROOT / "examples/paper-m/4x5x8/x46_y15_n690_r23_s320_ps10_pr320_u320_o23_N001.lp"
 
 
@@ -66,15 +69,15 @@ def peak_mb() -> float:
 
 def multishot_run(instance: Instance, releases: dict[int, int], steps: int, budget: float) -> tuple[OnlineRun, float]:
     started = time.perf_counter()
-    planner = MultiShot(instance, Domain.M)
-    run = run_online(instance, Domain.M, planner, releases, budget=budget, steps=steps,
+    planner = MultiShot(instance, DOMAIN)
+    run = run_online(instance, DOMAIN, planner, releases, budget=budget, steps=steps,
                      on_step=lambda step, _run: step % 100 or print(f"  step {step}", file=sys.stderr, flush=True))
     return run, time.perf_counter() - started
 
 
 def scratch_run(instance: Instance, releases: dict[int, int], steps: int, budget: float) -> OnlineRun:
-    scratch = FromScratch(instance, Domain.M, lambda seconds: encodings_planner(time_limit=seconds))
-    return run_online(instance, Domain.M, scratch, releases, budget=budget, steps=steps)
+    scratch = FromScratch(instance, DOMAIN, lambda seconds: encodings_planner(time_limit=seconds))
+    return run_online(instance, DOMAIN, scratch, releases, budget=budget, steps=steps)
 
 
 def row(name: str, metrics: Metrics, top: int | None = None) -> str:
@@ -99,9 +102,9 @@ def main() -> int:
           f"steps, {args.steps} steps, budget {args.budget:g} s a call, domain M", flush=True)
     run, wall = multishot_run(instance, releases, args.steps, args.budget)
     online = scenario_of(instance, run.releases)  # the figures judge each order after its release
-    metrics = measure(online, run.plan, Domain.M, run.releases, run.steps, run.calls, len(run.waiting))
-    top = ceiling(online, Domain.M, run.releases, run.steps)
-    report = check(replace(instance, orders={}), run.plan, Domain.M, bound=None)  # the moves; M's goal is online
+    metrics = measure(online, run.plan, DOMAIN, run.releases, run.steps, run.calls, len(run.waiting))
+    top = ceiling(online, DOMAIN, run.releases, run.steps)
+    report = check(replace(instance, orders={}), run.plan, DOMAIN, bound=None)  # the moves; M's goal is online
     print(f"multi-shot run: {wall:.0f} s wall, peak memory {peak_mb():.0f} MB, plan "
           f"{'valid' if report.valid else 'INVALID'}, ceiling {top.lines} lines "
           f"({top.lines_per_100:.1f} per 100 steps)")
@@ -114,10 +117,10 @@ def main() -> int:
     if args.scratch_steps:
         prefix = args.scratch_steps
         early = [call for call in run.calls if call.step < prefix]
-        short = measure(online, Plan([a for a in run.plan.actions if a.step <= prefix]), Domain.M, run.releases,
+        short = measure(online, Plan([a for a in run.plan.actions if a.step <= prefix]), DOMAIN, run.releases,
                         prefix, early, sum(step <= prefix for step in run.waiting))
         scratch = scratch_run(instance, releases, prefix, args.budget)
-        versus = measure(online, scratch.plan, Domain.M, scratch.releases, scratch.steps, scratch.calls,
+        versus = measure(online, scratch.plan, DOMAIN, scratch.releases, scratch.steps, scratch.calls,
                          len(scratch.waiting))
         print(row(f"multishot, first {prefix}", short))
         print(row(f"scratch asp, first {prefix}", versus))

@@ -1,6 +1,7 @@
 """Run asprilo as a user would, in this process, and say this process's peak memory last, on
-standard error: ``peak N`` (megabytes, ``ru_maxrss`` of this process alone: the child
-processes it starts are not counted).
+standard error: ``peak N`` (megabytes, the peak of this program alone, Linux's VmHWM: the
+child processes it starts are not counted, nor the process that started it, whose peak
+``ru_maxrss`` carries across exec: a test run late in a big pytest process read 600 MB).
 
     python tests/helpers/peak.py cli ARGUMENT...            # asprilo ARGUMENT...
     python tests/helpers/peak.py viewer INSTANCE ENCODING   # Run > Solve with encoding file
@@ -12,7 +13,6 @@ or ``plan N`` (the actions of the plan it shows)."""
 from __future__ import annotations
 
 import os
-import resource
 import sys
 import tempfile
 import time
@@ -51,7 +51,9 @@ def main() -> int:
 
         code = asprilo(arguments)
     sys.stdout.flush()
-    print(f"peak {resource.getrusage(resource.RUSAGE_SELF).ru_maxrss // 1024}", file=sys.stderr, flush=True)
+    from asprilo.isolation import peak_memory_mb
+
+    print(f"peak {int(peak_memory_mb())}", file=sys.stderr, flush=True)
     return code
 
 
