@@ -15,7 +15,8 @@ from asprilo.limits import Limits, using
 
 def test_the_issues_edge_is_refused_up_front(capsys, tmp_path):
     from asprilo.cli import main
-    code = main(["gen", "-x", "1000", "-y", "1000", "-r", "1", "-d", str(tmp_path / "out"), "--limit", "gen-cells=1000000"])
+    code = main(["gen", "-x", "1000", "-y", "1000", "-r", "1", "-d", str(tmp_path / "out"),
+                 "--limit", "gen-cells=1000000"])  # beyond gen-cells since it was lowered to 700,000
     # 60 + 1,000,000 x 2 x 1.4 / 1024 = 2,794.4
     assert (code, capsys.readouterr().err) == (2, "error: a floor of 1,000x1,000 cells takes about 2,794 MB to "
                                                   "generate, beyond the limit gen-mb=2,048 (raise it with "

@@ -99,8 +99,8 @@ class MultiShot:
                                        _num(0 if order.station is None else order.station), _num(step)]))
         if parts:
             self.control.ground(parts)
-        for order, product in lines:
-            self.control.assign_external(_open(order, product), True)
+        for number, product in lines:
+            self.control.assign_external(_open(number, product), True)
 
     def carried_out(self, step: int, actions: list[Action]) -> None:
         """Follow the robots through step ``step``; release ``open`` for the lines it did."""
