@@ -113,26 +113,9 @@ def _symbol(value: clingo.Symbol | int | str) -> clingo.Symbol:
 _LOCATION = re.compile(r"^(.*?):(\d+):\d+(?:-\d+(?::\d+)?)?: (?:error|info|warning): (.*)", re.S)
 
 
-_INCLUDE = re.compile(r'^[ \t]*#include[ \t]*"([^"]+)"[ \t]*\.[ \t]*$', re.M)
-
-
-def included_text(path: Path, seen: set[Path] | None = None) -> str | None:
-    """The program of ``path`` with its ``#include "file".`` directives replaced by those
-    files (each once, paths relative to the including file), or ``None`` when it has none."""
-    text = path.read_text(encoding="utf-8")
-    if seen is None:
-        if not _INCLUDE.search(text):
-            return None
-        seen = set()
-    seen.add(real(path))
-
-    def insert(match: re.Match) -> str:
-        target = real(included_file(match.group(1), path))
-        if target in seen:
-            return ""
-        return included_text(target, seen) or ""
-
-    return _INCLUDE.sub(insert, text)
+#: an ``#include "file".`` directive, wherever it stands (several on a line, after code); one in
+#: a comment is rewritten too (harmlessly), and one whose file cannot be used is left to clingo
+_INCLUDE = re.compile(r'#include[ \t]*"([^"\n]+)"[ \t]*\.')
 
 
 def _hint(message: str, name: str) -> str:
@@ -240,7 +223,10 @@ class Solver:
         self._originals[str(copy)] = str(path)
 
         def absolute(match: re.Match) -> str:
-            target = real(included_file(match.group(1), path))
+            try:
+                target = real(included_file(match.group(1), path))
+            except InputError:  # in a comment, or said by the reading of the encoding already
+                return match.group(0)
             return f'#include "{self._loadable(target, done, dropped)}".'
 
         copy.write_text(_INCLUDE.sub(absolute, text), encoding="utf-8")

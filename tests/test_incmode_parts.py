@@ -94,3 +94,18 @@ def test_native_incmode_gives_a_plan_of_the_same_makespan(name, rung):
     ours = solve(instance, encoding=own_encoding([PARTS / name]), max_horizon=20)
     assert native.horizon == ours.horizon == rung.minimum
     assert check(instance, native).valid and check(instance, ours.plan).valid
+
+
+def test_includes_side_by_side_on_one_line_are_found_next_to_the_including_file(tmp_path, monkeypatch):
+    """``#include "moves.ilp". #include "goal.ilp".`` on one line and one more alone on the next,
+    solved from another folder: each file is found next to the including one (before, the file
+    was copied for the include alone on its line, and the two side by side were then looked for
+    next to the copy)."""
+    folder = tmp_path / "enc"
+    shutil.copytree(PARTS, folder)
+    (folder / "oneline.ilp").write_text('#include "moves.ilp". #include "goal.ilp".\n#include "show-check.ilp".\n')
+    (tmp_path / "elsewhere").mkdir()
+    monkeypatch.chdir(tmp_path / "elsewhere")
+    rung = LADDER.rungs[0]
+    outcome = solve(read_instance(rung.file), encoding=own_encoding([folder / "oneline.ilp"]), max_horizon=12)
+    assert (outcome.status, outcome.horizon) == (SolveStatus.FOUND, rung.minimum)
