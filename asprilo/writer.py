@@ -97,7 +97,8 @@ def check_output(path: str | Path | None, inputs: Iterable[str | Path | None] = 
     except OSError as error:
         raise InputError(f"cannot be written ({error.strerror or error})", name) from None
     if stat.S_ISLNK(mode):
-        link = "a symbolic link" if target.exists() else "a dangling symbolic link"
+        link = "a symbolic link" if target.exists() else \
+            "a loop of symbolic links" if _loops(target) else "a dangling symbolic link"
         raise InputError(f"is {link} (to {_shown(Path(os.readlink(target)))}): outputs go only to regular files, "
                          "not through links; name the file itself", name)
     if stat.S_ISDIR(mode):
@@ -109,6 +110,17 @@ def check_output(path: str | Path | None, inputs: Iterable[str | Path | None] = 
     if not os.access(target, os.W_OK):
         raise InputError(f"cannot be written ({os.strerror(errno.EACCES)})", name)
 
+
+
+def _loops(link: Path) -> bool:
+    """Whether following ``link`` comes back to a link already followed."""
+    try:
+        link.resolve(strict=True)
+    except RuntimeError:  # Python's word for a loop of links
+        return True
+    except OSError as error:
+        return error.errno == errno.ELOOP
+    return False
 
 def _same_file(target: Path, source: Path) -> bool:
     """Whether two paths name one file: by device and inode when both exist, else by path."""

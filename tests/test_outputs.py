@@ -44,7 +44,7 @@ CORPUS = Path(__file__).parent / "hostile"
 BASE_INSTANCE, BASE_PLAN = CORPUS / "base-instance.lp", CORPUS / "base-plan.lp"
 ROOT_ENCODINGS = Path(__file__).parent / "encodings"
 BUDGET = 30.0  # seconds a refusal may take (it comes before any work)
-KINDS = ("device", "fifo", "symlink", "dangling")
+KINDS = ("device", "fifo", "symlink", "dangling", "loop")
 SMALL_GEN = ["-x", "4", "-y", "3", "-r", "1", "-s", "1", "-p", "1", "-P", "1", "-u", "1", "-o", "1"]
 GEN_NAME = "x4_y3_n12_r1_s1_ps1_pr1_u1_o1_N001.lp"
 ROOT = os.geteuid() == 0
@@ -82,6 +82,8 @@ def _make(kind: str, path: Path, mine: Path) -> Path:
         path.symlink_to(mine)
     elif kind == "dangling":
         path.symlink_to(mine.parent / "nowhere.lp")
+    elif kind == "loop":  # a link to itself
+        path.symlink_to(path.name)
     return path
 
 
@@ -105,7 +107,8 @@ WRITERS = {
 #: the start of each refusal, by kind
 REFUSAL = {"device": "is a character device, not a regular file: outputs go only to regular files",
            "fifo": "is a FIFO (named pipe), not a regular file: outputs go only to regular files",
-           "symlink": "is a symbolic link (to ", "dangling": "is a dangling symbolic link (to "}
+           "symlink": "is a symbolic link (to ", "dangling": "is a dangling symbolic link (to ",
+           "loop": "is a loop of symbolic links (to "}
 
 
 @pytest.fixture
