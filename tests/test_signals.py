@@ -220,6 +220,21 @@ def test_a_stopped_generation_keeps_the_instances_it_made(tmp_path):
     assert not list(out.glob(".*"))  # no half-written temporary file left
 
 
+@pytest.mark.parametrize("stop", [signal.SIGINT, signal.SIGTERM, signal.SIGHUP])
+def test_a_stopped_online_run_keeps_what_ran(tmp_path, stop):
+    """asprilo online (no child processes: its planners run in it) ends after the step under way
+    and writes the plan carried out; with --steps far away it is still running when told."""
+    plan = tmp_path / "plan.lp"
+    command = Command(["online", str(SMALL_A), "--every", "3", "--steps", "1000000", "-o", str(plan), "--live"],
+                      tmp_path)
+    command.wait_until(plan.exists, "writing its plan so far")
+    os.kill(command.process.pid, stop)
+    code, _out, err = command.end()
+    assert code == 130, err
+    assert "(interrupted)" in err and plan.read_text().count("occurs(") > 0
+    assert_none_left(command)
+
+
 @pytest.mark.parametrize("stop", [signal.SIGTERM, signal.SIGINT, signal.SIGHUP])
 def test_the_viewer_window_ends_on_a_stop_signal(tmp_path, stop):
     """Qt's event loop ran no Python: the window ignored Ctrl-C, SIGTERM and SIGHUP until
