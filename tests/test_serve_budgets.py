@@ -20,13 +20,13 @@ import time
 from collections.abc import Callable, Iterator
 
 import pytest
-from helpers.online import TINY, served, tiny
+from helpers.online import TINY, served, serving, tiny
 
 from asprilo.limits import Limits, current, parse_option, set_current, using
 from asprilo.model import Action, Plan
 from asprilo.online.planner import OnlinePlanner, Schedule
 from asprilo.online.protocol import DONE, ERROR, Channel, Message, done, reset
-from asprilo.online.serve import listen, serve, simulator_session, solver_session
+from asprilo.online.serve import simulator_session, solver_session
 
 GUARD = 60.0  # seconds any wait may take before the test counts as hung
 WORLD = " ".join(line.strip() for line in TINY.strip().splitlines())
@@ -39,21 +39,9 @@ def _one_move(instance, domain, cancel) -> Plan:
     return Plan([Action(1, 1, "move", (1, 0))])
 
 
-@contextlib.contextmanager
-def _server(session: Callable[[Channel], None], clients: int = 2) -> Iterator[int]:
+def _server(session: Callable[[Channel], None], clients: int = 2):
     """A server of ``session`` on an ephemeral loopback port (idle timeout: the default hour)."""
-    stop = threading.Event()
-    listener = listen("127.0.0.1", 0)
-    thread = threading.Thread(target=serve, args=(listener, session), kwargs={"stop": stop, "clients": clients},
-                              daemon=True)
-    thread.start()
-    try:
-        yield listener.getsockname()[1]
-    finally:
-        stop.set()
-        thread.join(GUARD)
-        listener.close()
-    assert not thread.is_alive()
+    return serving(session, clients=clients)
 
 
 @pytest.fixture

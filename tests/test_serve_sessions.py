@@ -14,17 +14,17 @@ import subprocess
 import sys
 import threading
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 
 import pytest
-from helpers.online import TINY, served
+from helpers.online import TINY, served, serving
 
 from asprilo.errors import InputError
 from asprilo.model import Action, Plan
 from asprilo.online.budgets import MemoryPool, Pace, SessionBudget
 from asprilo.online.planner import OnlinePlanner
 from asprilo.online.protocol import DONE, ERROR, Channel, Message, reset
-from asprilo.online.serve import listen, serve, solver_session
+from asprilo.online.serve import solver_session
 
 GUARD = 60.0  # seconds any wait may take before the test counts as hung
 WORLD = " ".join(line.strip() for line in TINY.strip().splitlines())
@@ -60,21 +60,8 @@ def _ok(channel: Channel) -> None:
         channel.send(Message("ok."))
 
 
-@contextlib.contextmanager
-def _server(session: Callable[[Channel], None], budget: SessionBudget, pool: MemoryPool,
-            clients: int = 8) -> Iterator[int]:
-    stop = threading.Event()
-    listener = listen("127.0.0.1", 0)
-    thread = threading.Thread(target=serve, args=(listener, session), daemon=True,
-                              kwargs={"stop": stop, "clients": clients, "budget": budget, "pool": pool})
-    thread.start()
-    try:
-        yield listener.getsockname()[1]
-    finally:
-        stop.set()
-        thread.join(GUARD)
-        listener.close()
-    assert not thread.is_alive()
+def _server(session: Callable[[Channel], None], budget: SessionBudget, pool: MemoryPool, clients: int = 8):
+    return serving(session, clients=clients, budget=budget, pool=pool)
 
 
 def _connect(port: int) -> Channel:

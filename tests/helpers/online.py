@@ -5,7 +5,8 @@ from __future__ import annotations
 import contextlib
 import subprocess
 import sys
-from collections.abc import Iterator
+import threading
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
 from asprilo.model import Instance
@@ -61,3 +62,27 @@ def served(*args: str) -> Iterator[Served]:
     finally:
         process.kill()
         _out, server.errors = process.communicate()
+
+
+#: seconds a server thread may take to end before a test counts as hung
+THREAD_GUARD = 60.0
+
+
+@contextlib.contextmanager
+def serving(session: Callable, **options) -> Iterator[int]:
+    """A server of ``session`` in a thread of this process on an ephemeral loopback port
+    (``options``: :func:`asprilo.online.serve.serve`'s keywords); its port.  The server is
+    stopped after the block and must end."""
+    from asprilo.online.serve import listen, serve
+
+    stop = threading.Event()
+    listener = listen("127.0.0.1", 0)
+    thread = threading.Thread(target=serve, args=(listener, session), kwargs={"stop": stop, **options}, daemon=True)
+    thread.start()
+    try:
+        yield listener.getsockname()[1]
+    finally:
+        stop.set()
+        thread.join(THREAD_GUARD)
+        listener.close()
+    assert not thread.is_alive()
