@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from asprilo.checker import check
 from asprilo.cli import main
 from asprilo.domain import Domain, domains
-from asprilo.encodings import solve
+from asprilo.encodings import SolveStatus, solve
 from asprilo.encodings.anytime import plan_anytime
 from asprilo.encodings.anytime import search as anytime_search
 from asprilo.encodings.anytime.router import Router
@@ -158,6 +158,7 @@ def test_the_time_limit_is_kept_when_no_plan_is_found_by_then(monkeypatch):
     routed = routes_started(monkeypatch, clock.now)
     result = plan_anytime(instance, Domain.B, time_limit=2.0)
     assert (result.status, result.plan, result.history) == ("limit", None, [])
+    assert "first_plan_seconds" not in result.stats  # no first plan: no time of one
     assert clock.now() >= 2.0  # the clock said the time was up: that stopped it
     assert all(seen < 2.0 for seen in routed)  # no robot routed after
 
@@ -276,3 +277,13 @@ def test_it_plans_from_a_state_in_the_middle_of_a_plan(steps, monkeypatch):
     result = plan_anytime(now, Domain.B, time_limit=5, on_improvement=clock.reported)
     assert result.status == "found"
     _assert_sound(result, now, Domain.B)
+
+
+def test_the_summary_of_an_anytime_run_without_a_plan_says_so(capsys):
+    """It said 'first plan 0.00 s, 0 plans reported' (the issue on planners' pace)."""
+    from asprilo.encodings.solving.outcome import Outcome
+    from asprilo.encodings.summary import summary
+
+    summary(Outcome(SolveStatus.LIMIT, Domain.B, "anytime", "anytime"))
+    assert capsys.readouterr().err.splitlines()[-2:] == ["no plan within the limits",
+                                                         "the anytime planner: no plan reported"]

@@ -126,7 +126,10 @@ def _figures(outcome: Outcome) -> str:
     if outcome.method == "flow":
         return f"max-flow {stats['solve_time']:.2f} s"
     if outcome.method == "anytime":
-        return (f"first plan {stats.get('first_plan_seconds', 0):.2f} s, {len(outcome.history)} plans reported, "
+        plans = len(outcome.history)
+        if not plans:
+            return "the anytime planner: no plan reported"
+        return (f"first plan {stats.get('first_plan_seconds', 0):.2f} s, {plans} plan{'s' * (plans > 1)} reported, "
                 f"{stats.get('neighbourhoods', 0)} neighbourhoods tried")
     figures = (f"ground {stats.get('ground_time', 0):.2f} s, solve {stats.get('solve_time', 0):.2f} s, "
                f"rules {stats.get('rules', 0)}, atoms {stats.get('atoms', 0)}, choices {stats.get('choices', 0)}, "

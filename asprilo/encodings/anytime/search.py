@@ -272,7 +272,8 @@ def _first_plan(run: _Run, work: Work, floor: Floor, router: Router, table: Rese
     stopped = watch.out_of_time if fast is None else _stop_after(watch, PRIORITIZED_SHARE * limit)
     tracks = first_tracks(work, router, table, stopped, seed)
     if fast is None:
-        run.result.stats["first_plan_seconds"] = round(watch.elapsed(), 3)
+        if tracks is not None:
+            run.result.stats["first_plan_seconds"] = round(watch.elapsed(), 3)
         return tracks
     if tracks is None or score(tracks) >= score(fast) or not run.offer(tracks, force=True):
         _go_back(table, fast)
