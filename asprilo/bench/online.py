@@ -110,7 +110,7 @@ def run_suite(suite: OnlineSuite, folder: Path) -> list[dict]:
     """Every run of ``suite``, one after the other, each recorded in ``folder``; progress on stderr."""
     from asprilo.online.ceiling import ceiling
     from asprilo.online.metrics import measure
-    from asprilo.online.planner import Schedule, encodings_planner
+    from asprilo.online.planner import encodings_planner, release_steps
     from asprilo.online.planning import FromScratch
     from asprilo.online.record import figures
     from asprilo.online.run import run_online, scenario_of
@@ -120,8 +120,7 @@ def run_suite(suite: OnlineSuite, folder: Path) -> list[dict]:
     for number, (scenario, planner, budget) in enumerate(runs, 1):
         instance = read_instance(str(scenario))
         domain = detect_domain(instance)
-        releases = Schedule.every(instance, suite.every).arrivals if suite.every else \
-            {order.id: order.release or 0 for order in instance.orders.values()}
+        releases = release_steps(instance, suite.every)
         instance = scenario_of(instance, releases)
 
         def planner_for(seconds: float, method: str = planner):

@@ -46,7 +46,7 @@ from asprilo.writer import check_output, format_instance, format_plan, write_tex
 from .ceiling import Ceiling, ceiling
 from .metrics import Metrics, counted, measure
 from .multishot import MultiShot
-from .planner import Planner, Schedule, encodings_planner, parse_arrivals
+from .planner import Planner, encodings_planner, release_steps
 from .planning import FromScratch
 from .record import figures, record
 from .run import OnlineRun, run_online, scenario_of
@@ -114,7 +114,7 @@ def run(args: argparse.Namespace) -> int:
     instance = read_instance(args.instance)
     detected = detect_domain(instance)
     domain = chosen_domain(args, detected) or detected
-    releases = _releases(instance, args)
+    releases = release_steps(instance, args.every, args.at)
     instance = scenario_of(instance, releases)
     if args.scenario:
         write_text(args.scenario, format_instance(instance), inputs)
@@ -158,15 +158,6 @@ def _answer(args: argparse.Namespace, instance: Instance, domain: Domain, outcom
         print(json.dumps(figures(metrics, bound), indent=2))
     elif not args.output:
         sys.stdout.write(format_plan(outcome.plan))
-
-
-def _releases(instance: Instance, args: argparse.Namespace) -> dict[int, int]:
-    """The release steps: --every or --at, else the instance's own (``value(release,Step)``)."""
-    if args.every:
-        return Schedule.every(instance, args.every).arrivals
-    if args.at:
-        return Schedule(instance, parse_arrivals(args.at)).arrivals
-    return {order.id: order.release or 0 for order in instance.orders.values()}
 
 
 def summary(outcome: OnlineRun, metrics: Metrics, bound: Ceiling | None) -> list[str]:

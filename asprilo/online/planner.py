@@ -178,3 +178,13 @@ def parse_arrivals(texts: list[str]) -> dict[int, int]:
         for order in numbers:
             arrivals[order] = when
     return arrivals
+
+
+def release_steps(instance: Instance, every: int | None = None, at: list[str] = ()) -> dict[int, int]:
+    """When each order is released: one every ``every`` steps in id order, or as ``at`` says
+    (``STEP:ORDER,...``), else the instance's own release steps (``value(release,Step)``; none: 0)."""
+    if every:
+        return Schedule.every(instance, every).arrivals
+    if at:
+        return Schedule(instance, parse_arrivals(at)).arrivals
+    return {order.id: order.release or 0 for order in instance.orders.values()}

@@ -34,6 +34,7 @@ class OnlineFigures(QLabel):
         self.record: dict | None = None
         self.delivered: tuple[dict, dict] = ({}, {})
         self.earliest: dict = {}
+        self.releases: dict[int, int] = {}
         self.setText("no warehouse")
 
     def set_record(self, record: dict | None) -> None:
@@ -44,20 +45,19 @@ class OnlineFigures(QLabel):
         self.track = track
         if track is not None:
             self.delivered = deliveries(track.instance, track.plan, track.domain, track.horizon, track.timeline)
-            releases = {order.id: order.release or 0 for order in track.instance.orders.values()}
+            self.releases = {order.id: order.release or 0 for order in track.instance.orders.values()}
             self.earliest = {} if track.domain.goal is Goal.DESTINATIONS else \
-                earliest_steps(track.instance, track.domain, releases)
+                earliest_steps(track.instance, track.domain, self.releases)
 
     def show_step(self, step: int) -> None:
         track = self.track
         if track is None:
             self.setText("no warehouse")
             return
-        releases = {order.id: order.release or 0 for order in track.instance.orders.values()}
-        released = sorted(set(releases.values()))
+        releases = self.releases
         calls, waiting = self._planner(step)
         shown = figures(track.instance, releases, self.delivered, step, calls, waiting) if step else None
-        lines = [self._releases(releases, released, step)]
+        lines = [self._releases(step)]
         if shown is not None:
             bound = ceiling(track.instance, track.domain, releases, step, self.earliest)
             beside = "" if bound is None else f" (ceiling {bound.lines_per_100:.1f})"
@@ -75,7 +75,9 @@ class OnlineFigures(QLabel):
             lines.append(f"{said}; {counted(waiting, 'waiting step')}")
         self.setText("<br>".join(escape(line) for line in lines))
 
-    def _releases(self, releases: dict[int, int], released: list[int], step: int) -> str:
+    def _releases(self, step: int) -> str:
+        releases = self.releases
+        released = sorted(set(releases.values()))
         if released in ([], [0]):
             return f"{len(releases)} orders, every one known from the start"
         known = sum(release <= step for release in releases.values())
