@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import threading
 from collections import defaultdict
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 
 from asprilo.domain import Domain, Goal, detect_domain
@@ -165,7 +165,7 @@ class Schedule:
         return max(self.arrivals.values(), default=0)
 
 
-def parse_arrivals(texts: list[str]) -> dict[int, int]:
+def parse_arrivals(texts: Sequence[str]) -> dict[int, int]:
     """``["3:1,2", "7:4"]`` (``STEP:ORDER,...``) as order -> step."""
     arrivals = {}
     for text in texts:
@@ -180,7 +180,7 @@ def parse_arrivals(texts: list[str]) -> dict[int, int]:
     return arrivals
 
 
-def release_steps(instance: Instance, every: int | None = None, at: list[str] = ()) -> dict[int, int]:
+def release_steps(instance: Instance, every: int | None = None, at: Sequence[str] = ()) -> dict[int, int]:
     """When each order is released: one every ``every`` steps in id order, or as ``at`` says
     (``STEP:ORDER,...``), else the instance's own release steps (``value(release,Step)``; none: 0)."""
     if every:
