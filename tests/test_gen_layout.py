@@ -3,12 +3,14 @@
 
 from __future__ import annotations
 
+import re
 from collections import Counter
 
 import pytest
 from helpers import EXAMPLES
 from helpers.generated import FIGURE_1, PAPER, cells_of, check_instance, one, reachable
 
+from asprilo.errors import InputError
 from asprilo.generator import GeneratorConfig, populate
 from asprilo.model import Instance
 from asprilo.reader import read_instance
@@ -81,6 +83,55 @@ def test_structured_layout_zones_stations_and_robots():
 def test_structured_robots_beyond_the_bottom_row_fill_the_rows_above():
     instance = one({"-x": 8, "-y": 10, "-X": 2, "-Y": 2, "-H": True, "-r": 11})
     assert cells_of(instance.robots) == {(x, 10) for x in range(1, 9)} | {(1, 9), (2, 9), (3, 9)}
+
+
+#: robots with no room below the zones: the options the error names, and the room each gives,
+#: derived by hand from structured.lp (zone rows start at row 3, every -Y + 1 rows, and end
+#: above the bottom border row; the robots stand below that border row)
+ROOM_ADVICE = [
+    # 11 robots fit in row 6; with -y 7 the zone row stays 3-4, the border row 5: rows 6-7, 22
+    ("-x 11 -y 6 -X 4 -r 12", "-H: -r 12 robots do not fit below the storage zones (room for 11); "
+                              "-y 7 gives room for 22"),
+    # 4 rows of 11 needed, but below zones 2 rows high lie at most 3 (-y 8: zones 3-4, border 5,
+    # robots 6-8; -y 9 makes room for zones 6-7): 3 rows of 14 = 42; zones 3 rows high (3-5,
+    # border 6) leave rows 7-10 with -y 10: 4 rows of 11 = 44
+    ("-x 11 -y 6 -X 4 -r 40", "-H: -r 40 robots do not fit below the storage zones (room for 11); below zones "
+                              "of -Y 2 lie at most 3 rows of 11 robots, whatever -y; -x 14 -y 8 gives room for "
+                              "42, -Y 3 -y 10 for 44"),
+    # the issue's call: 200 x 200 leaves 3 rows of 200 at best; 1000 / 3 rounded up is 334; zones
+    # 4 high on -y 202: 39 zone rows end at row 196, border 197, robots in rows 198-202
+    ("-x 200 -y 200 -X 5 -Y 2 -r 1000", "-H: -r 1000 robots do not fit below the storage zones (room for 600); "
+                                        "below zones of -Y 2 lie at most 3 rows of 200 robots, whatever -y; "
+                                        "-x 334 gives room for 1002, -Y 4 -y 202 for 1000"),
+]
+
+
+@pytest.mark.parametrize("call,message", ROOM_ADVICE)
+def test_robots_without_room_are_told_options_that_give_it(call, message):
+    options = {**_options(call), "-H": True}
+    with pytest.raises(InputError) as refused:
+        one(options)
+    assert str(refused.value) == message
+
+
+@pytest.mark.parametrize("call,message", ROOM_ADVICE[:2])
+def test_the_options_advised_give_the_robots_room(call, message):
+    """Generated with each option the error names: every robot stands below the zones (full
+    of shelves), beyond the border row."""
+    advice = re.findall(r"((?:-[xyY] \d+ ?)+) (?:gives room )?for \d+", message.split("; ", 1)[1])
+    assert advice
+    for changed in advice:
+        options = {**_options(call), **_options(changed), "-H": True, "--sc": 100}
+        instance = one(options)
+        robots = cells_of(instance.robots)
+        assert len(robots) == options["-r"]
+        assert min(y for _, y in robots) > max(y for _, y in cells_of(instance.shelves)) + 1
+        check_instance(instance)
+
+
+def _options(call: str) -> dict[str, int]:
+    words = call.split()
+    return {flag: int(value) for flag, value in zip(words[::2], words[1::2], strict=True)}
 
 
 def test_stations_that_do_not_fit_a_rounded_step_are_packed_closer():

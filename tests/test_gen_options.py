@@ -20,7 +20,8 @@ REJECTED = [
      "(-x, -y, -n, -p, -r)"),
     ("-x 11 -y 6 -H -s 20", "-s 20 shelves do not fit: room for 12 more in the storage zones (-H with -X 2 -Y 2)"),
     ("-x 11 -y 6 -H -p 12", "-H: -p 12 picking stations do not fit into the top row (-x 11)"),
-    ("-x 11 -y 6 -H -X 4 -r 12", "-H: -r 12 robots do not fit below the storage zones (room for 11; make -y larger)"),
+    ("-x 11 -y 6 -H -X 4 -r 12", "-H: -r 12 robots do not fit below the storage zones (room for 11); -y 7 gives "
+                                 "room for 22"),
     ("-x 3 -y 3 -H", "-H: no storage zone of -X 2 x -Y 2 fits into -x 3 x -y 3 with border -B 1"),
     ("-x 5 -y 5 -s 4 -P 3 -u 2",
      "-u 2: with -P 3, -s 4, --sprmin/--sprmax 1/4, --prsmin/--prsmax 0/20, --pusmin/--pusmax 1/10 "

@@ -5,6 +5,7 @@ Each check names the options involved (:class:`~asprilo.errors.InputError`).
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 
 from asprilo.errors import InputError
@@ -112,14 +113,16 @@ def most_missing(width: int, height: int, gap_size: int) -> int:
     return int(max(ratios, default=0) * (width + 1) * (height + 1))
 
 
-def shelf_room(floor: Floor, existing: Instance, stations: tuple[int, int], robots: tuple[int, int]) -> tuple[int, int]:
+def shelf_room(floor: Floor, existing: Instance, stations: tuple[int, int], robots: tuple[int, int],
+               shelves: int = 0) -> tuple[int, int]:
     """(shelf sites, free sites) on ``floor``: where shelves may go, and how many more fit.
 
-    ``stations`` and ``robots`` are (total, new) counts.
+    ``stations`` and ``robots`` are (total, new) counts; ``shelves`` the shelves asked for
+    (the options advised to make room for the robots keep room for them).
     """
     if floor.layout == "structured":
         geometry = floor.zones()
-        _check_structured(floor, geometry, stations[0], robots[0])
+        _check_structured(floor, geometry, stations[0], robots[0], shelves)
         return geometry.cells, geometry.cells
     if floor.layout == "random":
         sites = floor.nodes - stations[0] - robots[0]
@@ -137,7 +140,7 @@ def shelf_room(floor: Floor, existing: Instance, stations: tuple[int, int], robo
     return len(storage - taken) - new, free
 
 
-def _check_structured(floor: Floor, geometry: Zones, stations: int, robots: int) -> None:
+def _check_structured(floor: Floor, geometry: Zones, stations: int, robots: int, shelves: int) -> None:
     width, height = floor.width, floor.height
     if geometry.cells == 0:
         raise InputError(f"-H: no storage zone of -X {floor.zone_x} x -Y {floor.zone_y} fits into "
@@ -146,7 +149,45 @@ def _check_structured(floor: Floor, geometry: Zones, stations: int, robots: int)
         raise InputError(f"-H: -p {stations} picking stations do not fit into the top row (-x {width})")
     if robots > geometry.robot_room:
         raise InputError(f"-H: -r {robots} robots do not fit below the storage zones "
-                         f"(room for {geometry.robot_room}; make -y larger)")
+                         f"(room for {geometry.robot_room}); {room_advice(floor, robots, shelves)}")
+
+
+def room_advice(floor: Floor, robots: int, shelves: int = 0) -> str:
+    """Why ``robots`` find no room below the zones and which options give it, in words: a
+    taller floor where that is enough, else a wider one, or taller zones on a taller floor.
+
+    The robots stand in the rows between the bottom border and the last zone row, and one
+    zone row more fits as soon as ``zone_y + 1`` rows are free there: so below zones of
+    height ``zone_y`` lie at most ``zone_y + 1`` rows of ``width`` robots, however tall the
+    floor.  Every option named keeps room for ``shelves`` in the zones.
+    """
+    width, height, zone_y = floor.width, floor.height, floor.zone_y
+
+    def room(x: int, y: int, zy: int) -> int:
+        """The robots' room on ``x`` by ``y`` with zones ``zy`` high; 0 where the shelves do not fit."""
+        geometry = zones(x, y, floor.zone_x, zy, floor.border)
+        return geometry.robot_room if geometry.cells >= max(1, shelves) else 0
+
+    def first_taller(x: int, zy: int, reach: int) -> int | None:
+        """The lowest -y from ``height`` up to ``height + reach`` with room for the robots."""
+        return next((y for y in range(height, height + reach + 1) if room(x, y, zy) >= robots), None)
+
+    taller = first_taller(width, zone_y, zone_y + 1)
+    if taller is not None:
+        return f"-y {taller} gives room for {room(width, taller, zone_y)}"
+    # the floor up to zone_y + 1 rows taller that leaves the most rows, made as wide as needed
+    rows, deepest = max((zones(width, y, floor.zone_x, zone_y, floor.border).robot_room // width, -y)
+                        for y in range(height, height + zone_y + 2))
+    deepest = -deepest
+    wider = next(x for x in itertools.count(max(width, -(-robots // rows))) if room(x, deepest, zone_y) >= robots)
+    wide = f"-x {wider}" + (f" -y {deepest}" if deepest != height else "")
+    options = [f"{wide} gives room for {room(wider, deepest, zone_y)}"]
+    zone_rows = -(-robots // width) - 1  # zones this high leave enough rows below them
+    tall = first_taller(width, zone_rows, 2 * (zone_rows + 2))
+    if tall is not None:
+        options.append(f"-Y {zone_rows} -y {tall} for {room(width, tall, zone_rows)}")
+    return (f"below zones of -Y {zone_y} lie at most {zone_y + 1} rows of {width} robots, whatever -y; "
+            f"{', '.join(options)}")
 
 
 def where_shelves_go(floor: Floor) -> str:
