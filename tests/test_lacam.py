@@ -9,6 +9,7 @@ from helpers.clocks import patient_anytime
 from asprilo.bounds import Floor
 from asprilo.encodings.anytime.lacam import lacam_tracks
 from asprilo.encodings.anytime.pibt import Pibt
+from asprilo.encodings.anytime.roadmap import Roadmap
 
 
 def _keeps_the_rules(tracks, starts, goals) -> None:
@@ -42,10 +43,13 @@ def test_robots_take_turns_in_a_dead_end():
     # other passes; plain PIBT steps push the two back and forth for ever (checked first)
     floor = Floor([(1, 1), (2, 1), (3, 1), (4, 1), (2, 2)])
     starts, goals = {1: (1, 1), 2: (4, 1)}, {1: (4, 1), 2: (1, 1)}
-    pibt, at = Pibt(floor, goals, swap=False), dict(starts)
+    roadmap = Roadmap(floor)
+    robots = sorted(starts)
+    aims = [roadmap.vertex(goals[robot]) for robot in robots]
+    pibt, at = Pibt(roadmap, aims, swap=False), [roadmap.vertex(starts[robot]) for robot in robots]
     for _ in range(50):
-        at = pibt.step(at, [1, 2], {})
-    assert at != goals
+        at = pibt.step(at, [0, 1])
+    assert at != aims
     tracks = lacam_tracks(floor, starts, goals, lambda: False)
     _keeps_the_rules(tracks, starts, goals)
 
@@ -55,15 +59,16 @@ def test_the_swap_move_backs_away_and_pulls_the_other_robot_to_the_branch():
     # come back past it; ahead lies the dead end (4,1), behind the branch (2,1) with two ways
     # on: so robot 1 backs away from its goal, to (1,1) or (2,2), and pulls robot 2 after it
     floor = Floor([(1, 1), (2, 1), (3, 1), (4, 1), (2, 2)])
-    goals = {1: (4, 1), 2: (1, 1)}
+    roadmap = Roadmap(floor)
+    aims = [roadmap.vertex((4, 1)), roadmap.vertex((1, 1))]
     for seed in range(10):
-        pibt = Pibt(floor, goals, seed)
-        after = pibt.step({1: (2, 1), 2: (3, 1)}, [1, 2], {})
-        assert after[2] == (2, 1) and after[1] in {(1, 1), (2, 2)}
+        pibt = Pibt(roadmap, aims, seed)
+        after = pibt.step([roadmap.vertex((2, 1)), roadmap.vertex((3, 1))], [0, 1])
+        assert roadmap.cells[after[1]] == (2, 1) and roadmap.cells[after[0]] in {(1, 1), (2, 2)}
         at = after
         for _ in range(30):
-            at = pibt.step(at, [1, 2], {})
-        assert at == goals
+            at = pibt.step(at, [0, 1])
+        assert at == aims
 
 
 def test_a_robot_without_a_goal_steps_aside_and_comes_back():

@@ -2,166 +2,171 @@
 al., 2019) with the swap move of LaCAM* (Okumura, 2024), written here from the papers'
 descriptions; :mod:`.lacam` searches with it.
 
-In a step every robot picks its next cell, nearest to its goal first, in the order of its
-priority; a robot that wants a cell where another robot stands pushes that robot (which
-then picks first, and may not come to the pusher's cell: no swaps); a robot that finds no
-cell stays.  Some robots may have their next cell fixed beforehand (LaCAM's constraints).
+Robots are numbered ``0 .. n-1`` and cells are vertices of a :class:`~.roadmap.Roadmap`; a
+configuration is the list of the robots' vertices.  In a step every robot picks its next
+vertex in the order of its priority, nearest to its goal first (equally near ones in a random
+order, drawn anew each time: fixed ties let two robots push each other back and forth for
+ever).  A robot that wants a vertex where another robot stands pushes that robot, which then
+picks at once and may not come to the pusher's vertex (no swaps); a robot that finds no
+vertex stays, and its pusher tries its next choice.  Some robots may have their next vertex
+fixed beforehand (LaCAM's constraints).
 
 Plain PIBT cannot let two robots pass each other in a corridor: each pushes the other back.
-The swap move sees this coming (the corridor ahead has no room to pass before the robots'
-ways part) and, where the corridor behind leads to room, lets the robot back away from its
-goal and pull the other after it, until both reach a branch where they can pass.
+The swap move sees this coming: pushing on along the corridor ahead meets no room to pass
+before the robots' ways part, while the corridor behind leads to room.  Then the robot backs
+away from its goal and pulls the other after it, until both reach a branch where they can
+pass.  It also sees the case the other way round: a robot right behind this one will have
+to pass it in the corridor ahead, so this one backs away first, pulling that one along.
 """
 
 from __future__ import annotations
 
 import random
 
-from asprilo.bounds import Floor
-from asprilo.model import DIRECTIONS, Cell
+from .roadmap import FAR, Roadmap
 
-#: the distance given to a cell a robot's aim cannot be reached from
-FAR = 1 << 30
+#: no robot, no vertex
+NONE = -1
 
 
 class Pibt:
-    """Steps on one floor towards fixed aims (robot -> cell); ``swap``: with the swap move."""
+    """Steps on one roadmap towards fixed aims (robot number -> vertex); ``swap``: with the
+    swap move."""
 
-    def __init__(self, floor: Floor, aims: dict[int, Cell], seed: int = 0, swap: bool = True):
-        self.aims = aims
-        self.swap = swap
-        self.distance = {aim: floor.steps_from([aim]) for aim in set(aims.values())}
-        self.shuffle = random.Random(seed)
-        cells = set(floor.cells)
-        self.neighbours = {(x, y): [(x + dx, y + dy) for dx, dy in DIRECTIONS if (x + dx, y + dy) in cells]
-                           for x, y in cells}
-        self.moves = {cell: around + [cell] for cell, around in self.neighbours.items()}
-        self._near: dict[tuple[Cell, Cell], list[tuple[int, Cell]]] = {}
+    def __init__(self, roadmap: Roadmap, aims: list[int], seed: int = 0, swap: bool = True):
+        self.roadmap, self.aims, self.swap = roadmap, aims, swap
+        self.to = roadmap.distances_to(aims)  # robot -> its distance table
+        self.random = random.Random(seed)
+        self.neighbours = roadmap.neighbours
+        self._now = [NONE] * roadmap.size    # vertex -> the robot on it (during a step)
+        self._taken = [NONE] * roadmap.size  # vertex -> the robot going there next
+        self._after: list[int] = []          # robot -> its next vertex (NONE: undecided)
+        self._at: list[int] = []
 
-    def ranked(self, robot: int, cell: Cell, standing: dict[Cell, int]) -> list[Cell]:
-        """The cells a robot on ``cell`` may be on next: nearest to its aim first, among equally
-        near ones free cells first, ties drawn anew each time (fixed ties let two robots push
-        each other back and forth for ever)."""
-        aim = self.aims[robot]
-        near = self._near.get((aim, cell))
-        if near is None:
-            distance = self.distance[aim]
-            near = self._near[(aim, cell)] = [(4 * distance[option], option) for option in self.moves[cell]]
-        draw = self.shuffle.random
-        return [option for _, option in sorted([(rank + 2 * (option in standing) + draw(), option)
-                                                for rank, option in near])]
-
-    def reachable(self, starts: dict[int, Cell]) -> bool:
+    def reachable(self, starts: list[int]) -> bool:
         """Whether every robot can reach its aim at all."""
-        return all(start in self.distance[self.aims[robot]] for robot, start in starts.items())
+        return all(self.to[robot][start] < FAR for robot, start in enumerate(starts))
 
-    def to_go(self, robot: int, cell: Cell) -> int:
-        return self.distance[self.aims[robot]].get(cell, FAR)
+    def step(self, at: list[int], order: list[int], fixed: list[tuple[int, int]] = ()) -> list[int] | None:
+        """Where every robot is after one step from ``at``: the robots of ``fixed``
+        (robot, vertex) go where it says, the others pick in the order of ``order``;
+        ``None`` when the fixed moves leave no valid step."""
+        now, taken = self._now, self._taken
+        after = [NONE] * len(at)
+        self._after, self._at = after, at
+        for robot, vertex in enumerate(at):
+            now[vertex] = robot
+        try:
+            for robot, vertex in fixed:
+                other = now[vertex]
+                if taken[vertex] != NONE or (other != NONE and after[other] == at[robot]):
+                    return None  # two robots on one vertex, or two swapping theirs
+                after[robot], taken[vertex] = vertex, robot
+            aims = self.aims
+            for robot in order:
+                if after[robot] != NONE:
+                    continue
+                here = at[robot]
+                if here == aims[robot] and taken[here] == NONE:
+                    after[robot], taken[here] = here, robot  # at its goal, nobody pushing: it stays
+                elif not self._pick(robot):
+                    return None  # a robot could not even stay (a fixed move took its vertex)
+            return after
+        finally:
+            for vertex in at:
+                now[vertex] = NONE
+            for vertex in after:
+                if vertex != NONE:
+                    taken[vertex] = NONE
 
-    def step(self, at: dict[int, Cell], order: list[int], fixed: dict[int, Cell]) -> dict[int, Cell] | None:
-        """Where every robot of ``at`` is after one step, the robots of ``order`` picking in
-        that order and those of ``fixed`` going where it says; ``None`` when the fixed moves
-        leave no valid step (two robots on one cell, or a swap)."""
-        step = _Step(self, at, fixed)
-        if len(step.taken) < len(fixed):
-            return None
-        for robot in order:
-            if robot not in step.after:
-                step.pick(robot, None)
-        after = step.after
-        if len(set(after.values())) < len(after) or any(step.swaps(robot, cell) for robot, cell in after.items()):
-            return None
-        return after
+    def _pick(self, robot: int) -> bool:
+        """Choose ``robot``'s next vertex, pushing the robot there; whether it could move
+        (or stay, when staying was its choice)."""
+        now, taken, after, at = self._now, self._taken, self._after, self._at
+        here = at[robot]
+        to = self.to[robot]
+        draw = self.random.random
+        options = [here, *self.neighbours[here]]
+        ranked = [vertex for _, vertex in sorted([(to[vertex] + draw(), vertex) for vertex in options])]
+        partner = self._swap_partner(robot, ranked[0]) if self.swap and ranked[0] != here else NONE
+        if partner != NONE:
+            ranked.reverse()  # back away from the goal first
+        for vertex in ranked:
+            if taken[vertex] != NONE:
+                continue
+            other = now[vertex]
+            if other != NONE and after[other] == here:
+                continue  # the robot there comes here: a swap
+            after[robot], taken[vertex] = vertex, robot
+            if other != NONE and other != robot and after[other] == NONE and not self._pick(other):
+                continue  # it could not get out of the way (it keeps its vertex)
+            if vertex == ranked[0] and partner != NONE and after[partner] == NONE and taken[here] == NONE:
+                after[partner], taken[here] = here, partner  # pulled into the vertex left
+            return True
+        after[robot], taken[here] = here, robot
+        return False
 
     # --- the swap move -----------------------------------------------------------------------
 
-    def swap_partner(self, robot: int, wanted: Cell, at: dict[int, Cell], standing: dict[Cell, int],
-                     after: dict[int, Cell]) -> int | None:
-        """The robot on the cell ``robot`` wants, when ``robot`` should back away and pull it
-        after it: the two must pass each other and there is room behind ``robot``."""
-        other = standing.get(wanted)
-        if (other is None or other == robot or other in after or not self.swap
-                or not self._must_pass(robot, other, at[robot], wanted, standing)):
-            return None
-        return other if self._room(wanted, at[robot], standing) else None
+    def _swap_partner(self, robot: int, wanted: int) -> int:
+        """The robot to pull after ``robot`` as it backs away (``NONE``: no swap): the one on
+        the vertex it wants, when the two must pass each other; or one right behind it that
+        must pass it on the corridor ahead; in either case only where there is room behind."""
+        now, after, here = self._now, self._after, self._at[robot]
+        ahead = now[wanted]
+        if (ahead != NONE and after[ahead] == NONE and self._must_pass(robot, ahead, here, wanted)
+                and self._room(wanted, here)):
+            return ahead
+        for vertex in self.neighbours[here]:
+            behind = now[vertex]
+            if (behind != NONE and vertex != wanted and after[behind] == NONE
+                    and self._must_pass(behind, robot, here, wanted) and self._room(wanted, here)):
+                return behind
+        return NONE
 
-    def _must_pass(self, pusher: int, puller: int, pusher_at: Cell, puller_at: Cell,
-                   standing: dict[Cell, int]) -> bool:
-        """Whether ``pusher`` (going towards ``puller``) and ``puller`` must pass each other:
-        pushing on along the corridor ahead brings ``pusher`` nearer its aim without meeting
-        room to pass, and there ``puller``'s way leads back past ``pusher``."""
+    def _must_pass(self, pusher: int, puller: int, pusher_at: int, puller_at: int) -> bool:
+        """Whether ``pusher`` (on ``pusher_at``, going towards ``puller`` on ``puller_at``)
+        and ``puller`` must pass each other: pushing on along the corridor ahead brings
+        ``pusher`` nearer its aim without meeting room to pass, and there ``puller``'s way
+        leads back past ``pusher``."""
+        to_pusher, to_puller = self.to[pusher], self.to[puller]
         behind, ahead = pusher_at, puller_at
-        while self.to_go(pusher, ahead) < self.to_go(pusher, behind):
-            onward = self._onward(ahead, behind, standing)
-            if len(onward) >= 2:
+        while to_pusher[ahead] < to_pusher[behind]:
+            ways, onward = self._onward(ahead, behind)
+            if ways >= 2:
                 return False  # room to pass on the way
-            if not onward:
+            if ways == 0:
                 break
-            behind, ahead = ahead, onward[0]
-        return (self.to_go(puller, behind) < self.to_go(puller, ahead)
-                and (self.to_go(pusher, behind) == 0 or self.to_go(pusher, ahead) < self.to_go(pusher, behind)))
+            behind, ahead = ahead, onward
+        return (to_puller[behind] < to_puller[ahead]
+                and (to_pusher[behind] == 0 or to_pusher[ahead] < to_pusher[behind]))
 
-    def _room(self, behind: Cell, ahead: Cell, standing: dict[Cell, int]) -> bool:
+    def _room(self, behind: int, ahead: int) -> bool:
         """Whether the corridor from ``behind`` through ``ahead`` (away from ``behind``) leads
-        to a cell with room to pass (two ways on) before a dead end or a loop back."""
+        to a vertex with room to pass (two ways on) before a dead end or a loop back."""
         start = behind
-        while ahead != start:
-            onward = self._onward(ahead, behind, standing)
-            if len(onward) >= 2:
-                return True
-            if not onward:
+        for _ in range(self.roadmap.size):
+            if ahead == start:
                 return False
-            behind, ahead = ahead, onward[0]
+            ways, onward = self._onward(ahead, behind)
+            if ways >= 2:
+                return True
+            if ways == 0:
+                return False
+            behind, ahead = ahead, onward
         return False
 
-    def _onward(self, cell: Cell, came_from: Cell, standing: dict[Cell, int]) -> list[Cell]:
-        """The cells on from ``cell`` other than ``came_from``, leaving out dead ends where a
-        robot already stands on its aim (it need not move)."""
-        onward = []
-        for next_cell in self.neighbours[cell]:
-            if next_cell == came_from:
+    def _onward(self, vertex: int, came_from: int) -> tuple[int, int]:
+        """How many ways lead on from ``vertex`` other than back to ``came_from``, and one of
+        them, leaving out dead ends where a robot already stands on its aim (it need not
+        move)."""
+        now, aims, neighbours = self._now, self.aims, self.neighbours
+        ways, onward = 0, NONE
+        for next_vertex in neighbours[vertex]:
+            if next_vertex == came_from:
                 continue
-            resting = standing.get(next_cell)
-            if len(self.neighbours[next_cell]) == 1 and resting is not None and self.aims[resting] == next_cell:
+            resting = now[next_vertex]
+            if resting != NONE and len(neighbours[next_vertex]) == 1 and aims[resting] == next_vertex:
                 continue
-            onward.append(next_cell)
-        return onward
-
-
-class _Step:
-    """One step in the making: where the robots stand, where those decided go next."""
-
-    def __init__(self, pibt: Pibt, at: dict[int, Cell], fixed: dict[int, Cell]):
-        self.pibt, self.at = pibt, at
-        self.standing = {cell: robot for robot, cell in at.items()}
-        self.after: dict[int, Cell] = dict(fixed)
-        self.taken = {cell: robot for robot, cell in fixed.items()}
-
-    def swaps(self, robot: int, cell: Cell) -> bool:
-        """Whether ``robot`` going to ``cell`` swaps cells with the robot standing there."""
-        other = self.standing.get(cell)
-        return other is not None and other != robot and self.after.get(other) == self.at[robot]
-
-    def pick(self, robot: int, pusher: int | None) -> bool:
-        """Choose ``robot``'s next cell (pushing the robot there); whether it could move."""
-        at, after, taken = self.at, self.after, self.taken
-        if pusher is None and at[robot] == self.pibt.aims[robot] and at[robot] not in taken:
-            after[robot], taken[at[robot]] = at[robot], robot  # at its goal: staying ranks first
-            return True
-        options = self.pibt.ranked(robot, at[robot], self.standing)
-        partner = self.pibt.swap_partner(robot, options[0], at, self.standing, after)
-        if partner is not None:
-            options = options[::-1]  # back away from the goal first
-        for cell in options:
-            if cell in taken or (pusher is not None and cell == at[pusher]) or self.swaps(robot, cell):
-                continue
-            after[robot], taken[cell] = cell, robot
-            other = self.standing.get(cell)
-            if other is not None and other != robot and other not in after and not self.pick(other, robot):
-                continue  # the robot there could not get out of the way: it took this cell itself
-            if partner is not None and cell == options[0] and partner not in after and at[robot] not in taken:
-                after[partner], taken[at[robot]] = at[robot], partner  # pulled into the cell left
-            return True
-        after[robot] = at[robot]
-        taken[at[robot]] = robot
-        return False
+            ways, onward = ways + 1, next_vertex
+        return ways, onward

@@ -36,7 +36,9 @@ from .improve import Improver, score
 from .lacam import lacam_tracks
 from .plans import plan_of
 from .prioritized import first_tracks
+from .refine import Refiner
 from .reservations import Reservations, Track
+from .roadmap import Roadmap
 from .router import Router
 from .work import ASSIGN_CAP, ASSIGN_SHARE, Work
 
@@ -237,7 +239,8 @@ def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> Anyt
         return result
     table = Reservations(instance, work.homes)
     router = Router(grid, table, out_of_time, engine)
-    tracks = _first_plan(run, work, floor, router, table, limit, seed)
+    roadmap = Roadmap(floor)
+    tracks = _first_plan(run, work, roadmap, router, table, limit, seed)
     if tracks is None:
         result.status = run.stopped()
         result.message = "no first plan within the time limit"
@@ -245,7 +248,10 @@ def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> Anyt
     if result.status is not SolveStatus.FOUND and not run.offer(tracks, force=True):
         result.status = SolveStatus.INVALID
         return result
-    _improve(run, Improver(work, router, table, seed), table)
+    if _own_goals(work):
+        _refine(run, Refiner.of_tracks(roadmap, tracks, work.goals, seed))
+    else:
+        _improve(run, Improver(work, router, table, seed), table)
     if run.pending is not None:
         run.report()
     if result.status is not SolveStatus.FOUND:
@@ -253,22 +259,26 @@ def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> Anyt
     return result
 
 
-def _first_plan(run: _Run, work: Work, floor: Floor, router: Router, table: Reservations, limit: float, seed: int
-                ) -> dict[int, Track] | None:
+def _first_plan(run: _Run, work: Work, roadmap: Roadmap, router: Router, table: Reservations, limit: float,
+                seed: int) -> dict[int, Track] | None:
     """The first tracks, held in ``table``: by prioritized planning; for robots with goals
     (M, Md), first by LaCAM within :data:`FAST_SHARE` of the time (all robots at once, fast
-    on a crowded floor), reported at once, then by prioritized planning within
+    on a crowded floor), reported at once, then (unless every robot has its own goal: the
+    refinement does better from LaCAM's plan) by prioritized planning within
     :data:`PRIORITIZED_SHARE` of the time, kept if better (or with all the time left, when
     LaCAM found nothing)."""
     watch = run.watch
     fast = None
     if work.domain.work is Job.GOALS:
         starts = {robot: spot.at for robot, spot in run.instance.robots.items()}
-        fast = lacam_tracks(floor, starts, work.goals, _stop_after(watch, FAST_SHARE * limit), seed)
+        fast = lacam_tracks(roadmap.floor, starts, work.goals, _stop_after(watch, FAST_SHARE * limit), seed, roadmap)
         if fast is not None:
             run.result.stats["first_plan_seconds"] = round(watch.elapsed(), 3)
             if not run.offer(fast, force=True):
                 fast = None
+            elif _own_goals(work):
+                _go_back(table, fast)
+                return fast
     stopped = watch.out_of_time if fast is None else _stop_after(watch, PRIORITIZED_SHARE * limit)
     tracks = first_tracks(work, router, table, stopped, seed)
     if fast is None:
@@ -279,6 +289,34 @@ def _first_plan(run: _Run, work: Work, floor: Floor, router: Router, table: Rese
         _go_back(table, fast)
         return fast
     return tracks
+
+
+def _own_goals(work: Work) -> bool:
+    """Whether every robot has a goal of its own that stays (M/Md with labels): the plan is
+    refined by :mod:`.refine`."""
+    return work.domain.work is Job.GOALS and not work.reassignable()
+
+
+def _refine(run: _Run, refiner: Refiner) -> None:
+    """Large-neighbourhood search of :mod:`.refine` until time is up or the bounds are met;
+    a better plan is offered when checking is due, the last one at the end."""
+    steps, unreported = 0, False
+    while True:
+        run.refresh_bounds()
+        makespan, soc = refiner.score()
+        bound, soc_bound = run.result.bound, run.result.sum_of_costs_bound
+        reserve = 1.5 * run.check_seconds + 0.05
+        if (makespan <= bound and (soc_bound is None or soc <= soc_bound)) or run.watch.out_of_time(keep=reserve):
+            break
+        steps += 1
+        unreported |= refiner.step(partial(run.watch.out_of_time, reserve))
+        if unreported and run.due():
+            unreported = False
+            if not run.offer(refiner.tracks(), force=True):
+                break  # a bug: the plan reported last stays
+    if unreported:
+        run.offer(refiner.tracks(), force=True)
+    run.result.stats.update(neighbourhoods=steps, tried=dict(refiner.tried), improved=dict(refiner.won))
 
 
 def _stop_after(watch: Watch, seconds: float) -> Callable[[], bool]:
