@@ -135,13 +135,15 @@ class Router:
 
     def _passable(self, robot: int, tasks: list[Task], number: int) -> np.ndarray:
         """Where the robot may be on its way to task ``number``: anywhere when it carries
-        nothing; else nowhere a shelf rests all the time, nor on its own other shelves."""
+        nothing; else nowhere a shelf rests all the time, nor on its own other shelves (on the
+        cells of those it lifts later, and where it puts any down)."""
         task = tasks[number]
         if not task.carrying:
             return self.grid.floor
         own = {t.shelf for t in tasks if t.shelf is not None}
         blocked = self.reservations.still_shelves(own)
-        blocked += [self.reservations.homes[s] for s in own if s != task.shelf]
+        lifted = {t.shelf for t in tasks[:number] if t.name == "pickup"}  # off their own cells by now
+        blocked += [self.reservations.homes[s] for s in own if s != task.shelf and s not in lifted]
         blocked += [t.cells[0] for t in tasks if t.name == "putdown" and t.shelf != task.shelf]
         return self.grid.floor & ~self.grid.mask(blocked)
 

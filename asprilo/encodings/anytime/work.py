@@ -12,6 +12,7 @@ spare cell (:meth:`Work.clear`), because putting a shelf down there saves steps.
 from __future__ import annotations
 
 import math
+from collections import deque
 from collections.abc import Callable, Collection, Iterator
 from itertools import pairwise
 
@@ -98,6 +99,7 @@ class Work:
             self.trips = trips(self.instance, self.domain, choice.of("give"), choice.of("carry"), self.homes)
             for robot in [robot for robot in self.clearings if robot not in self.trips]:
                 self.unclear(robot)  # a robot left without trips clears nothing (it makes room)
+            self._unbox()
         else:
             self.goals = aims(choice, self._problem)
 
@@ -194,10 +196,11 @@ class Work:
         putdowns = {}
         for trip, carry, walk in self._changes(trips_):
             home = self.homes[trip.shelf]
-            candidates = [home] if home in self._storage else []
-            candidates += [cell for cell in self._spare_cells() if cell not in taken]
-            steps = {cell: carry[cell] + walk[cell] for cell in candidates}
-            steps.update({cell: _entered(carry, cell) + walk[cell] for cell in cleared})
+            steps = {cell: carry[cell] + walk[cell] for cell in self._spare_cells() if cell not in taken}
+            # the shelf's own cell and the cleared ones are empty by then: entered from a neighbour
+            # (the carrying way goes around every cell a shelf starts on, these included)
+            homes = [home] if home in self._storage else []
+            steps.update({cell: _entered(carry, cell) + walk[cell] for cell in [*cleared, *homes]})
             reachable = [cell for cell in steps if steps[cell] < INFINITE]
             if not reachable:
                 continue
@@ -283,6 +286,58 @@ class Work:
         self.clearings = {**self.clearings, helper: [*self.clearings.get(helper, []), (shelf, spot)]}
         self.claims[shelf] = spot
         return True
+
+    def _unbox(self) -> None:
+        """A shelf to fetch that cannot be carried out of its cell (resting shelves that serve
+        no order stand in every way to its first station, as in a dead end): its robot first
+        carries those shelves to spare cells, the one nearest the station first."""
+        busy = {trip.shelf for ts in self.trips.values() for trip in ts}
+        busy |= {r.carries for r in self.instance.robots.values() if r.carries is not None}
+        busy |= {shelf for jobs in self.clearings.values() for shelf, _ in jobs}
+        for robot, trips_ in sorted(self.trips.items()):
+            for trip in trips_:
+                if not trip.deliveries:
+                    continue
+                for shelf in self._blockers(self.homes[trip.shelf], trip.deliveries[0][0]):
+                    if shelf in busy:
+                        break  # a shelf with work of its own: left to the search
+                    taken = set(self.claims.values()) | set(self.cleared())
+                    away = self._way(self.homes[shelf], True)
+                    spots = [c for c in self._spare_cells() if c not in taken and _entered(away, c) < INFINITE]
+                    if not spots:
+                        break
+                    spot = min(spots, key=lambda c: (_entered(away, c), c))
+                    self.clearings = {**self.clearings, robot: [*self.clearings.get(robot, []), (shelf, spot)]}
+                    self.claims[shelf] = spot
+                    busy.add(shelf)
+
+    def _blockers(self, home: Cell, station: Cell) -> list[int]:
+        """The resting shelves on the way from ``station`` to ``home`` that passes the fewest of
+        them, nearest the station first (none when a carried shelf gets out as things stand)."""
+        if _entered(self._way(station, True), home) < INFINITE:
+            return []
+        resting = {cell: shelf for shelf, cell in self.homes.items() if cell in self.resting and cell != home}
+        crossed, came = {station: 0}, {station: station}
+        todo: deque[Cell] = deque([station])
+        while todo:  # 0-1 breadth first: entering a resting shelf's cell costs one
+            cell = todo.popleft()
+            if cell == home:
+                break
+            for dx, dy in DIRECTIONS:
+                near = (cell[0] + dx, cell[1] + dy)
+                if near not in self._cells:
+                    continue
+                cost = crossed[cell] + (near in resting)
+                if cost < crossed.get(near, cost + 1):
+                    crossed[near], came[near] = cost, cell
+                    (todo.append if near in resting else todo.appendleft)(near)
+        if home not in came:
+            return []
+        way, cell = [], home
+        while cell != station:
+            cell = came[cell]
+            way.append(cell)
+        return [resting[cell] for cell in reversed(way) if cell in resting]
 
     def unclear(self, helper: int) -> None:
         """``helper`` clears no cells any more: the shelves put down on them go elsewhere."""
