@@ -27,7 +27,7 @@ from asprilo.checker import Report, check
 from asprilo.domain import Domain, Job
 from asprilo.model import Instance, Plan
 
-from ..solving.bounds import AwaitedBounds, LowerBounds, bounds_beside
+from ..solving.bounds import AwaitedBounds, BoundsLost, LowerBounds, bounds_beside
 from ..solving.status import IMPROVED, Attempt, SolveStatus
 from ..solving.watch import Watch
 from . import DEFAULT_SECONDS
@@ -57,17 +57,20 @@ RECENT_STEPS = 10
 class Improvement(Attempt):
     """One plan reported, as an ``improved`` attempt at its makespan: when (``seconds``
     since the start), its sum of costs, the gap of the makespan to the lower bound (a
-    fraction of the bound), and the plan."""
+    fraction of the bound), the plan and the checker's verdict on it (so that whoever hears
+    of it need not check it again: on a large floor that takes seconds)."""
 
     sum_of_costs: int = 0
     gap: float | None = None
+    verdict: Report | None = field(default=None, repr=False, compare=False)
 
     @classmethod
-    def of(cls, seconds: float, makespan: int, sum_of_costs: int, gap: float | None, plan: Plan) -> Improvement:
+    def of(cls, seconds: float, makespan: int, sum_of_costs: int, gap: float | None, plan: Plan,
+           verdict: Report | None = None) -> Improvement:
         """The report of a plan; its note gives the sum of costs and the gap."""
         above = "" if gap is None else f", {100 * gap:.1f}% above the lower bound"
         return cls(makespan, IMPROVED, seconds, f"sum of costs {sum_of_costs}{above}", plan,
-                   sum_of_costs=sum_of_costs, gap=gap)
+                   sum_of_costs=sum_of_costs, gap=gap, verdict=verdict)
 
     @property
     def makespan(self) -> int:
@@ -99,6 +102,8 @@ class AnytimeResult:
     history: list[Improvement] = field(default_factory=list)
     stats: dict = field(default_factory=dict)
     message: str = ""
+    #: what went wrong beside the search, in sentences (the strong bound's process ran out of memory)
+    notes: list[str] = field(default_factory=list)
 
     @property
     def makespan(self) -> int | None:
@@ -129,13 +134,20 @@ class _Run:
         return SolveStatus.CANCELLED if self.watch.cancelled else status or SolveStatus.LIMIT
 
     def refresh_bounds(self) -> None:
-        """Take the awaited bounds once they have come."""
+        """Take the awaited bounds once they have come (and tell the watch); when they never
+        will, say why and go on with those at hand."""
         if self.awaited is None:
             return
-        bounds = self.awaited.arrived()
+        try:
+            bounds = self.awaited.arrived()
+        except BoundsLost as lost:
+            self.awaited = None
+            self.result.notes.append(f"{lost}; the lower bound is the cheap one")
+            return
         if bounds is not None:
             self.result.bound, self.result.sum_of_costs_bound = bounds.makespan, bounds.sum_of_costs
             self.awaited = None
+            self.watch.lower_bounds(bounds)
 
     def reached_bound(self, tracks: dict[int, Track]) -> bool:
         self.refresh_bounds()
@@ -176,7 +188,7 @@ class _Run:
         makespan, soc = verdict.metrics["horizon"], verdict.metrics["sum_of_costs"]
         result.minimal = makespan <= result.bound
         gap = None if result.bound <= 0 or not math.isfinite(result.bound) else (makespan - result.bound) / result.bound
-        improvement = Improvement.of(round(self.watch.elapsed(), 3), makespan, soc, gap, plan)
+        improvement = Improvement.of(round(self.watch.elapsed(), 3), makespan, soc, gap, plan, verdict)
         result.history.append(improvement)
         if self.on_improvement is not None:
             self.on_improvement(improvement)
@@ -215,6 +227,7 @@ def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = 
         floor = Floor(instance.cells)
         if bounds is None:
             bounds, helper = bounds_beside(instance, domain, floor)
+            watch.lower_bounds(LowerBounds(bounds.makespan, bounds.sum_of_costs))  # (cheap, if awaited)
         run = _Run(instance, domain, watch, bounds, on_improvement)
         return _plan(run, floor, limit, seed, router)
     finally:

@@ -15,7 +15,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from asprilo.checker import check
+from asprilo.checker import Report, check
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
 from asprilo.model import Instance
@@ -23,7 +23,7 @@ from asprilo.reader import read_instance
 from asprilo.solver import Statistics
 
 from ..registry import Encoding, default_encoding, find_encoding
-from .bounds import LowerBounds, lower_bounds
+from .bounds import LowerBounds, lower_bounds, prompt_bounds
 from .method import Method
 from .methods import method_for, resolve
 from .minimality import settle
@@ -137,7 +137,7 @@ def solve_here(request: SolveRequest, method: Method, listeners: Listeners,
     them, or the method has its child processes compute them), one watch, the method, the
     check of its plan."""
     with Watch(method.time_limit(request), cancel, listeners) as watch:
-        if request.bounds is None and not method.isolates_itself:
+        if request.bounds is None and not method.isolates_itself and not method.bounds_beside:
             watch.phase("bounding", 0)
             request = replace(request, bounds=lower_bounds(request.instance, request.domain))
         if request.bounds is not None:
@@ -221,13 +221,15 @@ def best_plan(request: SolveRequest, outcome: Outcome, found: list[Attempt]) -> 
     """The outcome found with the shortest of the plans ``found`` that passes the check (of
     two as short, the later: the anytime method's later plan has the smaller sum of costs);
     whether one passed.  Minimal when no plan is shorter than the bound the horizons refuted
-    prove."""
+    prove.  A plan checked where it was found (:func:`checked_verdict`) is not checked again:
+    the time is up."""
     ranked = sorted(range(len(found)), key=lambda i: (found[i].horizon, -i))
     for index in ranked:
         attempt = found[index]
         outcome.status, outcome.plan, outcome.horizon, outcome.check = (
-            SolveStatus.FOUND, attempt.plan, attempt.horizon, None)
-        check_plan(request, outcome)
+            SolveStatus.FOUND, attempt.plan, attempt.horizon, checked_verdict(attempt))
+        if outcome.check is None:
+            check_plan(request, outcome)
         if outcome.found:
             outcome.message = ""
             outcome.minimal = outcome.horizon <= outcome.proven_bound
@@ -236,12 +238,21 @@ def best_plan(request: SolveRequest, outcome: Outcome, found: list[Attempt]) -> 
     return False
 
 
+def checked_verdict(attempt: Attempt) -> Report | None:
+    """The checker's verdict that came with a plan (the anytime planner checks every plan it
+    reports), if it passed."""
+    verdict = getattr(attempt, "verdict", None)
+    return verdict if isinstance(verdict, Report) and verdict.valid else None
+
+
 def _bounds_heard(request: SolveRequest, child: Isolated) -> LowerBounds:
-    """The lower bounds the child reported (computed here if it was stopped before it could)."""
+    """The last lower bounds the child reported (the anytime planner says the cheap ones,
+    then the strong ones when they come), else the request's or those found here at once: the
+    time is up, and the strong bound of a large floor takes minutes (:func:`prompt_bounds`)."""
     heard = [message for message in child.messages if isinstance(message, LowerBounds)]
     if heard:
-        return heard[0]
-    return request.bounds or lower_bounds(request.instance, request.domain)
+        return heard[-1]
+    return request.bounds or prompt_bounds(request.instance, request.domain)
 
 
 def why_stopped(request: SolveRequest, status: str, detail: str, cancelled: bool) -> str:
@@ -250,8 +261,20 @@ def why_stopped(request: SolveRequest, status: str, detail: str, cancelled: bool
         return "cancelled"
     time_limit = request.time_limit
     return {"timeout": f"stopped at the time limit ({time_limit:g} s)" if time_limit else "stopped",
-            "memout": f"stopped at the memory limit ({request.memory_limit} MB)",
+            "memout": f"stopped at the memory limit ({request.memory_limit} MB)" if request.memory_limit
+            else out_of_memory_words(),
             "crashed": f"the solver process died ({detail})"}[status]
+
+
+def out_of_memory_words() -> str:
+    """A process that ran out of memory without ``--memory-limit``: the limit it had, if any
+    (``ulimit -v``)."""
+    import resource
+
+    soft, _hard = resource.getrlimit(resource.RLIMIT_AS)
+    if soft == resource.RLIM_INFINITY:
+        return "the solver process ran out of memory"
+    return f"the solver process ran out of memory (its address space is limited to {soft // 2**20} MB: ulimit -v)"
 
 
 def _doing(messages: list[object]) -> str:

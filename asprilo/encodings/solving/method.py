@@ -39,6 +39,9 @@ class Method(ABC):
     #: whether it runs its parts in child processes itself (the front end then never runs it
     #: in a child, ``isolate`` or not)
     isolates_itself: ClassVar[bool] = False
+    #: whether it computes the lower bounds itself, beside its search (the front end then
+    #: leaves them to it: the strong bound of a large A/B/C floor takes minutes)
+    bounds_beside: ClassVar[bool] = False
 
     def honours(self, domain: Domain) -> bool:
         """Whether the plans of this method follow ``domain``'s rules (by default they do: a

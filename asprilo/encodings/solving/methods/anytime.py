@@ -18,6 +18,7 @@ class Anytime(Method):
 
     name = "anytime"
     words = "the anytime planner"
+    bounds_beside = True  # a first plan does not wait for the strong bound (minutes on 200x200)
 
     def honours(self, domain: Domain) -> bool:
         """The rules of SPEC.md (the planner moves robots in four directions, knows no rule more)."""
@@ -48,7 +49,8 @@ class Anytime(Method):
         outcome.status = result.status
         outcome.plan, outcome.check, outcome.minimal = result.plan, result.check, result.minimal
         outcome.horizon = result.plan.horizon if result.plan is not None else None
-        outcome.lower_bound, outcome.message = result.bound, result.message
+        outcome.lower_bound = result.bound
+        outcome.message = "; ".join(said for said in (result.message, *result.notes) if said)
         outcome.history = [better.figures() for better in result.history]
         outcome.stats = dict(result.stats)
         return outcome

@@ -254,13 +254,15 @@ class Portfolio:
 
     def _offer(self, name: str, attempt: Attempt, checked: bool) -> None:
         """A plan reported: the best one so far if it is shorter (and, unless ``checked`` in
-        its child, passes the check here)."""
+        its child, passes the check here; the anytime planner's verdict comes with its plan)."""
         # (the anytime planner's later plan of the same makespan has a smaller sum of costs)
         same = name == ANYTIME and self.outcome.found_by == ANYTIME
         if self.best is not None and (attempt.horizon > self.best.horizon or
                                       (attempt.horizon == self.best.horizon and not same)):
             return
-        report = None
+        from ..front import checked_verdict  # the front end imports the method table
+
+        report = checked_verdict(attempt) if checked else None
         if not checked:
             trial = self._checked(attempt)
             if not trial.found:
