@@ -185,6 +185,21 @@ def test_a_bound_process_out_of_memory_is_said_in_one_sentence(failure, said, tw
     assert (result.status, result.bound, result.notes) == ("found", 10, [said])
 
 
+def test_a_bound_process_that_dies_is_said_at_once_to_whoever_listens(two_trips, monkeypatch):
+    """Said as a note as soon as the planner sees it (so that a solve stopped from outside
+    before any plan still says it): time runs out once it has been said."""
+    from asprilo.encodings.solving.status import Note
+    from asprilo.encodings.solving.watch import Watch
+
+    bound_child(monkeypatch, _aborts)
+    heard = []
+    clock = patient_anytime(monkeypatch, stop_after=0, enough=lambda: bool(heard))
+    watch = Watch(GUARD, listeners=Listeners(notes=heard.append), clock=clock)
+    plan_anytime(two_trips, Domain.B, watch=watch)
+    assert heard == [Note("the process computing the strong lower bound ran out of memory (it aborted); the lower "
+                          "bound is the cheap one")]
+
+
 def test_the_strong_bound_replaces_the_cheap_one_when_it_comes(two_trips, monkeypatch):
     """The real bound's child: its bound (19) is taken once it arrives, and the watch hears
     the cheap bound, then the strong one."""
@@ -223,6 +238,17 @@ def test_a_solve_stopped_from_outside_answers_with_the_cheap_bound_at_once(two_t
     request = SolveRequest(two_trips, Domain.B, method="anytime", time_limit=30.0)
     outcome = front._stopped_from_outside(request, front.method_for(request), Isolated("timeout"), None)
     assert (outcome.status, outcome.lower_bound, outcome.message) == ("limit", 10, "stopped at the time limit (30 s)")
+
+
+def test_a_solve_stopped_from_outside_says_what_went_wrong_beside_it(two_trips):
+    from asprilo.encodings.solving.status import Note
+
+    request = SolveRequest(two_trips, Domain.B, method="anytime", time_limit=30.0, bounds=LowerBounds(19))
+    child = Isolated("timeout", messages=[Note("the process computing the strong lower bound ran out of memory; "
+                                               "the lower bound is the cheap one")])
+    outcome = front._stopped_from_outside(request, front.method_for(request), child, None)
+    assert outcome.message == ("stopped at the time limit (30 s); the process computing the strong lower bound ran "
+                               "out of memory; the lower bound is the cheap one")
 
 
 def test_a_plan_checked_by_the_planner_is_not_checked_again_after_the_limit(two_trips, monkeypatch):

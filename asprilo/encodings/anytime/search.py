@@ -143,11 +143,19 @@ class _Run:
         except BoundsLost as lost:
             self.awaited = None
             self.result.notes.append(f"{lost}; the lower bound is the cheap one")
+            self.watch.note(self.result.notes[-1])
             return
         if bounds is not None:
             self.result.bound, self.result.sum_of_costs_bound = bounds.makespan, bounds.sum_of_costs
             self.awaited = None
             self.watch.lower_bounds(bounds)
+
+    def out_of_time(self, keep: float = 0.0) -> bool:
+        """The watch's question (cancelled, or less than ``keep`` seconds left), asked of the
+        assignment and the first plan: the awaited bounds are looked for first (their
+        process may have failed: said at once, whatever the search does)."""
+        self.refresh_bounds()
+        return self.watch.out_of_time(keep)
 
     def reached_bound(self, tracks: dict[int, Track]) -> bool:
         self.refresh_bounds()
@@ -239,7 +247,7 @@ def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = 
 
 def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> AnytimeResult:
     """The steps of :func:`plan_anytime`: assignment, first plan, improvements."""
-    instance, domain, out_of_time, result = run.instance, run.domain, run.watch.out_of_time, run.result
+    instance, domain, out_of_time, result = run.instance, run.domain, run.out_of_time, run.result
     if not math.isfinite(result.bound):
         result.status, result.minimal = SolveStatus.NONE, True
         result.message = "some goal or order line can never be reached"
@@ -292,7 +300,7 @@ def _first_plan(run: _Run, work: Work, roadmap: Roadmap, router: Router, table: 
             elif _own_goals(work):
                 _go_back(table, fast)
                 return fast
-    stopped = watch.out_of_time if fast is None else _stop_after(watch, PRIORITIZED_SHARE * limit)
+    stopped = run.out_of_time if fast is None else _stop_after(watch, PRIORITIZED_SHARE * limit)
     tracks = first_tracks(work, router, table, stopped, seed)
     if fast is None:
         if tracks is not None:

@@ -29,7 +29,7 @@ from .methods import method_for, resolve
 from .minimality import settle
 from .outcome import Outcome
 from .request import SolveOptions, SolveRequest, given_assignment
-from .status import Attempt, Phase, PhaseListener, Progress, SolveStatus, Totals
+from .status import Attempt, Note, Phase, PhaseListener, Progress, SolveStatus, Totals
 from .watch import Listeners, Watch
 
 if TYPE_CHECKING:
@@ -184,13 +184,15 @@ def forwarder(listeners: Listeners) -> Callable[[object], None]:
             listeners.bounds(message)
         elif isinstance(message, Totals) and listeners.totals is not None:
             listeners.totals(message)
+        elif isinstance(message, Note) and listeners.notes is not None:
+            listeners.notes(message)
 
     return forward
 
 
 def solve_in_child(request: SolveRequest, report: Callable[[object], None]) -> Outcome:
     """The side of a child process: the request solved, everything heard reported at once."""
-    return solve_here(request, method_for(request), Listeners(report, report, report, report), None)
+    return solve_here(request, method_for(request), Listeners(report, report, report, report, report), None)
 
 
 def _stopped_from_outside(request: SolveRequest, method: Method, child: Isolated,
@@ -209,6 +211,7 @@ def _stopped_from_outside(request: SolveRequest, method: Method, child: Isolated
     stopped = why_stopped(request, child.status, child.detail, cancelled)
     if child.status == "timeout":
         stopped += _doing(child.messages)
+    stopped = "; ".join([stopped, *(message.text for message in child.messages if isinstance(message, Note))])
     best = [attempt for attempt in outcome.horizons_tried if attempt.plan is not None]
     if best and best_plan(request, outcome, best):
         outcome.message = f"{stopped}; the answer is the best plan found before"

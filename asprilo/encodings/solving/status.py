@@ -1,7 +1,7 @@
 """The words every solving method uses: how a solve ended (:class:`SolveStatus`), what a
 method reports along the way (:class:`Attempt`, one record for every method: the max-flow
 solver and the anytime planner report subclasses with their own figures), and what it is
-doing now (:class:`Phase`)."""
+doing now (:class:`Phase`), and what went wrong beside it (:class:`Note`)."""
 
 from __future__ import annotations
 
@@ -73,6 +73,15 @@ class Phase:
     name: str
     horizon: int
     conflicts: int | None = None
+
+
+@dataclass(frozen=True)
+class Note:
+    """A sentence on something that went wrong beside the search, said when it happens (so
+    that a search stopped from outside has said it): ``the process computing the strong
+    lower bound ran out of memory; the lower bound is the cheap one``."""
+
+    text: str
 
 
 @dataclass

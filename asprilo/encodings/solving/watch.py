@@ -18,7 +18,7 @@ from typing import Any
 from asprilo.solver import Solver, Statistics
 
 from .bounds import LowerBounds
-from .status import Attempt, Phase, PhaseListener, Progress, Totals
+from .status import Attempt, Note, Phase, PhaseListener, Progress, Totals
 
 #: how often the helper thread looks at the cancel event (seconds)
 _POLL = 0.05
@@ -27,13 +27,14 @@ _POLL = 0.05
 @dataclass(frozen=True)
 class Listeners:
     """Who hears what a solve does: each attempt (``progress``), each phase as it begins
-    (``phase``), the lower bounds once they are known (``bounds``), and the statistics so far
-    after each attempt (``totals``)."""
+    (``phase``), the lower bounds once they are known (``bounds``), the statistics so far
+    after each attempt (``totals``), and what went wrong beside the search (``notes``)."""
 
     progress: Progress | None = None
     phase: PhaseListener | None = None
     bounds: Callable[[LowerBounds], None] | None = None
     totals: Callable[[Totals], None] | None = None
+    notes: Callable[[Note], None] | None = None
 
 
 class Watch:
@@ -120,6 +121,11 @@ class Watch:
     def lower_bounds(self, bounds: LowerBounds) -> None:
         if self.listeners.bounds is not None:
             self.listeners.bounds(bounds)
+
+    def note(self, text: str) -> None:
+        """Say what went wrong beside the search (one sentence)."""
+        if self.listeners.notes is not None:
+            self.listeners.notes(Note(text))
 
     # --- solvers and statistics ------------------------------------------------------------------
 
