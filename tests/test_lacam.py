@@ -4,6 +4,8 @@ must take turns in a dead end, and no tracks where no plan exists."""
 
 from __future__ import annotations
 
+import pytest
+from helpers import EXAMPLES
 from helpers.clocks import patient_anytime
 
 from asprilo.bounds import Floor
@@ -106,3 +108,27 @@ def test_the_planner_falls_back_on_prioritized_planning_when_lacam_finds_nothing
     result = plan_anytime(instance, Domain.MD, time_limit=3, on_improvement=clock.reported)
     assert len(asked) == 1 and result.status == "found"
     _assert_sound(result, instance, Domain.MD)
+
+
+def test_labelled_agents_get_lacams_plan_then_refined_ones(monkeypatch):
+    # every robot has a goal of its own (MovingAI, labelled): LaCAM's plan goes straight to the
+    # refinement (no prioritized planning), whose plans pass the checker and only get better.
+    # The clock moves on only when the search reads it: the same run on every machine.
+    from test_anytime import ReadClock, _assert_sound
+
+    from asprilo.domain import Domain
+    from asprilo.encodings.anytime import plan_anytime
+    from asprilo.encodings.anytime import search as anytime_search
+    from asprilo.interop.convert import scenario_to_instance
+    from asprilo.interop.movingai import parse_map, parse_scenario
+    from asprilo.sources import Source
+
+    movingai = EXAMPLES / "movingai"
+    grid = parse_map(Source.from_path(movingai / "random-32-32-20.map"))
+    tasks = parse_scenario(Source.from_path(movingai / "random-32-32-20-random-1.scen"))
+    instance = scenario_to_instance(grid, tasks, 100, labelled=True)
+    monkeypatch.setattr(anytime_search, "first_tracks", lambda *args: pytest.fail("prioritized planning ran"))
+    monkeypatch.setattr(anytime_search, "time", ReadClock(tick=4.0 / 4000))
+    result = plan_anytime(instance, Domain.MD, time_limit=4.0)
+    _assert_sound(result, instance, Domain.MD)
+    assert result.status == "found" and len(result.history) >= 2 and result.stats["neighbourhoods"] > 0

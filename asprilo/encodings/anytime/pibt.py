@@ -57,11 +57,8 @@ class Pibt:
         for robot, vertex in enumerate(at):
             now[vertex] = robot
         try:
-            for robot, vertex in fixed:
-                other = now[vertex]
-                if taken[vertex] != NONE or (other != NONE and after[other] == at[robot]):
-                    return None  # two robots on one vertex, or two swapping theirs
-                after[robot], taken[vertex] = vertex, robot
+            if not self._fix(fixed):
+                return None
             aims = self.aims
             for robot in order:
                 if after[robot] != NONE:
@@ -78,6 +75,17 @@ class Pibt:
             for vertex in after:
                 if vertex != NONE:
                     taken[vertex] = NONE
+
+    def _fix(self, fixed: list[tuple[int, int]]) -> bool:
+        """Send the robots of ``fixed`` where it says; whether no two of them come onto one
+        vertex or swap theirs."""
+        now, taken, after, at = self._now, self._taken, self._after, self._at
+        for robot, vertex in fixed:
+            other = now[vertex]
+            if taken[vertex] != NONE or (other != NONE and after[other] == at[robot]):
+                return False
+            after[robot], taken[vertex] = vertex, robot
+        return True
 
     def _pick(self, robot: int) -> bool:
         """Choose ``robot``'s next vertex, pushing the robot there; whether it could move

@@ -1,12 +1,19 @@
 """Large-neighbourhood search for M/Md plans with fixed goals (MAPF-LNS, Li et al. 2021,
 written here from the paper's description): free a few robots, plan them again one after the
-other around all the others with the space-time A* of :mod:`.spacetime`, and keep the new
+other around all the others with the safe-interval A* of :mod:`.spacetime`, and keep the new
 paths when the plan got better (makespan first, then sum of costs; no path may end later
 than the makespan).
 
-Which robots are freed together (weights that grow with their successes):
+It starts with sweeps: every robot alone, those that lost most steps first, planned again
+around all the others (never worse: its old path is one of those it may take), while a sweep
+gains at least :data:`SWEEP_GAIN` of the sum of costs; on a plan of PIBT steps, where robots
+were pushed around, that is the fastest gain.  Then, which robots are freed together
+(weights that grow with their successes):
 
-- ``late``: a robot that finishes last, with the robots in the way of its shortest path;
+- ``alone``: a robot drawn by the steps it loses, alone;
+- ``late``: a robot that finishes last, the robots that keep it from its goal (and those that
+  keep them from theirs), the robots in the way of its shortest path, and those that come
+  next to it on its way, the latest first;
 - ``delayed``: a robot that lost many steps against its shortest path (drawn by its loss),
   with the robots in the way of its shortest path;
 - ``crossing``: robots that pass one branching vertex of the floor;
@@ -24,9 +31,11 @@ from .reservations import Track
 from .roadmap import Roadmap
 from .spacetime import NONE, Occupancy, fastest_path
 
-KINDS = ("late", "delayed", "crossing", "random")
+KINDS = ("alone", "late", "delayed", "crossing", "random")
 #: the most robots one neighbourhood frees
 GROUP = 8
+#: the least share of the sum of costs a sweep must gain for another one to follow
+SWEEP_GAIN = 0.01
 
 
 class Refiner:
@@ -50,6 +59,8 @@ class Refiner:
         self.weights = dict.fromkeys(KINDS, 1.0)
         self.tried = dict.fromkeys(KINDS, 0)
         self.won = dict.fromkeys(KINDS, 0)
+        self.sweep: list[int] = self._sweep_order()
+        self.swept_from = self.score()[1]  # the sum of costs when the sweep began
 
     @classmethod
     def of_tracks(cls, roadmap: Roadmap, tracks: dict[int, Track], goals: dict[int, Cell], seed: int = 0
@@ -73,7 +84,13 @@ class Refiner:
         return max(self.costs, default=0), sum(self.costs)
 
     def step(self, stopped: Callable[[], bool]) -> bool:
-        """Try one neighbourhood; whether the plan got better."""
+        """Plan the next robot of a sweep again, or try one neighbourhood; whether the plan
+        got better."""
+        if self.sweep:
+            better = self._replan([self.sweep.pop()], stopped)
+            if not self.sweep and self.swept_from - self.score()[1] >= SWEEP_GAIN * self.swept_from:
+                self.sweep, self.swept_from = self._sweep_order(), self.score()[1]
+            return better
         kind = self.random.choices(KINDS, [self.weights[k] for k in KINDS])[0]
         group = self._neighbourhood(kind)
         self.tried[kind] += 1
@@ -84,46 +101,75 @@ class Refiner:
 
     # --- choosing a neighbourhood ---------------------------------------------------------------
 
+    def _sweep_order(self) -> list[int]:
+        """The robots in the order of a sweep, backwards: those that lost most steps last."""
+        return sorted(range(len(self.costs)), key=lambda robot: self.costs[robot] - self.shortest[robot])
+
     def _neighbourhood(self, kind: str) -> list[int]:
         size = self.random.randint(2, self.group)
+        if kind == "alone":
+            return [self._losing()] if max(self.losses()) > 0 else []
         if kind == "late":
             makespan = max(self.costs)
             robot = self.random.choice([r for r, cost in enumerate(self.costs) if cost == makespan])
-            return self._with_met(robot, size)
+            group = self._goal_keepers(robot, size)
+            self._add_blockers(group, robot, size)
+            self._add_met(group, robot, size)
+            return list(group)
         if kind == "delayed":
-            losses = [cost - shortest for cost, shortest in zip(self.costs, self.shortest, strict=True)]
-            if not any(losses):
+            if max(self.losses()) == 0:
                 return []
-            robot = self.random.choices(range(len(losses)), losses)[0]
-            return self._with_blockers(robot, size)
+            robot = self._losing()
+            group = {robot: None}
+            self._add_blockers(group, robot, size)
+            return list(group)
         if kind == "crossing":
             return self._passing(self.random.choice(self.crossings), size) if self.crossings else []
         delayed = [r for r, cost in enumerate(self.costs) if cost > self.shortest[r]]
         return self.random.sample(delayed, min(size, len(delayed)))
 
-    def _with_blockers(self, robot: int, size: int) -> list[int]:
-        """``robot`` and the robots on a shortest path of it (ignoring the others) at the
+    def losses(self) -> list[int]:
+        """The steps each robot loses against its shortest path."""
+        return [cost - shortest for cost, shortest in zip(self.costs, self.shortest, strict=True)]
+
+    def _losing(self) -> int:
+        """A robot drawn by the steps it loses (some robot must lose steps)."""
+        return self.random.choices(range(len(self.costs)), self.losses())[0]
+
+    def _goal_keepers(self, robot: int, size: int) -> dict[int, None]:
+        """``robot``, the robots that keep it from its goal (on the goal after it could be
+        there), those that keep them from theirs, and so on, up to ``size`` in all."""
+        occupancy = self.occupancy
+        who, width = occupancy.who, occupancy.size
+        group = {robot: None}
+        for waiting in list(group):
+            goal = self.aims[waiting]
+            for step in occupancy.busy[goal]:
+                if step >= self.shortest[waiting] and len(group) < size:
+                    group.setdefault(who[step * width + goal])
+        return group
+
+    def _add_blockers(self, group: dict[int, None], robot: int, size: int) -> None:
+        """Add the robots on a shortest path of ``robot`` (ignoring the others) at the
         steps it would pass there, or parked on it, up to ``size`` in all."""
         occupancy, to, neighbours = self.occupancy, self.to[robot], self.roadmap.neighbours
         who, width, steps, owner = occupancy.who, occupancy.size, occupancy.steps, self.owner
-        group = {robot: None}
         vertex, step = self.paths[robot][0], 0
         while len(group) < size:
             for near in (step - 1, step, step + 1):
-                if 0 <= near < steps and who[near * width + vertex] != NONE:
+                if 0 <= near < steps and who[near * width + vertex] != NONE and len(group) < size:
                     group.setdefault(who[near * width + vertex])
             parker = owner.get(vertex)
-            if parker is not None and occupancy.parked[vertex] <= step + 1:
+            if parker is not None and occupancy.parked[vertex] <= step + 1 and len(group) < size:
                 group.setdefault(parker)
             if to[vertex] == 0:
                 break
             vertex = self.random.choice([v for v in neighbours[vertex] if to[v] == to[vertex] - 1])
             step += 1
-        return list(group)[:size]
 
-    def _with_met(self, robot: int, size: int) -> list[int]:
-        """``robot`` and the robots that come next to it on its path, those that finish
-        latest first (robots going round in circles together), up to ``size`` in all."""
+    def _add_met(self, group: dict[int, None], robot: int, size: int) -> None:
+        """Add the robots that come next to ``robot`` on its path, those that finish latest
+        first, up to ``size`` in all."""
         occupancy, neighbours, costs = self.occupancy, self.roadmap.neighbours, self.costs
         who, width, steps = occupancy.who, occupancy.size, occupancy.steps
         met: set[int] = set()
@@ -132,9 +178,9 @@ class Refiner:
                 if 0 <= near < steps:
                     row = near * width
                     met.update(who[row + cell] for cell in (vertex, *neighbours[vertex]))
-        met -= {NONE, robot}
-        ranked = sorted(met, key=lambda other: (-costs[other], self.random.random()))
-        return [robot, *ranked[:size - 1]]
+        met -= {NONE, *group}
+        for other in sorted(met, key=lambda other: (-costs[other], self.random.random()))[:size - len(group)]:
+            group[other] = None
 
     def _passing(self, vertex: int, size: int) -> list[int]:
         """Robots that pass ``vertex`` or a neighbour of it, up to ``size``."""
@@ -148,32 +194,40 @@ class Refiner:
     # --- planning the neighbourhood again -------------------------------------------------------
 
     def _replan(self, group: list[int], stopped: Callable[[], bool]) -> bool:
-        """Plan ``group`` again in a random order; keep the paths when the plan got better."""
+        """Plan ``group`` again in a random order; keep the paths when the plan got better.
+        Unless the makespan may drop (no robot outside the group finishes last), each path
+        must leave the group's sum of costs below the old one, counting the shortest paths
+        of the robots still to plan: the search for it stops earlier."""
         before = self.score()
-        occupancy, paths = self.occupancy, self.paths
+        occupancy, paths, costs = self.occupancy, self.paths, self.costs
         old = {robot: paths[robot] for robot in group}
         for robot in group:
             occupancy.remove(paths[robot])
-        order = self.random.sample(group, len(group))
+        members = set(group)
+        shorter = max((cost for robot, cost in enumerate(costs) if robot not in members), default=0) < before[0]
+        budget = sum(costs[robot] - self.shortest[robot] for robot in group)  # steps the group may lose
         new: dict[int, list[int]] = {}
-        for robot in order:
-            path = None if stopped() else fastest_path(occupancy, old[robot][0], self.aims[robot], self.to[robot],
-                                                       before[0])
+        for robot in self.random.sample(group, len(group)):
+            limit = before[0] if shorter else min(before[0], self.shortest[robot] + budget)
+            path = None if stopped() or budget < 0 and not shorter else fastest_path(
+                occupancy, old[robot][0], self.aims[robot], self.to[robot], limit)
             if path is None:
-                for placed in new.values():
-                    occupancy.remove(placed)
-                for robot_back, path_back in old.items():
-                    occupancy.add(robot_back, path_back)
+                self._put_back(old, new)
                 return False
             occupancy.add(robot, path)
             new[robot] = path
+            budget -= len(path) - 1 - self.shortest[robot]
         for robot, path in new.items():
-            paths[robot], self.costs[robot] = path, len(path) - 1
-        if self.score() < before:
-            return True
-        for robot in group:
-            occupancy.remove(paths[robot])
-        for robot, path in old.items():
-            occupancy.add(robot, path)
-            paths[robot], self.costs[robot] = path, len(path) - 1
+            paths[robot], costs[robot] = path, len(path) - 1
+        if self.score() <= before:
+            return self.score() < before
+        self._put_back(old, new)
         return False
+
+    def _put_back(self, old: dict[int, list[int]], new: dict[int, list[int]]) -> None:
+        """Take the ``new`` paths out and put the ``old`` ones back."""
+        for path in new.values():
+            self.occupancy.remove(path)
+        for robot, path in old.items():
+            self.occupancy.add(robot, path)
+            self.paths[robot], self.costs[robot] = path, len(path) - 1

@@ -1,0 +1,160 @@
+"""The refinement of M/Md plans with goals of their own (asprilo/encodings/anytime/refine.py)
+and its safe-interval search (spacetime.py): arrivals derived by hand on corridors, the same
+earliest arrivals as a breadth-first search over every (vertex, step) on random small floors,
+and refined plans that keep the rules and reach an optimum worked out by hand."""
+
+from __future__ import annotations
+
+import random
+
+import pytest
+
+from asprilo.bounds import Floor
+from asprilo.encodings.anytime.lacam import lacam_configs, paths_of
+from asprilo.encodings.anytime.refine import Refiner
+from asprilo.encodings.anytime.roadmap import Roadmap
+from asprilo.encodings.anytime.spacetime import Occupancy, fastest_path
+
+
+def _at(path: list[int], step: int) -> int:
+    return path[min(step, len(path) - 1)]
+
+
+def _occupied(roadmap: Roadmap, paths: list[list[int]]) -> Occupancy:
+    occupancy = Occupancy(roadmap, 2)
+    for robot, path in enumerate(paths):
+        occupancy.add(robot, path)
+    return occupancy
+
+
+def _search(roadmap: Roadmap, cells: list[tuple[int, int]], others: list[list[tuple[int, int]]],
+            start: tuple[int, int], goal: tuple[int, int], limit: int = 30) -> list[tuple[int, int]] | None:
+    occupancy = _occupied(roadmap, [[roadmap.vertex(cell) for cell in path] for path in others])
+    goal_vertex = roadmap.vertex(goal)
+    path = fastest_path(occupancy, roadmap.vertex(start), goal_vertex, roadmap.distances_to([goal_vertex])[0], limit)
+    return None if path is None else [roadmap.cells[vertex] for vertex in path]
+
+
+def test_a_robot_waits_for_another_to_pass_the_branch():
+    # a corridor (1,1)-(2,1)-(3,1) with a pocket (2,2): the other robot walks (1,1) -> (3,1)
+    # and parks there at step 2; from the pocket to (1,1) takes 2 steps, but (2,1) is taken
+    # at step 1, so by hand: wait a step in the pocket, (2,1) at 2, (1,1) at 3
+    roadmap = Roadmap(Floor([(1, 1), (2, 1), (3, 1), (2, 2)]))
+    found = _search(roadmap, [], [[(1, 1), (2, 1), (3, 1)]], (2, 2), (1, 1))
+    assert found == [(2, 2), (2, 2), (2, 1), (1, 1)]
+
+
+def test_a_robot_arrives_only_after_the_last_visit_to_its_goal():
+    # a line (1,1)..(5,1): the other robot stands on (1,1), (2,1), (3,1), (4,1), (3,1), (2,1) at
+    # steps 0..5 and parks on (2,1).  Ours, from (5,1), wants (3,1), busy at steps 2 and 4: by
+    # hand it cannot stay there before step 5; at step 5 it can, coming from (4,1) (free at 4)
+    # behind the other robot.  No arrival is at step 4 or before.
+    roadmap = Roadmap(Floor([(x, 1) for x in range(1, 6)]))
+    other = [(1, 1), (2, 1), (3, 1), (4, 1), (3, 1), (2, 1)]
+    found = _search(roadmap, [], [other], (5, 1), (3, 1))
+    assert found is not None and len(found) - 1 == 5 and found[-1] == (3, 1)
+    assert _search(roadmap, [], [other], (5, 1), (3, 1), limit=4) is None
+
+
+def test_no_path_swaps_with_a_robot_that_comes_to_park():
+    # a line of 3: the other robot goes (1,1) -> (2,1) and parks; ours on (2,1) wants (1,1):
+    # the only move is the swap, which the rules forbid, and then (2,1) is taken for good
+    roadmap = Roadmap(Floor([(1, 1), (2, 1), (3, 1)]))
+    assert _search(roadmap, [], [[(1, 1), (2, 1)]], (2, 1), (1, 1)) is None
+
+
+def _brute(roadmap: Roadmap, others: list[list[int]], start: int, goal: int, limit: int) -> int | None:
+    """The earliest step at which a robot from ``start`` can be on ``goal`` for good, by a
+    breadth-first search over every (vertex, step) up to ``limit``."""
+    last = max((len(path) for path in others), default=1) + limit
+    reached = {start} if all(_at(path, 0) != start for path in others) else set()
+    for step in range(limit + 1):
+        if goal in reached and all(_at(path, later) != goal for path in others for later in range(step, last)):
+            return step
+        reached = {onto for vertex in reached for onto in (vertex, *roadmap.neighbours[vertex])
+                   if all(_at(path, step + 1) != onto for path in others)
+                   and not any(onto != vertex and _at(path, step) == onto and _at(path, step + 1) == vertex
+                               for path in others)}
+    return None
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_earliest_arrival_is_that_of_a_search_over_every_step(seed):
+    draw, compared = random.Random(seed), 0
+    for _ in range(40):
+        cells = [(x, y) for x in range(1, draw.randint(2, 5) + 1) for y in range(1, draw.randint(2, 5) + 1)
+                 if draw.random() < 0.85]
+        if len(cells) < 3:
+            continue
+        roadmap = Roadmap(Floor(cells))
+        vertices = draw.sample(range(roadmap.size), roadmap.size)
+        starts, others = vertices[:draw.randint(1, min(5, roadmap.size - 1))], []
+        for start in starts[:-1]:  # the others, each planned around those before it
+            goals = [v for v in range(roadmap.size) if v not in starts[len(others) + 1:] and
+                     all(v != path[-1] for path in others)]
+            goal = draw.choice(goals)
+            path = fastest_path(_occupied(roadmap, others), start, goal, roadmap.distances_to([goal])[0], 20)
+            if path is None:
+                break
+            others.append(path)
+        else:
+            goal = draw.choice([v for v in range(roadmap.size) if all(v != path[-1] for path in others)])
+            to_goal = roadmap.distances_to([goal])[0]
+            for limit in (4, 9, 20):
+                path = fastest_path(_occupied(roadmap, others), starts[-1], goal, to_goal, limit)
+                expected = _brute(roadmap, others, starts[-1], goal, limit)
+                assert (None if path is None else len(path) - 1) == expected
+                compared += expected is not None
+                if path is not None:
+                    _assert_keeps_the_rules(roadmap, [*others, path])
+    assert compared >= 40  # most floors drawn give arrivals to compare
+
+
+def _assert_keeps_the_rules(roadmap: Roadmap, paths: list[list[int]]) -> None:
+    """Moves to neighbours, one robot per vertex at every step, no two robots swapping."""
+    for path in paths:
+        assert all(path[step] in (path[step - 1], *roadmap.neighbours[path[step - 1]]) for step in range(1, len(path)))
+    for step in range(max(len(path) for path in paths) + 1):
+        now = [_at(path, step) for path in paths]
+        assert len(set(now)) == len(now)
+        if step:
+            before = [_at(path, step - 1) for path in paths]
+            assert not any(now[a] == before[b] and now[b] == before[a] and a != b
+                           for a in range(len(paths)) for b in range(len(paths)))
+
+
+def test_refining_reaches_the_optimum_of_two_robots_passing_on_a_ring():
+    # a 3x2 block; robot 0 goes (1,1) -> (3,1), robot 1 the other way.  By hand: both cannot
+    # go straight (they would swap), so one goes round by row 2 (4 steps) while the other
+    # goes straight (2 steps): sum of costs 6, makespan 4, and neither can do better.  The
+    # plan given is valid but poor: robot 1 first waits, both go round.
+    roadmap = Roadmap(Floor([(x, y) for x in (1, 2, 3) for y in (1, 2)]))
+    v = roadmap.vertex
+    paths = [[v((1, 1)), v((1, 2)), v((2, 2)), v((3, 2)), v((3, 1))],
+             [v((3, 1)), v((3, 1)), v((2, 1)), v((2, 1)), v((2, 1)), v((2, 2)), v((1, 2)), v((1, 1))]]
+    _assert_keeps_the_rules(roadmap, paths)
+    refiner = Refiner(roadmap, [v((3, 1)), v((1, 1))], paths, seed=3)
+    assert refiner.score() == (7, 11)
+    for _ in range(50):
+        refiner.step(lambda: False)
+    assert refiner.score() == (4, 6)
+    _assert_keeps_the_rules(roadmap, refiner.paths)
+    assert [path[-1] for path in refiner.paths] == [v((3, 1)), v((1, 1))]
+
+
+def test_refined_plans_keep_the_rules_and_only_get_better():
+    draw = random.Random(7)
+    cells = [(x, y) for x in range(1, 9) for y in range(1, 9) if (x, y) not in {(3, 3), (3, 4), (6, 5), (6, 6), (2, 7)}]
+    roadmap = Roadmap(Floor(cells))
+    starts = draw.sample(range(roadmap.size), 20)
+    aims = draw.sample(range(roadmap.size), 20)
+    configs = lacam_configs(roadmap, starts, aims, lambda: False, seed=1)
+    refiner = Refiner(roadmap, aims, paths_of(configs), seed=2)
+    scores = [refiner.score()]
+    for _ in range(300):
+        refiner.step(lambda: False)
+        scores.append(refiner.score())
+    assert scores == sorted(scores, reverse=True)
+    _assert_keeps_the_rules(roadmap, refiner.paths)
+    assert [path[0] for path in refiner.paths] == starts and [path[-1] for path in refiner.paths] == aims
+    assert refiner.score()[1] == sum(len(path) - 1 for path in refiner.paths)
