@@ -29,7 +29,7 @@ from asprilo.model import Cell
 
 from .reservations import Track
 from .roadmap import Roadmap
-from .spacetime import NONE, Occupancy, fastest_path
+from .spacetime import NEVER, NONE, Occupancy, fastest_path
 
 KINDS = ("alone", "late", "delayed", "crossing", "random")
 #: the most robots one neighbourhood frees
@@ -94,7 +94,7 @@ class Refiner:
         kind = self.random.choices(KINDS, [self.weights[k] for k in KINDS])[0]
         group = self._neighbourhood(kind)
         self.tried[kind] += 1
-        better = len(group) > 0 and self._replan(group, stopped)
+        better = len(group) > 0 and self._replan(group, stopped, first=kind == "late")
         self.weights[kind] = min(10.0, self.weights[kind] * 1.3) if better else max(0.1, self.weights[kind] * 0.98)
         self.won[kind] += better
         return better
@@ -113,7 +113,7 @@ class Refiner:
             makespan = max(self.costs)
             robot = self.random.choice([r for r, cost in enumerate(self.costs) if cost == makespan])
             group = self._goal_keepers(robot, size)
-            self._add_blockers(group, robot, size)
+            self._add_parkers(group, robot, size)
             self._add_met(group, robot, size)
             return list(group)
         if kind == "delayed":
@@ -148,6 +148,22 @@ class Refiner:
                 if step >= self.shortest[waiting] and len(group) < size:
                     group.setdefault(who[step * width + goal])
         return group
+
+    def _add_parkers(self, group: dict[int, None], robot: int, size: int) -> None:
+        """Add the robots parked in the way of ``robot``: on the fastest path it would have
+        if no robot were parked, from before it would pass; up to ``size`` in all."""
+        occupancy = self.occupancy
+        parked = occupancy.parked
+        occupancy.parked = [NEVER] * occupancy.size
+        occupancy.remove(self.paths[robot])
+        try:
+            free = fastest_path(occupancy, self.paths[robot][0], self.aims[robot], self.to[robot], max(self.costs))
+        finally:
+            occupancy.parked = parked
+            occupancy.add(robot, self.paths[robot])
+        for step, vertex in enumerate(free or ()):
+            if parked[vertex] <= step and len(group) < size:
+                group.setdefault(occupancy.parker[vertex])
 
     def _add_blockers(self, group: dict[int, None], robot: int, size: int) -> None:
         """Add the robots on a shortest path of ``robot`` (ignoring the others) at the
@@ -193,8 +209,9 @@ class Refiner:
 
     # --- planning the neighbourhood again -------------------------------------------------------
 
-    def _replan(self, group: list[int], stopped: Callable[[], bool]) -> bool:
-        """Plan ``group`` again in a random order; keep the paths when the plan got better.
+    def _replan(self, group: list[int], stopped: Callable[[], bool], first: bool = False) -> bool:
+        """Plan ``group`` again in a random order (``first``: its first robot first); keep
+        the paths when the plan got better.
         Unless the makespan may drop (no robot outside the group finishes last), each path
         must leave the group's sum of costs below the old one, counting the shortest paths
         of the robots still to plan: the search for it stops earlier."""
@@ -207,7 +224,8 @@ class Refiner:
         shorter = max((cost for robot, cost in enumerate(costs) if robot not in members), default=0) < before[0]
         budget = sum(costs[robot] - self.shortest[robot] for robot in group)  # steps the group may lose
         new: dict[int, list[int]] = {}
-        for robot in self.random.sample(group, len(group)):
+        order = group[:first] + self.random.sample(group[first:], len(group) - first)
+        for robot in order:
             limit = before[0] if shorter else min(before[0], self.shortest[robot] + budget)
             path = None if stopped() or budget < 0 and not shorter else fastest_path(
                 occupancy, old[robot][0], self.aims[robot], self.to[robot], limit)
