@@ -252,13 +252,18 @@ def test_a_solve_stopped_from_outside_says_what_went_wrong_beside_it(two_trips):
 
 
 def test_a_plan_checked_by_the_planner_is_not_checked_again_after_the_limit(two_trips, monkeypatch):
+    """Its verdict came with it; its bound metrics are those the parent knows (here the cheap
+    bound, 10: the planner checked it against the strong one, 19)."""
     clock = patient_anytime(monkeypatch, stop_after=1)
     found = plan_anytime(two_trips, Domain.B, time_limit=GUARD, on_improvement=clock.reported)
+    assert found.check.metrics["makespan_bound"] == 19
     monkeypatch.setattr(front, "check", _no_check)
-    request = SolveRequest(two_trips, Domain.B, method="anytime", time_limit=30.0, bounds=LowerBounds(19))
+    request = SolveRequest(two_trips, Domain.B, method="anytime", time_limit=30.0, bounds=LowerBounds(10))
     outcome = front._stopped_from_outside(request, front.method_for(request),
                                           Isolated("timeout", messages=list(found.history)), None)
-    assert outcome.found and outcome.check is found.check and outcome.horizon == found.history[-1].makespan
+    assert outcome.found and outcome.horizon == found.history[-1].makespan
+    assert outcome.check.valid and outcome.check.metrics["horizon"] == found.check.metrics["horizon"]
+    assert (outcome.check.metrics["makespan_bound"], outcome.check.metrics["bounds"]) == (10, "given")
 
 
 @pytest.mark.parametrize("limit,said", [

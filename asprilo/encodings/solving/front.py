@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from asprilo.checker import Report, check
+from asprilo.checker.report import bound_metrics
 from asprilo.domain import Domain, detect_domain
 from asprilo.errors import InputError
 from asprilo.model import Instance
@@ -229,8 +230,9 @@ def best_plan(request: SolveRequest, outcome: Outcome, found: list[Attempt]) -> 
     ranked = sorted(range(len(found)), key=lambda i: (found[i].horizon, -i))
     for index in ranked:
         attempt = found[index]
+        verdict = checked_verdict(attempt, request.instance, request.bounds)
         outcome.status, outcome.plan, outcome.horizon, outcome.check = (
-            SolveStatus.FOUND, attempt.plan, attempt.horizon, checked_verdict(attempt))
+            SolveStatus.FOUND, attempt.plan, attempt.horizon, verdict)
         if outcome.check is None:
             check_plan(request, outcome)
         if outcome.found:
@@ -241,11 +243,15 @@ def best_plan(request: SolveRequest, outcome: Outcome, found: list[Attempt]) -> 
     return False
 
 
-def checked_verdict(attempt: Attempt) -> Report | None:
+def checked_verdict(attempt: Attempt, instance: Instance, bounds: LowerBounds) -> Report | None:
     """The checker's verdict that came with a plan (the anytime planner checks every plan it
-    reports), if it passed."""
+    reports), if it passed, with the metrics of ``bounds`` (those known now: the planner may
+    have checked it before the strong ones came)."""
     verdict = getattr(attempt, "verdict", None)
-    return verdict if isinstance(verdict, Report) and verdict.valid else None
+    if not isinstance(verdict, Report) or not verdict.valid:
+        return None
+    known = bound_metrics(instance, verdict.domain, verdict.metrics, (bounds.makespan, bounds.sum_of_costs))
+    return replace(verdict, metrics={**verdict.metrics, **known})
 
 
 def _bounds_heard(request: SolveRequest, child: Isolated) -> LowerBounds:

@@ -254,15 +254,13 @@ class Portfolio:
 
     def _offer(self, name: str, attempt: Attempt, checked: bool) -> None:
         """A plan reported: the best one so far if it is shorter (and, unless ``checked`` in
-        its child, passes the check here; the anytime planner's verdict comes with its plan)."""
+        its child, passes the check here)."""
         # (the anytime planner's later plan of the same makespan has a smaller sum of costs)
         same = name == ANYTIME and self.outcome.found_by == ANYTIME
         if self.best is not None and (attempt.horizon > self.best.horizon or
                                       (attempt.horizon == self.best.horizon and not same)):
             return
-        from ..front import checked_verdict  # the front end imports the method table
-
-        report = checked_verdict(attempt) if checked else None
+        report = None
         if not checked:
             trial = self._checked(attempt)
             if not trial.found:
@@ -297,8 +295,11 @@ class Portfolio:
         outcome.stats = dict(self.totals)
         if best is not None:
             outcome.status, outcome.plan, outcome.horizon = SolveStatus.FOUND, best.plan, best.horizon
-            if outcome.check is None:  # the anytime planner's plan: checked there, its report made here
-                outcome.check = self._checked(best).check
+            if outcome.check is None:  # the anytime planner's plan: checked there, with the bounds known now
+                from ..front import checked_verdict  # the front end imports the method table
+
+                outcome.check = checked_verdict(best, self.request.instance, LowerBounds(self._lower())) or \
+                    self._checked(best).check
             outcome.minimal = best.horizon <= outcome.proven_bound
             outcome.message = "" if outcome.minimal else self._why()
             if self.bounds is None:
