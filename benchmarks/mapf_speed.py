@@ -62,9 +62,9 @@ def run_one(job: dict) -> dict:
     from asprilo.domain import Domain
     from asprilo.encodings import solve
     from asprilo.encodings.anytime import plan_anytime
-    instance = instance_of(job["row"], job["seed"])
+    instance, domain = instance_of(job["row"], job["seed"]), Domain.parse("md")
     started = time.perf_counter()
-    result = plan_anytime(instance, Domain.MD, time_limit=job["limit"], seed=job["seed"])
+    result = plan_anytime(instance, domain, time_limit=job["limit"], seed=job["seed"])
     found = {**job, "seconds": round(time.perf_counter() - started, 2), "status": str(result.status),
              "first": result.stats.get("first_plan_seconds"),
              "reported": result.history[0].seconds if result.history else None,
@@ -72,7 +72,7 @@ def run_one(job: dict) -> dict:
              "makespan": result.makespan, "bound": result.bound, "minimal": result.minimal,
              "valid": bool(result.check and result.check.valid), "proven": None}
     if job["prove"] and result.history and not result.minimal:
-        outcome = solve(instance, Domain.MD, method="auto", time_limit=job["prove"])
+        outcome = solve(instance, domain, method="auto", time_limit=job["prove"])
         found["proven"] = bool(outcome.minimal and outcome.horizon == result.makespan)
     return found
 
