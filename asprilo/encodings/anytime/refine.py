@@ -220,8 +220,7 @@ class Refiner:
         old = {robot: paths[robot] for robot in group}
         for robot in group:
             occupancy.remove(paths[robot])
-        members = set(group)
-        shorter = max((cost for robot, cost in enumerate(costs) if robot not in members), default=0) < before[0]
+        shorter = costs.count(before[0]) == sum(1 for robot in group if costs[robot] == before[0])
         budget = sum(costs[robot] - self.shortest[robot] for robot in group)  # steps the group may lose
         new: dict[int, list[int]] = {}
         order = group[:first] + self.random.sample(group[first:], len(group) - first)

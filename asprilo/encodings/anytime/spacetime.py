@@ -113,24 +113,28 @@ class _Search:
         """The earliest arrival in each free run of ``onto`` from ``state`` (reached at
         step ``arrival``, left at step ``leave_by`` at the latest), each a state to visit."""
         occupancy, to_go = self.occupancy, self.to_goal[onto]
-        last = min(leave_by, occupancy.parked[onto] - 1, self.limit - to_go)  # the latest arrival
+        last = self.limit - to_go  # the latest arrival
+        last = leave_by if leave_by < last else last
+        parked = occupancy.parked[onto] - 1
+        last = parked if parked < last else last
         later = arrival + 1
-        times = occupancy.busy[onto]
-        index, count, size = bisect_right(times, arrival), len(times), occupancy.size
+        times, who, size, free_from = occupancy.busy[onto], occupancy.who, occupancy.size, self.free_from
+        index, count, edge = bisect_right(times, arrival), len(times), occupancy.steps * size
         while later <= last:
             while index < count and times[index] == later:  # on a busy step: the next one
                 later, index = later + 1, index + 1
             if later > last:
                 return
-            if self._swaps(state % size, onto, later):
+            before = (later - 1) * size + onto  # who is on ``onto`` the step before
+            if before < edge and who[before] != NONE and self._swaps(state % size, onto, later):
                 later += 1  # the robot there comes over meanwhile: one step later
                 continue
             key = index * size + onto
             known = self.reached.get(key)
             if known is None or later < known[0]:
                 self.reached[key] = (later, state)
-                estimate = max(later + to_go, self.free_from)
-                heapq.heappush(self.frontier, (estimate, to_go, later, key))
+                estimate = later + to_go
+                heapq.heappush(self.frontier, (estimate if estimate > free_from else free_from, to_go, later, key))
             if index >= count:
                 return
             later, index = times[index] + 1, index + 1  # the next free run of ``onto``
