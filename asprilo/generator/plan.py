@@ -193,7 +193,8 @@ def _objects(c: GeneratorConfig, floor: Floor, existing: Instance) -> dict[str, 
     robots = new_count(robot_total, len(existing.robots), "-r", "robots")
     if c.shelves is not None and c.shelf_coverage is not None:
         raise InputError("give either -s or --sc, not both")
-    sites, free = shelf_room(floor, existing, (station_total, stations), (robot_total, robots), c.shelves or 0)
+    sites, free = shelf_room(floor, existing, (station_total, stations), (robot_total, robots),
+                             value_of(c, "shelves") or 0)
     if c.shelf_coverage is not None:
         shelf_total = int(c.shelf_coverage * sites / 100 + 0.5)
     else:

@@ -237,10 +237,12 @@ def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = 
     helper = None
     try:
         floor = Floor(instance.cells)
+        computed = bounds is None
         if bounds is None:
             bounds, helper = bounds_beside(instance, domain, floor)
-            watch.lower_bounds(LowerBounds(bounds.makespan, bounds.sum_of_costs))  # (cheap, if awaited)
         run = _Run(instance, domain, watch, bounds, on_improvement)
+        if computed:  # said (the cheap ones, where the strong ones are awaited)
+            run.watch.lower_bounds(LowerBounds(bounds.makespan, bounds.sum_of_costs))
         return _plan(run, floor, limit, seed, router)
     finally:
         if helper is not None:

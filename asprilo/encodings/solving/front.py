@@ -243,13 +243,15 @@ def best_plan(request: SolveRequest, outcome: Outcome, found: list[Attempt]) -> 
     return False
 
 
-def checked_verdict(attempt: Attempt, instance: Instance, bounds: LowerBounds) -> Report | None:
+def checked_verdict(attempt: Attempt, instance: Instance, bounds: LowerBounds | None) -> Report | None:
     """The checker's verdict that came with a plan (the anytime planner checks every plan it
     reports), if it passed, with the metrics of ``bounds`` (those known now: the planner may
     have checked it before the strong ones came)."""
     verdict = getattr(attempt, "verdict", None)
     if not isinstance(verdict, Report) or not verdict.valid:
         return None
+    if bounds is None:
+        return verdict
     known = bound_metrics(instance, verdict.domain, verdict.metrics, (bounds.makespan, bounds.sum_of_costs))
     return replace(verdict, metrics={**verdict.metrics, **known})
 
