@@ -266,6 +266,31 @@ def test_a_plan_checked_by_the_planner_is_not_checked_again_after_the_limit(two_
     assert (outcome.check.metrics["makespan_bound"], outcome.check.metrics["bounds"]) == (10, "given")
 
 
+def test_a_planner_out_of_memory_is_said_and_its_plan_kept(two_trips, monkeypatch):
+    """The planner's process runs out of memory right after its first plan (a MemoryError
+    raised there, in the forked child): the solve says so in one sentence and answers with
+    that plan, checked where it was found."""
+    import asprilo.encodings.anytime as anytime_package
+
+    planner = anytime_package.plan_anytime
+
+    def runs_out(*args, on_improvement, **options):
+        def heard(better):
+            on_improvement(better)
+            raise MemoryError
+
+        return planner(*args, on_improvement=heard, **options)
+
+    monkeypatch.setattr(anytime_package, "plan_anytime", runs_out)
+    monkeypatch.setattr(front, "check", _no_check)  # in this process: the verdict came with the plan
+    heard = []
+    outcome = front.solve(two_trips, Domain.B, method="anytime", time_limit=GUARD, isolate=True,
+                          on_progress=heard.append)
+    assert outcome.found and outcome.check.valid and len(heard) == 1
+    assert (outcome.plan, outcome.horizon) == (heard[0].plan, heard[0].makespan)
+    assert outcome.message == "the solver process ran out of memory; the answer is the best plan found before"
+
+
 @pytest.mark.parametrize("limit,said", [
     (None, "the solver process ran out of memory"),
     (2048 * 2**20, "the solver process ran out of memory (its address space is limited to 2048 MB: ulimit -v)"),
