@@ -174,15 +174,20 @@ def test_the_strong_bound_is_not_waited_for_and_its_process_ends_with_the_search
 ])
 def test_a_bound_process_out_of_memory_is_said_in_one_sentence(failure, said, two_trips, monkeypatch):
     """The bound's child runs out of memory (Python's MemoryError, or C++'s abort): the search
-    goes on with the cheap bound and says so once; its time runs out once the child is gone."""
+    goes on with the cheap bound and says so once; its time runs out once that is said."""
+    from asprilo.encodings.solving.watch import Watch
+
     if failure == "memory":
         def no_memory(*args):
             raise MemoryError
         monkeypatch.setattr(solving_bounds, "lower_bounds", no_memory)  # in the forked child too
-    children = bound_child(monkeypatch, None if failure == "memory" else _aborts)
-    clock = patient_anytime(monkeypatch, stop_after=1, enough=lambda: not children[0].process.is_alive())
-    result = plan_anytime(two_trips, Domain.B, time_limit=GUARD, on_improvement=clock.reported)
+    bound_child(monkeypatch, None if failure == "memory" else _aborts)
+    heard = []
+    clock = patient_anytime(monkeypatch, stop_after=1, enough=lambda: bool(heard))
+    watch = Watch(GUARD, listeners=Listeners(notes=heard.append), clock=clock)
+    result = plan_anytime(two_trips, Domain.B, on_improvement=clock.reported, watch=watch)
     assert (result.status, result.bound, result.notes) == ("found", 10, [said])
+    assert [note.text for note in heard] == [said]
 
 
 def test_a_bound_process_that_dies_is_said_at_once_to_whoever_listens(two_trips, monkeypatch):
