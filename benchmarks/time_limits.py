@@ -4,8 +4,9 @@ The issue's floor: ``gen -x 200 -y 200 -X 5 -Y 2 -H -p 40 -s 5000 -r 600 -P 5000
 -o 500 --seed 9204 -C`` (domain A, 600 robots).  Each limit is run as a user would, in a
 process of its own under an address-space cap (``ulimit -v``, as in the issue: 3 GB), one
 after the other; each row gives the wall time from start to exit against the limit, the
-exit status, whether the plan file was written, the peak memory of the solve and its
-children, and the last lines the command said.
+exit status, whether the plan file was written, the peak memory of the solve and of the
+children it waited for (a child killed at the limit leaves its own children to the system:
+their peak is not counted), and the last lines the command said.
 
     python benchmarks/time_limits.py                      # limits 10, 30 and 180 s
     python benchmarks/time_limits.py --limits 10 --robots 200 --size 100
