@@ -50,7 +50,7 @@ class Refiner:
         self.to = roadmap.distances_to(aims)
         self.paths = [list(path) for path in paths]
         self.costs = [len(path) - 1 for path in self.paths]
-        self.occupancy = Occupancy(roadmap, max(len(path) for path in self.paths) + 1)
+        self.occupancy = Occupancy(roadmap, max((len(path) for path in self.paths), default=0) + 1)
         for robot, path in enumerate(self.paths):
             self.occupancy.add(robot, path)
         self.owner = {aim: robot for robot, aim in enumerate(aims)}  # vertex -> the robot parking there
