@@ -22,6 +22,7 @@ to pass it in the corridor ahead, so this one backs away first, pulling that one
 from __future__ import annotations
 
 import random
+from collections.abc import Sequence
 
 from .roadmap import FAR, Roadmap
 
@@ -47,7 +48,7 @@ class Pibt:
         """Whether every robot can reach its aim at all."""
         return all(self.to[robot][start] < FAR for robot, start in enumerate(starts))
 
-    def step(self, at: list[int], order: list[int], fixed: list[tuple[int, int]] = ()) -> list[int] | None:
+    def step(self, at: list[int], order: list[int], fixed: Sequence[tuple[int, int]] = ()) -> list[int] | None:
         """Where every robot is after one step from ``at``: the robots of ``fixed``
         (robot, vertex) go where it says, the others pick in the order of ``order``;
         ``None`` when the fixed moves leave no valid step."""
@@ -76,7 +77,7 @@ class Pibt:
                 if vertex != NONE:
                     taken[vertex] = NONE
 
-    def _fix(self, fixed: list[tuple[int, int]]) -> bool:
+    def _fix(self, fixed: Sequence[tuple[int, int]]) -> bool:
         """Send the robots of ``fixed`` where it says; whether no two of them come onto one
         vertex or swap theirs."""
         now, taken, after, at = self._now, self._taken, self._after, self._at

@@ -204,9 +204,8 @@ class Refiner:
         """Robots that pass ``vertex`` or a neighbour of it, up to ``size``."""
         occupancy = self.occupancy
         who, width = occupancy.who, occupancy.size
-        passing = {who[step * width + cell] for cell in (vertex, *self.roadmap.neighbours[vertex])
-                   for step in range(occupancy.steps)} - {NONE}
-        passing = sorted(passing)
+        passing = sorted({who[step * width + cell] for cell in (vertex, *self.roadmap.neighbours[vertex])
+                          for step in range(occupancy.steps)} - {NONE})
         return self.random.sample(passing, min(size, len(passing)))
 
     # --- planning the neighbourhood again -------------------------------------------------------
