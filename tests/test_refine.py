@@ -28,10 +28,12 @@ def _occupied(roadmap: Roadmap, paths: list[list[int]]) -> Occupancy:
 
 
 def _search(roadmap: Roadmap, cells: list[tuple[int, int]], others: list[list[tuple[int, int]]],
-            start: tuple[int, int], goal: tuple[int, int], limit: int = 30) -> list[tuple[int, int]] | None:
+            start: tuple[int, int], goal: tuple[int, int], limit: int = 30, begin: int = 0
+            ) -> list[tuple[int, int]] | None:
     occupancy = _occupied(roadmap, [[roadmap.vertex(cell) for cell in path] for path in others])
     goal_vertex = roadmap.vertex(goal)
-    path = fastest_path(occupancy, roadmap.vertex(start), goal_vertex, roadmap.distances_to([goal_vertex])[0], limit)
+    path = fastest_path(occupancy, roadmap.vertex(start), goal_vertex, roadmap.distances_to([goal_vertex])[0], limit,
+                        begin)
     return None if path is None else [roadmap.cells[vertex] for vertex in path]
 
 
@@ -42,6 +44,11 @@ def test_a_robot_waits_for_another_to_pass_the_branch():
     roadmap = Roadmap(Floor([(1, 1), (2, 1), (3, 1), (2, 2)]))
     found = _search(roadmap, [], [[(1, 1), (2, 1), (3, 1)]], (2, 2), (1, 1))
     assert found == [(2, 2), (2, 2), (2, 1), (1, 1)]
+    # from the pocket at step 2 (the tail of a path planned again): (2,1) is free from step 2
+    # on, so by hand (2,1) at 3, (1,1) at 4; the path lists the steps from 2 on
+    assert _search(roadmap, [], [[(1, 1), (2, 1), (3, 1)]], (2, 2), (1, 1), begin=2) == [(2, 2), (2, 1), (1, 1)]
+    # nor may it start on a vertex taken at that step: (2,1) at step 1
+    assert _search(roadmap, [], [[(1, 1), (2, 1), (3, 1)]], (2, 1), (1, 1), begin=1) is None
 
 
 def test_a_robot_arrives_only_after_the_last_visit_to_its_goal():

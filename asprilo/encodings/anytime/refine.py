@@ -1,8 +1,8 @@
 """Large-neighbourhood search for M/Md plans with fixed goals (MAPF-LNS, Li et al. 2021,
 written here from the paper's description): free a few robots, plan them again one after the
 other around all the others with the safe-interval A* of :mod:`.spacetime`, and keep the new
-paths when the plan got better (makespan first, then sum of costs; no path may end later
-than the makespan).
+paths when the plan is no worse (makespan first, then sum of costs; no path may end later
+than the makespan; a plan as good is kept too, to move on across plateaus).
 
 It starts with sweeps: every robot alone, those that lost most steps first, planned again
 around all the others (never worse: its old path is one of those it may take), while a sweep
@@ -12,8 +12,11 @@ were pushed around, that is the fastest gain.  Then, which robots are freed toge
 
 - ``alone``: a robot drawn by the steps it loses, alone;
 - ``late``: a robot that finishes last, the robots that keep it from its goal (and those that
-  keep them from theirs), the robots in the way of its shortest path, and those that come
-  next to it on its way, the latest first;
+  keep them from theirs), the robots parked in its way, and those that come next to it on
+  its way, the latest first; the late robot is planned first;
+- ``tail``: a robot that finishes last with those that keep it from its goal and those that
+  come next to it, only from a step some way before it finishes (the paths up to there
+  stay);
 - ``delayed``: a robot that lost many steps against its shortest path (drawn by its loss),
   with the robots in the way of its shortest path;
 - ``crossing``: robots that pass one branching vertex of the floor;
@@ -31,9 +34,11 @@ from .reservations import Track
 from .roadmap import Roadmap
 from .spacetime import NEVER, NONE, Occupancy, fastest_path
 
-KINDS = ("alone", "late", "delayed", "crossing", "random")
+KINDS = ("alone", "late", "tail", "delayed", "crossing", "random")
 #: the most robots one neighbourhood frees
 GROUP = 8
+#: how many steps before the late robot's finish a ``tail`` neighbourhood starts, at most
+TAIL = 30
 #: the least share of the sum of costs a sweep must gain for another one to follow (400
 #: MovingAI agents, 8 s: sum of costs 23,900-24,200 at 0.003 and 0.001, 24,150-24,300 at
 #: 0.01, 24,700 at 0.05, 25,000 at 0.0003: single robots gain the most while they gain)
@@ -96,7 +101,11 @@ class Refiner:
         kind = self.random.choices(KINDS, [self.weights[k] for k in KINDS])[0]
         group = self._neighbourhood(kind)
         self.tried[kind] += 1
-        better = len(group) > 0 and self._replan(group, stopped, first=kind == "late")
+        begin = 0
+        if kind == "tail" and group:
+            begin = max(0, self.costs[group[0]] - self.random.randint(TAIL // 2, TAIL))
+            group = [robot for robot in group if self.costs[robot] > begin]
+        better = len(group) > 0 and self._replan(group, stopped, first=kind in ("late", "tail"), begin=begin)
         self.weights[kind] = min(10.0, self.weights[kind] * 1.3) if better else max(0.1, self.weights[kind] * 0.98)
         self.won[kind] += better
         return better
@@ -116,6 +125,12 @@ class Refiner:
             robot = self.random.choice([r for r, cost in enumerate(self.costs) if cost == makespan])
             group = self._goal_keepers(robot, size)
             self._add_parkers(group, robot, size)
+            self._add_met(group, robot, size)
+            return list(group)
+        if kind == "tail":
+            makespan = max(self.costs)
+            robot = self.random.choice([r for r, cost in enumerate(self.costs) if cost == makespan])
+            group = self._goal_keepers(robot, size)
             self._add_met(group, robot, size)
             return list(group)
         if kind == "delayed":
@@ -210,7 +225,7 @@ class Refiner:
 
     # --- planning the neighbourhood again -------------------------------------------------------
 
-    def _replan(self, group: list[int], stopped: Callable[[], bool], first: bool = False) -> bool:
+    def _replan(self, group: list[int], stopped: Callable[[], bool], first: bool = False, begin: int = 0) -> bool:
         """Plan ``group`` again in a random order (``first``: its first robot first); keep
         the paths when the plan got better.
         Unless the makespan may drop (no robot outside the group finishes last), each path
@@ -228,7 +243,9 @@ class Refiner:
         for robot in order:
             limit = before[0] if shorter else min(before[0], self.shortest[robot] + budget)
             path = None if stopped() or budget < 0 and not shorter else fastest_path(
-                occupancy, old[robot][0], self.aims[robot], self.to[robot], limit)
+                occupancy, old[robot][begin], self.aims[robot], self.to[robot], limit, begin)
+            if path is not None:
+                path = old[robot][:begin] + path  # (the robot moves after ``begin``: its path is longer)
             if path is None:
                 self._put_back(old, new)
                 return False

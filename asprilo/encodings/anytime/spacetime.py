@@ -66,23 +66,27 @@ class Occupancy:
         return busy[-1] if busy else -1
 
 
-def fastest_path(occupancy: Occupancy, start: int, goal: int, to_goal: list[int], limit: int) -> list[int] | None:
-    """The path from ``start`` that parks on ``goal`` earliest among the paths through the
-    robots of ``occupancy`` (no vertex shared at a step, no two robots swapping vertices,
-    nobody coming onto the goal afterwards), arriving at step ``limit`` at the latest;
-    ``None`` when there is none.  ``to_goal``: the goal's distance table."""
+def fastest_path(occupancy: Occupancy, start: int, goal: int, to_goal: list[int], limit: int, begin: int = 0
+                 ) -> list[int] | None:
+    """The path from ``start`` at step ``begin`` that parks on ``goal`` earliest among the
+    paths through the robots of ``occupancy`` (no vertex shared at a step, no two robots
+    swapping vertices, nobody coming onto the goal afterwards), arriving at step ``limit`` at
+    the latest, as its vertices from step ``begin`` on; ``None`` when there is none.
+    ``to_goal``: the goal's distance table."""
     busy, parked, size = occupancy.busy, occupancy.parked, occupancy.size
-    if parked[goal] != NEVER or (busy[start] and busy[start][0] == 0) or parked[start] == 0:
+    run = bisect_right(busy[start], begin)
+    if parked[goal] != NEVER or (run and busy[start][run - 1] == begin) or parked[start] <= begin:
         return None  # somebody else parks on the goal, or stands on the start
     free_from = busy[goal][-1] + 1 if busy[goal] else 0
-    if to_goal[start] > limit or free_from > limit:
+    if begin + to_goal[start] > limit or free_from > limit:
         return None
     neighbours, arrived = occupancy.roadmap.neighbours, len(busy[goal]) * size + goal  # the goal's last run
     # a state is run * size + vertex: the vertex in its run-th free run (after run busy steps)
     search = _Search(occupancy, to_goal, limit, free_from)
-    search.reached[start] = (0, NONE)
+    first = run * size + start
+    search.reached[first] = (begin, NONE)
     frontier = search.frontier
-    frontier.append((max(to_goal[start], free_from), to_goal[start], 0, start))
+    frontier.append((max(begin + to_goal[start], free_from), to_goal[start], begin, first))
     done = set()
     while frontier:
         _, _, arrival, state = heapq.heappop(frontier)
