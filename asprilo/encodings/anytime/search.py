@@ -266,8 +266,8 @@ def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> Anyt
         return result
     table = Reservations(instance, work.homes)
     router = Router(grid, table, out_of_time, engine)
-    roadmap = Roadmap(floor)
-    tracks = _first_plan(run, work, roadmap, router, table, limit, seed)
+    roadmap = Roadmap(floor) if work.domain.work is Job.GOALS else None  # M/Md's numbered vertices
+    tracks = _first_plan(run, work, floor, router, table, limit, seed, roadmap)
     if tracks is None:
         result.status = run.stopped()
         result.message = "no first plan within the time limit"
@@ -276,7 +276,7 @@ def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> Anyt
         result.status = SolveStatus.INVALID
         return result
     if _own_goals(work):
-        _refine(run, Refiner.of_tracks(roadmap, tracks, work.goals, seed))
+        _refine(run, Refiner.of_tracks(roadmap or Roadmap(floor), tracks, work.goals, seed))
     else:
         _improve(run, Improver(work, router, table, seed), table)
     if run.pending is not None:
@@ -286,8 +286,8 @@ def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> Anyt
     return result
 
 
-def _first_plan(run: _Run, work: Work, roadmap: Roadmap, router: Router, table: Reservations, limit: float,
-                seed: int) -> dict[int, Track] | None:
+def _first_plan(run: _Run, work: Work, floor: Floor, router: Router, table: Reservations, limit: float, seed: int,
+                roadmap: Roadmap | None = None) -> dict[int, Track] | None:
     """The first tracks, held in ``table``: by prioritized planning; for robots with goals
     (M, Md), first by LaCAM within :data:`FAST_SHARE` of the time (all robots at once, fast
     on a crowded floor), reported at once, then (unless every robot has its own goal: the
@@ -298,7 +298,7 @@ def _first_plan(run: _Run, work: Work, roadmap: Roadmap, router: Router, table: 
     fast = None
     if work.domain.work is Job.GOALS:
         starts = {robot: spot.at for robot, spot in run.instance.robots.items()}
-        fast = lacam_tracks(roadmap.floor, starts, work.goals, _stop_after(watch, FAST_SHARE * limit), seed, roadmap)
+        fast = lacam_tracks(floor, starts, work.goals, _stop_after(watch, FAST_SHARE * limit), seed, roadmap)
         if fast is not None:
             run.result.stats["first_plan_seconds"] = round(watch.elapsed(), 3)
             if not run.offer(fast, force=True):
