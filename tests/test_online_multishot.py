@@ -127,7 +127,7 @@ def test_a_cancelled_call_answers_nothing():
 
 
 def test_only_domain_m(tmp_path):
-    with pytest.raises(InputError, match="the multi-shot planner plans for domain M, not A"):
+    with pytest.raises(InputError, match="the multi-shot planner of domain M does not plan domain A"):
         MultiShot(corridor(), Domain.A)
 
 

@@ -45,9 +45,8 @@ from asprilo.writer import check_output, format_instance, format_plan, write_tex
 
 from .ceiling import Ceiling, ceiling
 from .metrics import Metrics, counted, measure
-from .multishot import MultiShot
 from .planner import Planner, encodings_planner, release_steps
-from .planning import FromScratch
+from .planning import FromScratch, multishot
 from .record import figures, record
 from .run import OnlineRun, run_online, scenario_of
 
@@ -66,7 +65,7 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--steps", type=_positive, metavar="N", help="run N steps (default: until every order is done)")
     parser.add_argument("--planner", choices=("anytime", "asp", "multishot"), default="anytime",
                         help="anytime: the anytime planner (default); asp: the exact search from scratch; "
-                             "multishot: one clingo Control for the whole run (domain M, docs/ONLINE.md)")
+                             "multishot: one clingo Control for the whole run (domains M and A, docs/ONLINE.md)")
     parser.add_argument("--encoding", nargs="+", metavar="FILE",
                         help="with --planner multishot: your own online encoding (default: the reference one)")
     parser.add_argument("--budget", type=seconds_argument, default=1.0, metavar="S",
@@ -133,7 +132,7 @@ def run(args: argparse.Namespace) -> int:
         if args.live and step % LIVE_EVERY == 0:
             write_text(args.output, format_plan(Plan(list(so_far.carried))), inputs)
 
-    planner = MultiShot(instance, domain, args.encoding or ()) if args.planner == "multishot" else \
+    planner = multishot(instance, domain, args.encoding or ()) if args.planner == "multishot" else \
         FromScratch(instance, domain, planner_for)
     with stopping_on_interrupt(cancel):
         outcome = run_online(instance, domain, planner, releases,

@@ -15,11 +15,11 @@ keeps its state between calls (the multi-shot ASP planner) implements the same t
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import replace
-from typing import Protocol
+from typing import Any, Protocol
 
-from asprilo.domain import Domain
+from asprilo.domain import Domain, Goal
 from asprilo.model import Action, Instance, Order, Plan
 from asprilo.simulate import simulate
 
@@ -34,6 +34,17 @@ class OnlinePlanning(Protocol):
     def carried_out(self, step: int, actions: list[Action]) -> None: ...
 
     def plan(self, step: int, seconds: float, cancel: threading.Event) -> Plan | None: ...
+
+
+def multishot(instance: Instance, domain: Domain, encoding: Sequence[str] = (), **options: Any) -> OnlinePlanning:
+    """The multi-shot ASP planner of the domain: :class:`~.multishot_a.MultiShotA` for A,
+    :class:`~.multishot.MultiShot` for M (options: theirs)."""
+    from .multishot import MultiShot
+    from .multishot_a import MultiShotA
+
+    if domain.goal is Goal.LINES:
+        return MultiShotA(instance, domain, encoding, **options)
+    return MultiShot(instance, domain, encoding, **options)
 
 
 class FromScratch:

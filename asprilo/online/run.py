@@ -10,7 +10,10 @@ that finds no plan is made again at once with twice the time (the planner keeps 
 while the robots wait), up to ``most_budget``; a plan found brings the budget back.
 
 The planner is asked after step 0 and then (``replan``): ``"arrival"`` whenever orders were
-released since it last planned (the default), or an integer k: also every k steps.  An order
+released since it last planned (the default), or an integer k: also every k steps; and
+whenever a plan with actions has been carried out to its end while orders are still open (a
+planner may plan part of the work at a time: domain A's multi-shot planner plans the next
+step of every task).  An order
 released at step r is known to the planner after step r.  The run ends after ``steps``
 steps, or (``steps=None``) once every order is released and done; a run whose planner finds
 no plan within ``most_budget`` while nothing else can change ends there, and says so.
@@ -92,13 +95,17 @@ def run_online(instance: Instance, domain: Domain, planner: OnlinePlanning,
     cancel = cancel or threading.Event()
     most = 16 * budget if most_budget is None else most_budget
     limit = MOST_STEPS if steps is None else steps
-    step, planned_at, seconds = 0, None, budget
+    step, planned_at, seconds, under_way = 0, None, budget, False
     planner.released(world.released_at(0), 0)
     while step < limit:
-        if _due(step, planned_at, releases, replan) or (run.calls and not run.calls[-1].found and seconds <= most):
+        ran_out = under_way and not world.ahead_after(step)
+        under_way = under_way and not ran_out
+        if _due(step, planned_at, releases, replan) or (ran_out and not world.finished(step)) or \
+                (run.calls and not run.calls[-1].found and seconds <= most):
             planned_at = step
             found, step = _plan(world, run, planner, step, seconds, step_seconds, clock, cancel, limit)
             seconds = budget if found else 2 * seconds
+            under_way = world.ahead_after(step)
             if step >= limit:
                 break
         actions = world.ahead.get(step + 1, [])
