@@ -8,7 +8,7 @@ A suite is a YAML file::
     scenarios: {files: ["../examples/asprilo/dom-a/small/*.lp"]}  # instances (patterns, as bench's)
     every: 3              # optional: release one order every 3 steps (default: the instances' own)
     steps: 200            # steps of each run (default 1000)
-    planners: [anytime, asp]
+    planners: [anytime, asp, multishot]   # multishot: one clingo Control a run (A and M)
     budgets: [0.5, 1]     # seconds a planner call may take
     step_seconds: 1       # seconds of planner time a step of the world takes (default 1)
 
@@ -40,7 +40,7 @@ from .report import Table
 #: what a suite may say, and the defaults of what it may leave out
 KEYS = {"name", "scenarios", "every", "steps", "planners", "budgets", "step_seconds"}
 STEPS, STEP_SECONDS = 1000, 1.0
-PLANNERS = ("anytime", "asp")
+PLANNERS = ("anytime", "asp", "multishot")
 RESULTS = "online.jsonl"
 #: the windows of the throughput over time in a run
 WINDOWS = 20
@@ -111,7 +111,7 @@ def run_suite(suite: OnlineSuite, folder: Path) -> list[dict]:
     from asprilo.online.ceiling import ceiling
     from asprilo.online.metrics import measure
     from asprilo.online.planner import encodings_planner, release_steps
-    from asprilo.online.planning import FromScratch
+    from asprilo.online.planning import FromScratch, OnlinePlanning, multishot
     from asprilo.online.record import figures
     from asprilo.online.run import run_online, scenario_of
 
@@ -126,7 +126,9 @@ def run_suite(suite: OnlineSuite, folder: Path) -> list[dict]:
         def planner_for(seconds: float, method: str = planner):
             return encodings_planner(time_limit=seconds, method=method)
 
-        outcome = run_online(instance, domain, FromScratch(instance, domain, planner_for), releases, budget=budget,
+        online: OnlinePlanning = multishot(instance, domain) if planner == "multishot" else \
+            FromScratch(instance, domain, planner_for)
+        outcome = run_online(instance, domain, online, releases, budget=budget,
                              steps=suite.steps, step_seconds=suite.step_seconds)
         metrics = measure(instance, outcome.plan, domain, releases, outcome.steps, outcome.calls,
                           len(outcome.waiting), window=max(1, suite.steps // WINDOWS))
