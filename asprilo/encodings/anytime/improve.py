@@ -48,6 +48,8 @@ TAIL = 30
 LAST_SHARE = {Job.TRIPS: 0.7, Job.GOALS: 0.3}
 #: seconds a ``swap`` may spend re-assigning
 SWAP_SECONDS = 0.5
+#: whether a neighbourhood that gives a plan as good (same makespan and sum of costs) keeps it
+PLATEAU = True
 
 
 def score(tracks: dict[int, Track]) -> tuple[int, int]:
@@ -68,6 +70,8 @@ class Improver:
             self.weights["alone"] = self.weights["order"] = self.weights["clear"] = 0.0
         if not work.reassignable():
             self.weights["swap"] = 0.0
+        #: whether a plan as good as the present one is kept (moves on plateaus)
+        self.plateau = PLATEAU
         self.tried = dict.fromkeys(KINDS, 0)
         self.won = dict.fromkeys(KINDS, 0)
 
@@ -81,8 +85,9 @@ class Improver:
         saved = self.work.save()  # before a neighbourhood that changes the work (order)
         group, start, reassign = self._neighbourhood(kind, late)
         self.tried[kind] += 1
-        better = bool(group) and self._repair(group, start, reassign, stopped, saved)
-        if not better:
+        outcome = self._repair(group, start, reassign, stopped, saved) if group else None
+        better = outcome == "better"
+        if outcome is None:
             self.work.restore(saved)
         self.weights[kind] = min(10.0, self.weights[kind] * 1.5) if better else max(0.1, self.weights[kind] * 0.97)
         self.won[kind] += better
@@ -217,7 +222,9 @@ class Improver:
     # --- routing the neighbourhood again -----------------------------------------------------------
 
     def _repair(self, group: list[int], start: int, reassign: bool, stopped: Callable[[], bool],
-                saved: tuple) -> bool:
+                saved: tuple) -> str | None:
+        """Route the ``group`` again: ``"better"``, ``"same"`` (a plan as good, kept: the search
+        moves on a plateau), or ``None`` (worse or no route: the tracks and work as before)."""
         before = self.score()
         old = {robot: self.table.tracks[robot] for robot in group}
         if reassign and not self.work.reassign(set(group), SWAP_SECONDS, self._shaken(late=group[0])):
@@ -239,12 +246,15 @@ class Improver:
         for robot in order:
             if stopped() or not self._route(robot, old[robot], start, routed):
                 self._restore(old, saved)
-                return False
+                return None
             routed.add(robot)
-        if self.score() < before:
-            return True
+        after = self.score()
+        if after < before:
+            return "better"
+        if after == before and self.plateau:
+            return "same"
         self._restore(old, saved)
-        return False
+        return None
 
     def _route(self, robot: int, old: Track, start: int, routed: set[int]) -> bool:
         tasks = self.work.errand(robot, routed, roomy=True, parked=self.table.parked_cells(robot))
