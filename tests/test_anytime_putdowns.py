@@ -9,7 +9,8 @@ minimum independently.
 product 2 (shelf 2).  The first plan fetches shelf 2 first (3 steps away, shelf 1 is 4):
 W W S, lift (4); N W W to the station (7), deliver (8); E E S back to shelf 2's own cell
 (11), put down (12); W under shelf 1 (13), lift (14); N W (16), deliver (17); then it parks
-shelf 1 on its own cell, E S (19).  Putting shelf 2 down on the spare cell (5,2) instead
+shelf 1 on its own cell, E S (19); the same plan without parking, the robot staying on the
+station, is 17.  Putting shelf 2 down on the spare cell (5,2) instead
 costs 6 steps more.  The search then finds 17 with shelf 1 first, the robot staying on the
 station: W W W S, lift (5); N W (7), deliver (8); E S (10), put down (11); E under shelf 2
 (12), lift (13); N W W (16), deliver (17).  No plan is shorter: the first delivery comes at
@@ -88,8 +89,9 @@ def test_two_shelves_down_a_corridor_take_the_hand_derived_plans():
                   "deliver:1,1,1", E, S)
     assert _actions(result.history[0].plan) == first
     assert result.makespan == 17 and result.minimal
-    assert _actions(result.plan) == _hand(W, W, W, S, "pickup", N, W, "deliver:1,1,1", E, S, "putdown", E, "pickup",
-                                          N, W, W, "deliver:1,2,1")
+    # either minimal plan derived above (which one the search meets first depends on its draws)
+    assert _actions(result.plan) in (first[:-2], _hand(W, W, W, S, "pickup", N, W, "deliver:1,1,1", E, S, "putdown",
+                                                       E, "pickup", N, W, W, "deliver:1,2,1"))
     assert check(instance, result.plan, Domain.A).valid
 
 

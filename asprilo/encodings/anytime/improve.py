@@ -18,6 +18,10 @@ Neighbourhoods, chosen with weights that grow with their successes:
 - ``clear``: a late robot with several shelves may put one down on a cell nearer its way
   once a robot that finishes early has carried that cell's shelf, which serves no order,
   away to a spare cell (A/B/C; :meth:`.work.Work.clear`).  Robots that clear go first.
+- ``vacate``: a robot with several shelves (the late one if it is) may put one down on the
+  cell of a shelf that never comes back there (the last shelf of another robot, or one put
+  down elsewhere: :meth:`.work.Work.vacated`), drawn at random; the robot of that shelf goes
+  first (it lifts the shelf before the cell is used) and parks elsewhere (A/B/C).
 
 Robots parked for good on a station the freed robots deliver at are freed as well (routed
 after them): a changed errand may need that station later than before.
@@ -35,7 +39,7 @@ from .reservations import Reservations, Track
 from .router import Router
 from .work import Work
 
-KINDS = ("alone", "crowd", "tail", "random", "swap", "order", "clear")
+KINDS = ("alone", "crowd", "tail", "random", "swap", "order", "clear", "vacate")
 #: the most robots one neighbourhood frees: in M/Md many robots cross paths and give way to
 #: each other, and larger groups find more (200 MovingAI agents, sum of costs after 60 s:
 #: 1.31 times its bound with 8, 1.27-1.29 with 16, 1.28 with 24 or 32)
@@ -67,7 +71,7 @@ class Improver:
         self.weights = dict.fromkeys(KINDS, 1.0)
         self.last_share, self.group = LAST_SHARE[work.domain.work], GROUP[work.domain.work]
         if work.domain.work is Job.GOALS:  # a robot of M/Md has one goal and no place to park near it
-            self.weights["alone"] = self.weights["order"] = self.weights["clear"] = 0.0
+            self.weights["alone"] = self.weights["order"] = self.weights["clear"] = self.weights["vacate"] = 0.0
         if not work.reassignable():
             self.weights["swap"] = 0.0
         #: whether a plan as good as the present one is kept (moves on plateaus)
@@ -117,6 +121,8 @@ class Improver:
             return ([late], 0, False) if self._reorder(late) else ([], 0, False)
         if kind == "clear":
             return self._clearing(late), 0, False
+        if kind == "vacate":
+            return self._vacating(late), 0, False
         if kind in ("crowd", "tail"):
             group = [late, *self._met(late)[:size - 1]]
             if kind == "crowd":
@@ -177,6 +183,23 @@ class Improver:
         if helper == robot or not work.clear(robot, helper):
             return []
         return [helper, *(r for r in group if r != helper)] if reassign else [helper, robot]
+
+    def _vacating(self, late: int) -> list[int]:
+        """A ``vacate`` neighbourhood: the robot of the shelf whose cell is offered, then the
+        robot with several shelves that may put one down there (none when there is no such
+        robot or cell)."""
+        work = self.work
+        several = [robot for robot in work.workers() if len(work.trips.get(robot, [])) >= 2]
+        if not several:
+            return []
+        robot = late if late in several else self.random.choice(several)
+        cells = [cell for cell in work.vacated({trip.shelf for trip in work.trips[robot]}) if cell not in work.offered]
+        if not cells:
+            return []
+        cell = self.random.choice(cells)
+        work.offered = work.offered | {cell}
+        owners = [other for other, trips in work.trips.items() if any(work.homes[t.shelf] == cell for t in trips)]
+        return [*owners[:1], robot]
 
     def _with_users(self, group: list[int]) -> list[int]:
         """The ``group`` and, after it, the other robots that come on the cells its robots

@@ -63,6 +63,8 @@ class Work:
         self.claims: dict[int, Cell] = {}
         #: robot -> the shelves serving no order it carries away first, each to its spare cell
         self.clearings: dict[int, list[tuple[int, Cell]]] = {}
+        #: cells of shelves that never come back (:meth:`vacated`) offered for putting shelves down
+        self.offered: frozenset[Cell] = frozenset()
         self._cells, self._storage = instance.cells, instance.storage_cells
         self._spare: list[Cell] | None = None  # storage cells no shelf starts on and none closes a way on
         self._needed: tuple[tuple, set[Cell]] | None = None  # ((trips, goals, kept clear), needed cells)
@@ -110,10 +112,10 @@ class Work:
 
     def save(self) -> tuple:
         """The current assignment, to :meth:`restore` it later."""
-        return self.choice, self.trips, self.goals, dict(self.claims), self.clearings
+        return self.choice, self.trips, self.goals, dict(self.claims), self.clearings, self.offered
 
     def restore(self, saved: tuple) -> None:
-        self.choice, self.trips, self.goals, claims, self.clearings = saved
+        self.choice, self.trips, self.goals, claims, self.clearings, self.offered = saved
         self.claims = dict(claims)
         self._parking_cells = self._movers = None
 
@@ -202,6 +204,7 @@ class Work:
         mine = {trip.shelf for trip in trips_}
         taken = {cell for shelf, cell in self.claims.items() if shelf not in mine} | parked
         cleared = [cell for cell in self.cleared() if cell not in taken]
+        cleared += [cell for cell in self.vacated(mine) if cell in self.offered and cell not in taken]
         putdowns = {}
         for trip, carry, walk in self._changes(trips_):
             home = self.homes[trip.shelf]
@@ -256,6 +259,16 @@ class Work:
                     seen.add(c)
                     todo.append(c)
         return not seen.issuperset(near)
+
+    def vacated(self, mine: Collection[int] = ()) -> list[Cell]:
+        """The storage cells that a shelf leaves for good once lifted (none of ``mine``): the
+        last shelf of a robot (whose robot parks elsewhere when the cell is claimed) and a
+        shelf put down elsewhere.  A robot may put a shelf down there when the cell is
+        :attr:`offered` (the ``vacate`` neighbourhood of :mod:`.improve`)."""
+        carried = {robot.carries for robot in self.instance.robots.values()}
+        shelves = {trips_[-1].shelf for trips_ in self.trips.values() if trips_} | set(self.claims)
+        return sorted({self.homes[shelf] for shelf in shelves if shelf not in carried and shelf not in mine
+                       and self.claims.get(shelf) != self.homes[shelf] and self.homes[shelf] in self._storage})
 
     def cleared(self) -> list[Cell]:
         """The cells whose shelves robots carry away first (:attr:`clearings`)."""
