@@ -447,19 +447,21 @@ class Work:
         return [self._room(robot)]
 
     def _room(self, robot: int) -> Task:
-        """Where a robot making room parks: cells no other robot making room was offered
-        (robots crowded in one corner were offered the same few cells, and the last of them
-        found all taken), kept while the needed cells stay the same."""
+        """Where a robot making room parks: cells no robot before it in :meth:`movers` was
+        offered (robots crowded in one corner were offered the same few cells, and the last
+        of them found all taken), kept while the needed cells stay the same."""
         needed = self.needed_cells()
         if self._taken is None or self._taken[0] is not needed:
             stations = {s.at for s in self.instance.stations.values()}
             starts = {r.at for r in self.instance.robots.values()}
             self._taken = (needed, self.grid.mask(needed | stations | starts), {})
         _, taken, rooms = self._taken
-        if robot not in rooms:
-            rooms[robot] = room_task(self.instance, self.grid, robot, taken, self._highways, self._resting)
-            for cell in rooms[robot].cells:
-                taken[cell] = True
+        movers = self.movers()
+        for other in movers[:movers.index(robot) + 1] if robot in movers else [robot]:
+            if other not in rooms:
+                rooms[other] = room_task(self.instance, self.grid, other, taken, self._highways, self._resting)
+                for cell in rooms[other].cells:
+                    taken[cell] = True
         return rooms[robot]
 
     def estimate(self, robot: int) -> float:
