@@ -76,10 +76,14 @@ def first_tracks(work: Work, router: Router, reservations: Reservations, stopped
     on_the_way = {r for r in robots if reservations.instance.robots[r].at in work.needed_cells()}
 
     def ordered(longest_first: bool) -> list[int]:
-        # shallow robots first, and of those first the ones standing where others must go
+        # shallow robots first, and of those first the ones standing where others must go;
+        # robots making room go before the workers as deep (a deeper one cannot leave before
+        # those in front of it: on 200x200, movers in the second of three rows waited for the
+        # workers in the first)
         sign = -1 if longest_first else 1
-        return work.movers() + sorted(work.workers(), key=lambda r: (depth[r] > 1, r not in on_the_way, depth[r],
-                                                                      sign * work.estimate(r), r))
+        workers = sorted(work.workers(), key=lambda r: (depth[r] > 1, r not in on_the_way, depth[r],
+                                                        sign * work.estimate(r), r))
+        return sorted(work.movers() + workers, key=lambda r: depth[r])
 
     order = ordered(True)
     shuffler = random.Random(seed)
