@@ -52,7 +52,6 @@ class Lookahead:
             if not Path(path).is_file():
                 raise InputError(f"{path}: no such encoding file")
         self.solves = 0
-        self.exhausted = False  # the last search proved that no horizon it may try has a plan
         self._start()
 
     def _start(self) -> None:
@@ -116,7 +115,6 @@ class Lookahead:
     def search(self, seconds: float, cancel: threading.Event) -> Plan | None:
         """The shortest plan from now found in ``seconds`` (``None``: none found)."""
         deadline = self.clock() + seconds
-        self.exhausted = False
         if self.fresh:
             self._start()
             self.ground_parts(self.restart_parts())
@@ -134,7 +132,6 @@ class Lookahead:
                 return None
             horizon += self.rise if best is None else 0
         if best is None:
-            self.exhausted = True
             return None
         while self.shortest and bound < horizon:
             middle = (bound + horizon) // 2

@@ -19,9 +19,10 @@ and horizons are grounded once; the world enters as externals (docs/ONLINE.md):
 
 A call tries one horizon, that of the hints plus :data:`SLACK` steps: the first plan found in
 which every robot with a task achieves its aim is the answer (a shorter one would take a proof
-that none exists, which costs the robots time).  When it has none (robots in each other's
-way for longer), the aims are let go (``strict`` false) for one more try: robots then do
-what they can along their hints, and the next call aims again.  The run asks again when a
+that none exists, which costs the robots time).  When it has none, or none is found in half
+the call's time (robots in each other's way for longer), the aims are let go (``strict``
+false) for one more try in the rest: robots then do what they can along their hints, and the
+next call aims again.  The run asks again when a
 plan has been carried out, so plans (and the steps grounded) stay short however far the tasks
 lead; a call that gives no robot a new task answers what is left of the last plan (the world
 has followed it).  Way points of two robots differ.  The units of a delivery are the
@@ -132,15 +133,15 @@ class MultiShotA(Lookahead):
 
     def plan(self, step: int, seconds: float, cancel: threading.Event) -> Plan | None:
         """A plan from the state after ``step`` in which every robot with a task (new ones given
-        to free robots first) makes the next step of it, shortest found in ``seconds``."""
+        to free robots first) achieves its aim, found within ``seconds`` (``None``: none)."""
         started = self.clock()
         if not self._give_tasks() and self.ahead:
             return Plan([action._replace(step=k) for k, actions in enumerate(self.ahead, 1) for action in actions])
         if not self.tasks:
             return Plan([])
         self.assign({STRICT: True})
-        plan = self.search(seconds, cancel)
-        if plan is None and self.exhausted:
+        plan = self.search(seconds / 2, cancel)
+        if plan is None and not cancel.is_set():
             self.assign({STRICT: False})
             plan = self.search(seconds - (self.clock() - started), cancel)
         self.ahead = [] if plan is None else \
