@@ -251,7 +251,7 @@ class Improver:
         before = self.score()
         old = {robot: self.table.tracks[robot] for robot in group}
         if reassign and not self.work.reassign(set(group), SWAP_SECONDS, self._shaken(late=group[0])):
-            return False
+            return None
         group = self._with_users(group)
         old.update({robot: self.table.tracks[robot] for robot in group if robot not in old})
         if start > 0:
