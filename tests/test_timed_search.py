@@ -126,6 +126,37 @@ def test_both_engines_agree_on_a_paper_instance(compared, domain, monkeypatch):
     assert [python for python, _asp in compared] == [asp for _python, asp in compared]
 
 
+def test_a_space_looked_up_cell_by_cell_routes_as_one_gathered_whole(monkeypatch):
+    # every routing call of a first plan on a paper instance: the lazy space the Python
+    # engine gets (Space.gather(lazy=True), cells looked up as the search comes near) and
+    # the space gathered in full give the same route
+    from test_anytime import PAPER
+
+    from asprilo.reader import read_instance
+
+    instance = read_instance(PAPER / "2x3x5/x19_y9_n171_r10_s60_ps3_pr60_u60_o10_N001.lp")
+    routes = []
+    gather = Space.gather
+
+    def both(robot, table, tasks, windows, begin, step, lazy=False):
+        routes.append((gather(robot, table, tasks, windows, begin, step, lazy=True),
+                       gather(robot, table, tasks, windows, begin, step)))
+        return routes[-1][0]
+
+    def compare(space: Space):
+        whole = routes[-1][1]
+        whole.deadlines, whole.tails = space.deadlines, space.tails  # as Space.estimate set them
+        found = search(space)
+        assert found == search(whole)
+        return found
+
+    monkeypatch.setattr(Space, "gather", staticmethod(both))
+    monkeypatch.setitem(router_module.ENGINES, "python", compare)
+    clock = patient_anytime(monkeypatch)
+    _assert_sound(plan_anytime(instance, Domain.A, time_limit=3, on_improvement=clock.reported), instance, Domain.A)
+    assert len(routes) >= 10
+
+
 def test_a_long_way_across_an_open_floor_is_routed_in_a_corridor_when_the_wide_level_is_too_big(monkeypatch):
     # a 40x40 floor without walls, from one corner to the other: every cell lies on a
     # shortest way, so the first level's windows cover the whole floor (1,600 cells); with

@@ -184,7 +184,7 @@ class Router:
     def _solve(self, robot: int, legs: list[Leg], begin: Cell, step: int
                ) -> tuple[list[Cell], dict[int, Task]] | None:
         space = Space.gather(robot, self.reservations, [leg.task for leg in legs], [leg.windows for leg in legs],
-                             begin, step)
+                             begin, step, lazy=self.engine == "python")
         space.estimate([leg.deadline for leg in legs], [leg.length for leg in legs])
         return ENGINES[self.engine](space)
 

@@ -42,6 +42,10 @@ class Space:
     due: dict[int, int] = field(default_factory=dict)
     deadlines: list[int] = field(default_factory=list)
     tails: list[int] = field(default_factory=list)
+    #: where a lazy space looks up the cells not looked at yet (:meth:`look`): the table,
+    #: the robot, and each cell's steps (first, last) over all windows
+    source: tuple[Reservations, int, dict[Cell, list[int]]] | None = field(default=None, repr=False)
+    looked: set[Cell] = field(default_factory=set, repr=False)
 
     @property
     def last(self) -> int:
@@ -69,9 +73,11 @@ class Space:
 
     @classmethod
     def gather(cls, robot: int, table: Reservations, tasks: list[Task], windows: list[dict[Cell, tuple[int, int]]],
-               begin: Cell, step: int) -> Space:
+               begin: Cell, step: int, lazy: bool = False) -> Space:
         """The space of routing ``robot`` through ``tasks`` inside ``windows``, around the
-        other robots' tracks held in ``table``."""
+        other robots' tracks held in ``table``.  ``lazy``: who passes, stays or moves where
+        is looked up cell by cell when the search first comes near (:meth:`look`; a wide
+        window on a big floor holds tens of thousands of cells, the search visits a few)."""
         space = cls(begin, step, tasks, windows)
         spans: dict[Cell, list[int]] = {}
         for window in windows:
@@ -80,17 +86,31 @@ class Space:
                 span[0], span[1] = min(span[0], first), max(span[1], last)
         for number, task in enumerate(tasks, 1):
             space.task_cells.append(space._task_cells(robot, table, number, task))
-        for cell, (first, last) in spans.items():
-            steps = table.busy(cell, first, last, robot)
-            if steps:
-                space.busy[cell].update(steps)
-            since = table.stay(cell, robot)
-            if since is not None and since <= last:
-                space.stays[cell] = since
-            space.crossings.update((source, cell, t) for source, t in table.crossings(cell, first, last + 1, robot)
-                                   if source in spans)
+        space.source = (table, robot, spans)
+        if not lazy:
+            for cell in spans:
+                space.look(cell)
         space._shelves(table, tasks)
         return space
+
+    def look(self, cell: Cell) -> None:
+        """Take what the table says about ``cell`` within its steps in the windows: the steps
+        other robots pass it, from when one stays there, who moves into it from where."""
+        if self.source is None or cell in self.looked:
+            return
+        self.looked.add(cell)
+        table, robot, spans = self.source
+        if cell not in spans:
+            return
+        first, last = spans[cell]
+        steps = table.busy(cell, first, last, robot)
+        if steps:
+            self.busy[cell].update(steps)
+        since = table.stay(cell, robot)
+        if since is not None and since <= last:
+            self.stays[cell] = since
+        self.crossings.update((source, cell, t) for source, t in table.crossings(cell, first, last + 1, robot)
+                              if source in spans)
 
     def _task_cells(self, robot: int, table: Reservations, number: int, task: Task) -> set[Cell]:
         cells = set()
@@ -125,7 +145,9 @@ class Space:
                 self.rests[cell].append((since, FOREVER))
 
     def facts(self) -> str:
-        """The space as the input facts of ``route.lp``."""
+        """The space as the input facts of ``route.lp`` (every cell looked up first)."""
+        for cell in self.source[2] if self.source is not None else ():
+            self.look(cell)
         out = [f"begin({_c(self.begin)},{self.step}).", f"last({self.last})."]
         for number, window in enumerate(self.windows, 1):
             if self.acts(number):

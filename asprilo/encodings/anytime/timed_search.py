@@ -141,6 +141,7 @@ class _Rooms(dict):
 
     def __missing__(self, cell: Cell) -> Room:
         space = self.space
+        space.look(cell)
         first, last = self.window[cell]
         last = min(last, space.stays.get(cell, last + 1) - 1)
         closed = set(space.busy.get(cell, ()))
