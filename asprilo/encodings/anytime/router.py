@@ -24,7 +24,7 @@ from asprilo.bounds import INFINITE
 from asprilo.model import Cell
 
 from .errands import Task
-from .grid import Grid, cells_of, widen
+from .grid import Grid, widen
 from .reservations import Reservations
 from .space import Space
 from .timed_search import search
@@ -162,11 +162,7 @@ class Router:
             from_start = self.grid.distances([start], allowed)
             length = int(to_task[start])
             corridor = self._corridor(start, from_start, to_task, allowed, level, length)
-            windows = {}
-            for x, y in cells_of(corridor):
-                first, last = earliest + int(from_start[x, y]), earliest + length + level.slack - int(to_task[x, y])
-                if first <= last:
-                    windows[(x, y)] = (first, last)
+            windows = _windows(corridor, earliest + from_start, earliest + length + level.slack - to_task)
             legs.append(Leg(task, start, earliest, length, earliest + length + level.slack, windows))
             end = min(task.cells, key=lambda cell: from_start[cell])
             start, earliest = end, earliest + length + 1
@@ -201,6 +197,14 @@ def asp_search(space: Space) -> tuple[list[Cell], dict[int, Task]] | None:
     if not result.satisfiable or not any(s.name == "arrival" for s in symbols):
         return None
     return _route(symbols, space.tasks, space.step)
+
+
+def _windows(corridor: np.ndarray, first: np.ndarray, last: np.ndarray) -> dict[Cell, tuple[int, int]]:
+    """Cell -> (first, last) step of the cells of ``corridor`` where the first comes no
+    later than the last (arrays of the grid's shape; computed for all cells at once)."""
+    xs, ys = np.nonzero(corridor & (first <= last))
+    firsts, lasts = first[xs, ys].astype(np.int64).tolist(), last[xs, ys].astype(np.int64).tolist()
+    return dict(zip(zip(xs.tolist(), ys.tolist(), strict=True), zip(firsts, lasts, strict=True), strict=True))
 
 
 def _slots(legs: list[Leg]) -> int:
