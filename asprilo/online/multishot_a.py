@@ -108,7 +108,7 @@ class MultiShotA(Lookahead):
         elif actions:
             self.ahead = []
         for action in actions:
-            robot = action.robot
+            robot = int(action.robot)  # type: ignore[arg-type]  # robot ids: the run carries out our plans
             task = self.tasks.get(robot)
             if action.name == "move":
                 x, y = self.positions[robot]
@@ -158,7 +158,8 @@ class MultiShotA(Lookahead):
         given = assign_tasks(free, waiting, shelves, self.stock, self.floor)
         for task in given:
             self.tasks[task.robot] = task
-            self.in_tasks[task.line] = self.in_tasks.get(task.line, 0) + task.units
+            if task.line is not None:
+                self.in_tasks[task.line] = self.in_tasks.get(task.line, 0) + task.units
         return bool(given)
 
     def prepare(self) -> tuple[int, int]:
@@ -192,7 +193,7 @@ class MultiShotA(Lookahead):
 
     def _hints(self, task: Task) -> list[Hint]:
         """The robot's actions through its task on the floor without other robots."""
-        cell, hints = self.positions[task.robot], []
+        cell, hints = self.positions[task.robot], []  # type: tuple[Cell, list[Hint]]
         legs = [(task.home, self.floor.walk, PICKUP), (task.station, self.floor.carry, DELIVER),
                 (task.home, self.floor.carry, PUTDOWN)]
         started = [PICKUP, DELIVER, PUTDOWN].index(task.next)
