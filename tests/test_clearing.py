@@ -63,7 +63,7 @@ def test_the_cleared_cell_gives_the_late_robot_its_shortest_errand():
     assert before > 25
     assert work.clear(3, 1)
     improver = Improver(work, router, table)
-    assert improver._repair([1, 3], 0, False, lambda: False, work.save())
+    assert improver._repair([1, 3], 0, False, lambda: False, work.save()) == "better"
     assert table.tracks[3].finish == 25
     assert score(table.tracks)[0] == 25
     verdict = check(instance, plan_of(table.tracks, instance, Domain.A), Domain.A)
