@@ -32,8 +32,10 @@ NEAREST = 12
 WORK_SIZE = 200_000
 #: shelves x robots from which the solver starts from a greedy assignment (on 200x200 with
 #: 1,000 robots, its first answers within the first assignment's seconds gave up to 7
-#: shelves to one robot while 700 robots stayed idle; with 600 robots and 761 shelves, up to 8)
-HINT_SIZE = 200_000
+#: shelves to one robot while 700 robots stayed idle; with 600 robots and 761 shelves, up to
+#: 8; on 100x100 with 200 robots and 130 shelves used, after 0.3 s as on a loaded machine,
+#: up to 6: a first plan 2.5 times the bound)
+HINT_SIZE = 20_000
 
 
 @dataclass
