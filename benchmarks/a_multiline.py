@@ -74,7 +74,7 @@ def best_bound(path: Path, start: int, conflicts: int) -> float:
     from asprilo.reader import read_instance
 
     instance = read_instance(path)
-    return trip_bound(Deliveries(instance, Domain.A, Floor(instance.cells)), start, conflicts)
+    return trip_bound(Deliveries(instance, Domain.parse("a"), Floor(instance.cells)), start, conflicts)
 
 
 def main() -> int:

@@ -24,7 +24,7 @@ from functools import partial
 
 from asprilo.bounds import Floor
 from asprilo.checker import Report, check
-from asprilo.domain import Domain, Job
+from asprilo.domain import Delivery, Domain, Job, domains
 from asprilo.model import Instance, Plan
 
 from ..solving.bounds import AwaitedBounds, BoundsLost, LowerBounds, bounds_beside
@@ -55,9 +55,11 @@ FAST_SHARE, PRIORITIZED_SHARE = 0.5, 0.25
 REFINE_CHECK_FACTOR = 8.0
 #: how many of the last neighbourhoods' durations say how long the next one may take
 RECENT_STEPS = 10
-#: the stronger reading whose first plan a solve of B or C makes too, and the share of the
-#: time limit within which the first plan must have come for that (then the most it may take)
-STRONGER = {Domain.B: Domain.A, Domain.C: Domain.B}
+#: the stronger reading whose first plan a solve of B or C makes too (by what a delivery does:
+#: B's closes a line, A's hands over units; C's closes a station's lines, B's one line), and the
+#: share of the time limit within which the first plan must have come for that (then the most
+#: it may take)
+STRONGER = {Delivery.LINE: Delivery.UNITS, Delivery.STATION: Delivery.LINE}
 READING_SHARE = 0.1
 
 
@@ -323,6 +325,14 @@ def _first_plan(run: _Run, work: Work, floor: Floor, router: Router, table: Rese
     return tracks
 
 
+def _stronger(domain: Domain) -> Domain | None:
+    """The built-in domain whose deliveries are the stronger reading of ``domain``'s (None for
+    A, M, Md and rule variants)."""
+    kind = None if domain.variants else STRONGER.get(domain.delivery)  # type: ignore[arg-type]
+    return next((other for other in domains() if kind is not None and other.delivery is kind
+                 and not other.variants and other.goal is domain.goal), None)
+
+
 def _stronger_reading(run: _Run, grid: Grid, engine: str, tracks: dict[int, Track], limit: float,
                       seed: int) -> Improver | None:
     """The improver of a first plan made under the stronger reading of B or C
@@ -330,7 +340,7 @@ def _stronger_reading(run: _Run, grid: Grid, engine: str, tracks: dict[int, Trac
     B and B relaxes A, so such a plan is one of the domain too, once the deliveries that
     close nothing are left out (:func:`.plans.plan_of`).  Tried only when the first plan
     came within :data:`READING_SHARE` of the time, and for as long again at most."""
-    stronger = STRONGER.get(run.domain)
+    stronger = _stronger(run.domain)
     if stronger is None or run.watch.elapsed() > READING_SHARE * limit:
         return None
     stop = _stop_after(run.watch, READING_SHARE * limit)
