@@ -44,7 +44,8 @@ def test_a_suite_runs_every_scenario_planner_and_budget_and_reports_them(tmp_pat
 
 
 @pytest.mark.parametrize(("text", "words"), [
-    ("name: x\nscenarios: {files: [corridor.lp]}\nplanners: [fast]\n", "planners: choose among anytime, asp, multishot"),
+    ("name: x\nscenarios: {files: [corridor.lp]}\nplanners: [fast]\n",
+     "planners: choose among anytime, asp, multishot"),
     ("name: x\nscenarios: {files: [corridor.lp]}\nbudgets: [0]\n", "budgets: seconds a planner call may take, above 0"),
     ("name: x\nscenarios: {files: [corridor.lp]}\nsteps: 0\n", "steps: a whole number of at least 1, got 0"),
     ("name: x\nscenarios: [corridor.lp]\n", "scenarios: give {files: [PATTERN, ...]}"),

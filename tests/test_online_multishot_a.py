@@ -21,7 +21,8 @@ from asprilo.online.tasks import Floor, Task, assign_tasks
 from asprilo.reader import read_instance
 from asprilo.sources import Source
 
-EXAMPLE = Path(__file__).resolve().parent.parent / "examples/asprilo/dom-a/small/x11_y6_n66_r3_s12_ps2_pr5_u50_o3_N001.lp"
+EXAMPLE = Path(__file__).resolve().parent.parent / "examples/asprilo/dom-a/small" / \
+    "x11_y6_n66_r3_s12_ps2_pr5_u50_o3_N001.lp"
 
 #: 5x1, domain A: robot 1 at (1,1), shelf 1 at (3,1) with 2 units of product 1, picking
 #: station 1 at (5,1).  Order 1 asks for 1 unit of product 1 at station 1 (released at 0),
