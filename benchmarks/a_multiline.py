@@ -29,18 +29,9 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-#: the exercise-size call of issue 45 (multi-line orders, up to 3 products per shelf)
-CALL = "-x 11 -y 6 -X 4 -Y 2 -p 2 -s 16 -P 8 -u 40 -r 4 -H --prsmin 1 --prsmax 3 --olmin 1 --olmax 3 -o 4"
+from gen_seeds import CALL, seed_list  # the exercise-size call of issues 44 and 45; seeds as 4501-4520
+
 ASPRILO = [sys.executable, "-m", "asprilo.cli"]
-
-
-def seed_list(text: str) -> list[int]:
-    """``4501-4520``, ``3,9301-9310`` and the like."""
-    seeds: list[int] = []
-    for part in text.split(","):
-        low, _, high = part.partition("-")
-        seeds += range(int(low), int(high or low) + 1)
-    return seeds
 
 
 def run_seed(seed: int, limit: float, folder: Path, conflicts: int) -> dict:

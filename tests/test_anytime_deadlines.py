@@ -18,6 +18,7 @@ import time
 
 import pytest
 from helpers.clocks import PAST_ANY_LIMIT, patient_anytime
+from test_anytime import TWO_TRIPS
 
 from asprilo.domain import Domain
 from asprilo.encodings.anytime import improve, plan_anytime, search, work
@@ -30,18 +31,13 @@ from asprilo.encodings.solving.watch import Listeners
 from asprilo.isolation import Isolated
 from asprilo.reader import read_instance
 
-#: one robot, two shelves, two lines at one station (domain B): the robot brings one shelf,
-#: puts it down and fetches the other, 21 steps at least; the strong lower bound counts one
-#: trip per line (19), so the search improves until its time is up.  The cheap bound is the
-#: stations' bound, 10: shelf 1 at (4,2) is 2 steps from the robot, lifted at step 3, carried
-#: 4 steps to the station at (1,1) (step 7) and delivered at 8; shelf 2 at (5,2) is lifted at
-#: 4 and carried 5 steps, delivered at 10.
-TWO_TRIPS = ("init(object(grid,1),value(xsize,5)). init(object(grid,1),value(ysize,2)).\n"
-             "init(object(robot,1),value(at,(3,1))). init(object(pickingStation,1),value(at,(1,1))).\n"
-             "init(object(shelf,1),value(at,(4,2))). init(object(shelf,2),value(at,(5,2))).\n"
-             "init(object(product,1),value(on,1)). init(object(product,2),value(on,2)).\n"
-             "init(object(order,1),value(line,1)). init(object(order,1),value(line,2)).\n"
-             "init(object(order,1),value(pickingStation,1)).\n")
+# TWO_TRIPS (test_anytime.py): one robot, two shelves, two lines at one station (domain B):
+# the robot brings one shelf, puts it down and fetches the other, 21 steps at least; the strong
+# lower bound counts one trip per line (19), so the search improves until its time is up.  The cheap bound is the
+# stations' bound, 10: shelf 1 at (4,2) is 2 steps from the robot, lifted at step 3, carried
+# 4 steps to the station at (1,1) (step 7) and delivered at 8; shelf 2 at (5,2) is lifted at
+# 4 and carried 5 steps, delivered at 10.
+
 #: a hang guard: no search here comes near it
 GUARD = 600.0
 

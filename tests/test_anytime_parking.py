@@ -20,16 +20,14 @@ one routed second found none left free where many robots stood in one corner.
 from __future__ import annotations
 
 from helpers.clocks import patient_anytime
+from helpers.errands import assigned_work, hand
 from helpers.warehouses import minimal_makespan
 from helpers.worlds import world
 
-from asprilo.bounds import Floor
 from asprilo.checker import check
 from asprilo.domain import Domain
 from asprilo.encodings.anytime import plan_anytime, search
 from asprilo.encodings.anytime.errands import Task
-from asprilo.encodings.anytime.grid import Grid
-from asprilo.encodings.anytime.work import Work
 
 E, W, N, S = (1, 0), (-1, 0), (0, -1), (0, 1)
 
@@ -42,26 +40,8 @@ def corner():
     return world("PR....R/R.....S", products={1: {1: 1}}, orders={1: ({1: 1}, 1)})
 
 
-def _work(instance) -> Work:
-    work = Work(instance, Domain.A, Grid(Floor(instance.cells)), 0)
-    assert work.assign(1.0, lambda: False)
-    return work
-
-
-def _hand(*steps) -> list[tuple]:
-    """One robot's actions, one per step from 1: a direction, or ``name:arguments``."""
-    actions = []
-    for step, action in enumerate(steps, 1):
-        if isinstance(action, tuple):
-            actions.append((step, "move", action))
-        else:
-            name, _, args = action.partition(":")
-            actions.append((step, name, tuple(int(a) for a in args.split(",")) if args else ()))
-    return actions
-
-
 def test_a_robot_may_park_its_last_shelf_near_the_station():
-    work = _work(siding())
+    work = assigned_work(siding())
     # its own cell, then the spare cells nearest the station: (2,2) 2 steps, (6,1) 5
     assert work.errand(1, set())[-1] == Task("park", ((6, 2), (2, 2), (6, 1)), True, 1)
     # a cell where another robot stays is not offered
@@ -76,12 +56,12 @@ def test_the_first_plan_parks_near_the_station_then_on_it(monkeypatch):
     result = plan_anytime(instance, Domain.A, time_limit=120, on_improvement=clock.reported)
     way = (S, "pickup", N, W, W, W, W, W, "deliver:1,1,1")
     assert [sorted((a.step, a.name, a.args) for a in better.plan.actions) for better in result.history] == \
-        [_hand(*way, E, S), _hand(*way)]
+        [hand(*way, E, S), hand(*way)]
     assert result.minimal and check(instance, result.plan, Domain.A).valid
 
 
 def test_robots_making_room_are_offered_cells_of_their_own():
-    work = _work(corner())
+    work = assigned_work(corner())
     assert work.trips.keys() == {2} and work.movers() == [1, 3]
     # asked in the other order: robot 1 still comes first
     assert work.errand(3, set()) == [Task("park", ((5, 2), (6, 2), (6, 1)))]

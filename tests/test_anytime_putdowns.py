@@ -28,16 +28,14 @@ stay on the station (20).
 from __future__ import annotations
 
 from helpers.clocks import patient_anytime
+from helpers.errands import assigned_work, hand
 from helpers.warehouses import minimal_makespan
 from helpers.worlds import world
 
-from asprilo.bounds import Floor
 from asprilo.checker import check
 from asprilo.domain import Domain
 from asprilo.encodings.anytime import plan_anytime, search
 from asprilo.encodings.anytime.errands import Task
-from asprilo.encodings.anytime.grid import Grid
-from asprilo.encodings.anytime.work import Work
 
 E, W, N, S = (1, 0), (-1, 0), (0, -1), (0, 1)
 
@@ -52,31 +50,12 @@ def dead():
     return instance
 
 
-def _work(instance) -> Work:
-    work = Work(instance, Domain.A, Grid(Floor(instance.cells)), 0)
-    assert work.assign(1.0, lambda: False)
-    return work
-
-
 def _actions(plan) -> list[tuple]:
     return sorted((a.step, a.name, a.args) for a in plan.actions)
 
 
-def _hand(*steps) -> list[tuple]:
-    """The actions of one robot, one per step from 1: a direction, or ``name`` or
-    ``name:arguments``."""
-    actions = []
-    for step, action in enumerate(steps, 1):
-        if isinstance(action, tuple):
-            actions.append((step, "move", action))
-        else:
-            name, _, args = action.partition(":")
-            actions.append((step, name, tuple(int(a) for a in args.split(",")) if args else ()))
-    return actions
-
-
 def test_a_shelf_goes_back_on_its_own_cell_when_that_is_nearest():
-    work = _work(two())
+    work = assigned_work(two())
     assert [trip.shelf for trip in work.trips[1]] == [2, 1]
     assert work.errand(1, set())[2] == Task("putdown", ((3, 2),), True, 2)
 
@@ -85,18 +64,18 @@ def test_two_shelves_down_a_corridor_take_the_hand_derived_plans():
     instance = two()
     assert minimal_makespan(instance, Domain.A, start=12) == 17
     result = plan_anytime(instance, Domain.A, time_limit=120)
-    first = _hand(W, W, S, "pickup", N, W, W, "deliver:1,2,1", E, E, S, "putdown", W, "pickup", N, W,
+    first = hand(W, W, S, "pickup", N, W, W, "deliver:1,2,1", E, E, S, "putdown", W, "pickup", N, W,
                   "deliver:1,1,1", E, S)
     assert _actions(result.history[0].plan) == first
     assert result.makespan == 17 and result.minimal
     # either minimal plan derived above (which one the search meets first depends on its draws)
-    assert _actions(result.plan) in (first[:-2], _hand(W, W, W, S, "pickup", N, W, "deliver:1,1,1", E, S, "putdown",
+    assert _actions(result.plan) in (first[:-2], hand(W, W, W, S, "pickup", N, W, "deliver:1,1,1", E, S, "putdown",
                                                        E, "pickup", N, W, W, "deliver:1,2,1"))
     assert check(instance, result.plan, Domain.A).valid
 
 
 def test_the_shelf_in_front_of_a_dead_end_is_carried_away_first():
-    work = _work(dead())
+    work = assigned_work(dead())
     assert work.clearings == {1: [(1, (5, 2))]}
     assert work.errand(1, set())[:3] == [Task("pickup", ((3, 2),), False, 1), Task("putdown", ((5, 2),), True, 1),
                                          Task("pickup", ((3, 3),), False, 2)]
@@ -109,5 +88,5 @@ def test_a_dead_end_gets_the_hand_derived_plan(monkeypatch):
     clock = patient_anytime(monkeypatch, stop_after=2)  # the bound (10) is not tight
     result = plan_anytime(instance, Domain.A, time_limit=120, on_improvement=clock.reported)
     way = (W, W, S, "pickup", N, E, E, S, "putdown", N, W, W, S, S, "pickup", N, N, W, W, "deliver:1,1,1")
-    assert [_actions(better.plan) for better in result.history] == [_hand(*way, E, E, S, S), _hand(*way)]
+    assert [_actions(better.plan) for better in result.history] == [hand(*way, E, E, S, S), hand(*way)]
     assert check(instance, result.plan, Domain.A).valid
