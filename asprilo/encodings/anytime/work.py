@@ -286,7 +286,7 @@ class Work:
         busy |= {r.carries for r in self.instance.robots.values() if r.carries is not None}
         busy |= {shelf for jobs in self.clearings.values() for shelf, _ in jobs}
         idle = [shelf for shelf, cell in self.homes.items() if shelf not in busy and cell in self._storage]
-        best: tuple[int, int] | None = None  # (steps saved, shelf)
+        best: tuple[float, int] | None = None  # (steps saved, shelf): infinite where the way now is blocked
         for trip, carry, walk in self._changes(trips_):
             now = self.claims.get(trip.shelf, self.homes[trip.shelf])
             steps = _entered(carry, now) + walk[now]
@@ -294,7 +294,7 @@ class Work:
                 cell = self.homes[shelf]
                 saved = steps - (_entered(carry, cell) + walk[cell])
                 if saved > 0 and (best is None or saved > best[0]):
-                    best = (int(saved), shelf)
+                    best = (saved, shelf)
         if best is None:
             return False
         shelf = best[1]
