@@ -2,7 +2,9 @@
 meets the lower bound.  Every plan it reports has passed the ASP checker.
 
 Steps: the lower bound; the assignment (:mod:`.work`); the first tracks by prioritized
-planning (:mod:`.prioritized`); then large-neighbourhood search (:mod:`.improve`).  A
+planning (:mod:`.prioritized`); then large-neighbourhood search (:mod:`.improve`).  Given a
+plan to start from (``start``), it reports that one first and only shorter ones after it,
+and improves it where it can read its work out of it (:mod:`.start`).  A
 better plan is checked before it is reported, at most every few seconds when checking is
 slow; the best plan not reported yet is checked at the end, with time kept for it.
 
@@ -24,7 +26,7 @@ from functools import partial
 
 from asprilo.bounds import Floor
 from asprilo.checker import Report, check
-from asprilo.domain import Delivery, Domain, Job, domains
+from asprilo.domain import Domain, Job
 from asprilo.model import Instance, Plan
 
 from ..solving.bounds import AwaitedBounds, BoundsLost, LowerBounds, bounds_beside
@@ -36,10 +38,12 @@ from .improve import Improver, score
 from .lacam import lacam_tracks
 from .plans import plan_of
 from .prioritized import first_tracks
+from .readings import stronger as _stronger
 from .refine import Refiner
 from .reservations import Reservations, Track
 from .roadmap import Roadmap
 from .router import Router
+from .start import rebuild, tracks_of
 from .work import ASSIGN_CAP, ASSIGN_SHARE, Work
 
 #: the least time between two checks, and how many check durations to wait between two
@@ -55,11 +59,8 @@ FAST_SHARE, PRIORITIZED_SHARE = 0.5, 0.25
 REFINE_CHECK_FACTOR = 8.0
 #: how many of the last neighbourhoods' durations say how long the next one may take
 RECENT_STEPS = 10
-#: the stronger reading whose first plan a solve of B or C makes too (by what a delivery does:
-#: B's closes a line, A's hands over units; C's closes a station's lines, B's one line), and the
-#: share of the time limit within which the first plan must have come for that (then the most
-#: it may take)
-STRONGER = {Delivery.LINE: Delivery.UNITS, Delivery.STATION: Delivery.LINE}
+#: the share of the time limit within which the first plan of B or C must have come for a
+#: first plan under the stronger reading too (:mod:`.readings`; then the most it may take)
 READING_SHARE = 0.1
 
 
@@ -138,6 +139,7 @@ class _Run:
         self.work: Work | None = None
         self.good_work: tuple | None = None         # ... and the assignment they follow
         self.pending_work: tuple | None = None
+        self.best: tuple[int, int] | None = None     # the score of the last plan offered
 
     def stopped(self, status: SolveStatus | None = None) -> SolveStatus:
         """``CANCELLED`` when the caller cancelled, else ``status`` (by default ``LIMIT``)."""
@@ -174,11 +176,16 @@ class _Run:
         bound, soc_bound = self.result.bound, self.result.sum_of_costs_bound
         return makespan <= bound and (soc_bound is None or soc <= soc_bound)
 
-    def offer(self, tracks: dict[int, Track], force: bool = False) -> bool:
+    def offer(self, tracks: dict[int, Track], force: bool = False, kept: bool = False) -> bool:
         """A better plan: report it now if checking is due (or ``force``), else later;
-        ``False`` when it failed the check (the search then goes back to the last good one)."""
+        ``False`` when it failed the check (the search then goes back to the last good one).
+        A plan no better than the last one offered (one given to start from, say) is not
+        reported.  ``kept``: a plan given whose work is not :attr:`work`'s (never gone back to)."""
+        if self.best is not None and score(tracks) >= self.best:
+            return True
+        self.best = score(tracks)
         self.pending = dict(tracks)
-        self.pending_work = self.work.save()
+        self.pending_work = None if kept else self.work.save()
         return self.report() if force or self.due() else True
 
     def due(self) -> bool:
@@ -200,8 +207,10 @@ class _Run:
         self.last_check = clock()
         if not verdict.valid:
             result.message = "a plan failed the check and was dropped: " + verdict.errors[0].message
+            self.best = None if self.good is None else score(self.good)
             return False
-        self.good, self.good_work = tracks, self.pending_work
+        if self.pending_work is not None:
+            self.good, self.good_work = tracks, self.pending_work
         result.status, result.plan, result.check = SolveStatus.FOUND, plan, verdict
         makespan, soc = verdict.metrics["horizon"], verdict.metrics["sum_of_costs"]
         result.minimal = makespan <= result.bound
@@ -221,8 +230,8 @@ def _clock() -> float:
 def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = DEFAULT_SECONDS,
                  cancel: threading.Event | None = None,
                  on_improvement: Callable[[Improvement], None] | None = None, seed: int = 0, *,
-                 watch: Watch | None = None, bounds: LowerBounds | None = None, router: str = "python"
-                 ) -> AnytimeResult:
+                 watch: Watch | None = None, bounds: LowerBounds | None = None, router: str = "python",
+                 start: Plan | None = None) -> AnytimeResult:
     """A checked plan for ``instance`` as soon as possible, then better ones (makespan first,
     then sum of costs) until ``time_limit`` seconds have passed, ``cancel`` is set, or a
     plan meets the lower bound.  ``on_improvement`` hears of every plan reported.
@@ -232,7 +241,9 @@ def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = 
     computed here, or beside the search for a large instance: ``bounds_beside``; or
     :class:`~asprilo.encodings.solving.bounds.AwaitedBounds`, when another process computes
     them: the planner starts at once and takes them when they come); ``router``: the routing
-    engine, ``python`` or ``asp`` (``route.lp``; the same routes, slower).
+    engine, ``python`` or ``asp`` (``route.lp``; the same routes, slower); ``start``: a valid
+    plan of ``domain`` to start from (:func:`.readings.reading_plan` makes one of a plan under
+    a stronger reading), reported first: no plan reported after it is as long.
     """
     limit = DEFAULT_SECONDS if time_limit is None else time_limit
     own = watch is None
@@ -249,7 +260,7 @@ def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = 
         run = _Run(instance, domain, watch, bounds, on_improvement)
         if computed:  # said (the cheap ones, where the strong ones are awaited)
             run.watch.lower_bounds(LowerBounds(bounds.makespan, bounds.sum_of_costs))
-        return _plan(run, floor, limit, seed, router)
+        return _plan(run, floor, limit, seed, router, start)
     finally:
         if helper is not None:
             helper.wait(0)
@@ -257,8 +268,11 @@ def plan_anytime(instance: Instance, domain: Domain, time_limit: float | None = 
             watch.close()
 
 
-def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> AnytimeResult:
-    """The steps of :func:`plan_anytime`: assignment, first plan, improvements."""
+def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str, start: Plan | None = None
+          ) -> AnytimeResult:
+    """The steps of :func:`plan_anytime`: the plan given (reported first), assignment, first
+    plan, improvements (from the plan given when it is as short as the first plan and its
+    work can be read out of it: :func:`_follow`)."""
     instance, domain, out_of_time, result = run.instance, run.domain, run.out_of_time, run.result
     if not math.isfinite(result.bound):
         result.status, result.minimal = SolveStatus.NONE, True
@@ -266,31 +280,68 @@ def _plan(run: _Run, floor: Floor, limit: float, seed: int, engine: str) -> Anyt
         return result
     grid = Grid(floor)
     work = run.work = Work(instance, domain, grid, result.bound)
-    if not work.assign(min(ASSIGN_CAP, ASSIGN_SHARE * limit), out_of_time):
-        result.status = run.stopped()
-        result.message = "no assignment of the work to the robots within the time limit"
-        return result
+    given = None
+    if start is not None:
+        given = tracks_of(start, instance)
+        if not run.offer(given, force=True, kept=True):
+            return result  # the plan given failed the check (said in the message): a bug
     table = Reservations(instance, work.homes)
     router = Router(grid, table, out_of_time, engine)
     roadmap = Roadmap(floor) if work.domain.work is Job.GOALS else None  # M/Md's numbered vertices
-    tracks = _first_plan(run, work, floor, router, table, limit, seed, roadmap)
+    tracks = _starting_tracks(run, work, floor, router, table, limit, seed, roadmap, given)
     if tracks is None:
-        result.status = run.stopped()
-        result.message = "no first plan within the time limit"
         return result
-    if result.status is not SolveStatus.FOUND and not run.offer(tracks, force=True):
-        result.status = SolveStatus.INVALID
+    if not run.offer(tracks, force=True):  # not said again when it was said already (or is no better)
+        if given is None:
+            result.status = SolveStatus.INVALID
         return result
     if _own_goals(work):
         _refine(run, Refiner.of_tracks(roadmap or Roadmap(floor), tracks, work.goals, seed))
     else:
-        improver = _stronger_reading(run, grid, engine, tracks, limit, seed) or Improver(work, router, table, seed)
+        stronger = None if given is not None else _stronger_reading(run, grid, engine, tracks, limit, seed)
+        improver = stronger or Improver(work, router, table, seed)
         _improve(run, improver, improver.table)
     if run.pending is not None:
         run.report()
     if result.status is not SolveStatus.FOUND:
         result.status = run.stopped(result.status)
     return result
+
+
+def _starting_tracks(run: _Run, work: Work, floor: Floor, router: Router, table: Reservations, limit: float,
+                     seed: int, roadmap: Roadmap | None, given: dict[int, Track] | None) -> dict[int, Track] | None:
+    """The tracks the improvement starts from: the planner's first plan, or the plan
+    ``given`` when it is as short and its work can be read (:func:`_follow`); ``None`` when
+    there are none (said in the result, unless a plan was given: that one is the answer)."""
+    result, tracks = run.result, None
+    if work.assign(min(ASSIGN_CAP, ASSIGN_SHARE * limit), run.out_of_time):
+        tracks = _first_plan(run, work, floor, router, table, limit, seed, roadmap)
+    elif given is None:
+        result.status = run.stopped()
+        result.message = "no assignment of the work to the robots within the time limit"
+        return None
+    if given is not None:
+        if (tracks is None or score(given) <= score(tracks)) and _follow(run, work, table, given):
+            return given
+        result.stats.setdefault("start", "kept as given: the planner's own first plan is shorter")
+    elif tracks is None:
+        result.status = run.stopped()
+        result.message = "no first plan within the time limit"
+    return tracks
+
+
+def _follow(run: _Run, work: Work, table: Reservations, given: dict[int, Track]) -> bool:
+    """Improve from the plan given: its work read out of its tracks into ``work``
+    (:func:`.start.rebuild`), its tracks alone in ``table``; or, where its work cannot be
+    read, say why in the stats (``start``: kept as given) and leave both as they are."""
+    why = rebuild(work, given)
+    if why is not None:
+        run.result.stats["start"] = f"kept as given: {why}"
+        return False
+    _go_back(table, given)
+    run.good, run.good_work = dict(given), work.save()
+    run.result.stats["start"] = "followed"
+    return True
 
 
 def _first_plan(run: _Run, work: Work, floor: Floor, router: Router, table: Reservations, limit: float, seed: int,
@@ -325,18 +376,10 @@ def _first_plan(run: _Run, work: Work, floor: Floor, router: Router, table: Rese
     return tracks
 
 
-def _stronger(domain: Domain) -> Domain | None:
-    """The built-in domain whose deliveries are the stronger reading of ``domain``'s (None for
-    A, M, Md and rule variants)."""
-    kind = None if domain.variants else STRONGER.get(domain.delivery)  # type: ignore[arg-type]
-    return next((other for other in domains() if kind is not None and other.delivery is kind
-                 and not other.variants and other.goal is domain.goal), None)
-
-
 def _stronger_reading(run: _Run, grid: Grid, engine: str, tracks: dict[int, Track], limit: float,
                       seed: int) -> Improver | None:
     """The improver of a first plan made under the stronger reading of B or C
-    (:data:`STRONGER`), when that plan is shorter than ``tracks`` (then reported): C relaxes
+    (:func:`.readings.stronger`), when that plan is shorter than ``tracks`` (then reported): C relaxes
     B and B relaxes A, so such a plan is one of the domain too, once the deliveries that
     close nothing are left out (:func:`.plans.plan_of`).  Tried only when the first plan
     came within :data:`READING_SHARE` of the time, and for as long again at most."""
@@ -412,6 +455,8 @@ def _improve(run: _Run, improver: Improver, table: Reservations) -> None:
         # a plan kept back while checking was not due is reported once it is
         passed = run.offer(table.tracks) if better else run.pending is None or not run.due() or run.report()
         if not passed:
+            if run.good is None:
+                break  # only a plan given was reported: nothing of the search's own to go back to
             _go_back(table, run.good)
             improver.work.restore(run.good_work)
     run.result.stats.update(neighbourhoods=steps, tried=dict(improver.tried), improved=dict(improver.won))
