@@ -5,7 +5,9 @@ the exact search, which starts at a lower bound of the makespan and goes up one 
 time, and the anytime planner, which finds a plan fast and then better ones.  The answer is
 the best plan found, proven minimal as soon as the exact search has refuted every shorter
 horizon (or found it), else with the bound proven so far and the gap; a plan once found is
-never lost (time limit, Ctrl-C, SIGTERM).  M/Md with anonymous goals: max-flow, exact and fast.
+never lost (time limit, Ctrl-C, SIGTERM).  --start PLAN gives the anytime planner a plan to
+start from (of this domain, or for B an A plan, for C an A or B plan: C relaxes B relaxes A):
+the answer is never longer than it.  M/Md with anonymous goals: max-flow, exact and fast.
 --method asp, anytime or flow runs that method alone; --encoding runs that encoding alone
 (method asp; with anytime or flow, which run none, it is refused).  The plan is checked,
 then printed as occurs/3 facts (stdout, or -o PLAN); a summary goes to stderr.  On a
@@ -38,6 +40,7 @@ Examples:
   asprilo solve instance.lp --assign
   asprilo solve m-instance.lp --method flow
   asprilo solve instance.lp --method anytime --time-limit 30
+  asprilo solve instance.lp --domain c --start b-plan.lp
   asprilo solve --list
 """
 
@@ -99,6 +102,9 @@ def configure(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-c", "--const", action="append", default=[], metavar="NAME=VALUE",
                         help="a constant for your encoding, as clingo's -c (-c horizon=H solves at H only)")
     parser.add_argument("--horizon", type=int, metavar="H", help="solve at this makespan only")
+    parser.add_argument("--start", metavar="PLAN",
+                        help="a plan to start from (methods auto and anytime): of this domain, or of a stronger "
+                             "reading (an A plan for B or C, a B plan for C); the answer is never longer than it")
     parser.add_argument("--assign", action="store_true",
                         help="compute a task assignment first and plan along it (A/B/C: after a short "
                              "try without one from the lower bound up)")
@@ -125,7 +131,8 @@ def run(args: argparse.Namespace) -> int:
     args.instance = _instance(args)
     if args.output == "-":
         args.output = None  # standard output, as without -o
-    files = [name for name in [*(args.encoding or ()), *(args.stage or ())] if Path(name).is_file()]
+    files = [name for name in [*(args.encoding or ()), *(args.stage or ()), *([args.start] if args.start else [])]
+             if Path(name).is_file()]
     inputs = [args.instance, *files]
     check_output(args.output, inputs, standard_output="-o -")
     method, time_limit = _method_and_time_limit(args)
@@ -149,7 +156,8 @@ def run(args: argparse.Namespace) -> int:
         with stopping_on_interrupt(cancel):
             outcome = solve(instance, domain, encoding=encoding, horizon=horizon, assign=args.assign,
                             time_limit=time_limit, method=method, isolate=True, memory_limit=args.memory_limit,
-                            on_progress=progress.attempt, on_phase=progress.phase, cancel=cancel, stage=stage)
+                            on_progress=progress.attempt, on_phase=progress.phase, cancel=cancel, stage=stage,
+                            start=args.start)
     finally:
         progress.close()
     learn_minimum(outcome, instance)  # your encoding's plan above the bound: the problem's minimum, where cheap

@@ -129,8 +129,9 @@ def _figures(outcome: Outcome) -> str:
         plans = len(outcome.history)
         if not plans:
             return "the anytime planner: no plan reported"
+        given = f"; {stats['start']}" if stats.get("start") else ""  # a plan to start from (--start)
         return (f"first plan {stats.get('first_plan_seconds', 0):.2f} s, {plans} plan{'s' * (plans > 1)} reported, "
-                f"{stats.get('neighbourhoods', 0)} neighbourhoods tried")
+                f"{stats.get('neighbourhoods', 0)} neighbourhoods tried{given}")
     figures = (f"ground {stats.get('ground_time', 0):.2f} s, solve {stats.get('solve_time', 0):.2f} s, "
                f"rules {stats.get('rules', 0)}, atoms {stats.get('atoms', 0)}, choices {stats.get('choices', 0)}, "
                f"conflicts {stats.get('conflicts', 0)}")

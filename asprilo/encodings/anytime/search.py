@@ -323,7 +323,7 @@ def _starting_tracks(run: _Run, work: Work, floor: Floor, router: Router, table:
     if given is not None:
         if (tracks is None or score(given) <= score(tracks)) and _follow(run, work, table, given):
             return given
-        result.stats.setdefault("start", "kept as given: the planner's own first plan is shorter")
+        result.stats.setdefault("start", "the planner's own first plan was shorter than the plan given")
     elif tracks is None:
         result.status = run.stopped()
         result.message = "no first plan within the time limit"
@@ -333,14 +333,15 @@ def _starting_tracks(run: _Run, work: Work, floor: Floor, router: Router, table:
 def _follow(run: _Run, work: Work, table: Reservations, given: dict[int, Track]) -> bool:
     """Improve from the plan given: its work read out of its tracks into ``work``
     (:func:`.start.rebuild`), its tracks alone in ``table``; or, where its work cannot be
-    read, say why in the stats (``start``: kept as given) and leave both as they are."""
+    read, say why in the stats (``start``) and leave both as they are."""
     why = rebuild(work, given)
     if why is not None:
-        run.result.stats["start"] = f"kept as given: {why}"
+        run.result.stats["start"] = (f"the plan given was kept as given ({why}): the search started from its own "
+                                     "first plan")
         return False
     _go_back(table, given)
     run.good, run.good_work = dict(given), work.save()
-    run.result.stats["start"] = "followed"
+    run.result.stats["start"] = "the search started from the plan given"
     return True
 
 

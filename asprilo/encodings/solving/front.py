@@ -29,7 +29,7 @@ from .method import Method
 from .methods import method_for, resolve
 from .minimality import settle
 from .outcome import Outcome
-from .request import SolveOptions, SolveRequest, given_assignment
+from .request import SolveOptions, SolveRequest, given_assignment, given_start
 from .status import Attempt, Note, Phase, PhaseListener, Progress, SolveStatus, Totals
 from .watch import Listeners, Watch
 
@@ -83,6 +83,7 @@ def request_for(instance: Instance | str | Path, domain: Domain | str | None = N
     facts = fields.pop("assignment", None)
     assign = fields.pop("assign", False) or facts is not None
     stage = fields.pop("stage", None)
+    start = fields.pop("start", None)
     if stage is not None and not isinstance(stage, Encoding):
         from ..choice import stage_encoding
         stage = stage_encoding(stage, encoding.constants if isinstance(encoding, Encoding) else ())
@@ -91,6 +92,8 @@ def request_for(instance: Instance | str | Path, domain: Domain | str | None = N
     method = method_for(request)
     if facts is not None:
         request = replace(request, assignment=given_assignment(instance, domain, facts))
+    if start is not None:
+        request = replace(request, start=given_start(instance, domain, start))
     if method.encoded and given is None:
         request = replace(request, encoding=default_encoding(domain) if encoding is None
                           else find_encoding(domain, encoding))
@@ -113,6 +116,9 @@ def solve_request(request: SolveRequest, listeners: Listeners | None = None,
     that runs its own child processes, ``auto``, and a quick run always run here); then say
     what its plan is minimal for (:func:`.minimality.settle`)."""
     request = resolve(request)
+    if request.start is not None and request.method == "asp":
+        raise InputError("--start goes with the anytime planner (--method auto or anytime): the exact search "
+                         "starts from no plan")
     if request.isolate and request.memory_limit is None and _runs_users_program(request):
         from asprilo.memory import default_memory_mb  # a user's program is limited by default (README)
         request = replace(request, memory_limit=default_memory_mb())

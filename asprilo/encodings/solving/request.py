@@ -18,7 +18,7 @@ import clingo
 
 from asprilo.domain import Domain, Job
 from asprilo.errors import InputError
-from asprilo.model import Instance
+from asprilo.model import Instance, Plan
 
 from ..assignment import Assignment
 from ..registry import Encoding
@@ -45,6 +45,10 @@ class SolveRequest:
     facts of the encoding at every horizon, as ``clingo stage.lp inst.lp | clingo - plan.lp
     inst.lp`` pipes them (:mod:`.stage`).  A horizon refuted then is refuted along that answer
     only.  Make it with :func:`asprilo.encodings.choice.stage_encoding`.
+
+    ``start``: a plan of this reading to start from (the anytime planner reports it first and
+    only shorter ones after it; :func:`given_start` makes one of a file, or of a plan under a
+    stronger reading).
     """
 
     instance: Instance
@@ -61,6 +65,7 @@ class SolveRequest:
     isolate: bool = False
     bounds: LowerBounds | None = None
     stage: Encoding | None = None
+    start: Plan | None = None
 
     @property
     def lower_bound(self) -> float:
@@ -75,7 +80,7 @@ class SolveOptions(TypedDict, total=False):
     caller gives them: ``encoding`` by name (or an :class:`Encoding`) and ``assignment`` as
     ``assign`` facts (an earlier outcome's ``assignment.facts``); ``encoding`` ``None``: the
     domain's default (:func:`~asprilo.encodings.registry.default_encoding`); ``stage`` as an
-    :class:`Encoding` or its files."""
+    :class:`Encoding` or its files; ``start`` as a :class:`Plan` or its file."""
 
     method: str
     encoding: str | Encoding | None
@@ -89,6 +94,7 @@ class SolveOptions(TypedDict, total=False):
     isolate: bool
     bounds: LowerBounds | None
     stage: Encoding | Sequence[str | Path] | None
+    start: Plan | str | Path | None
 
 
 def given_assignment(instance: Instance, domain: Domain, facts: Sequence[str]) -> Assignment:
@@ -111,3 +117,23 @@ def given_assignment(instance: Instance, domain: Domain, facts: Sequence[str]) -
             if number not in tables[kind]:
                 raise InputError(f"the assignment names {kind} {number}, which the instance lacks")
     return Assignment(sorted(facts), origin="given")
+
+
+def given_start(instance: Instance, domain: Domain, start: Plan | str | Path) -> Plan:
+    """A plan to start from (a :class:`Plan` or its file), as a plan of ``domain``: one of
+    this reading, or of a stronger one turned into this one
+    (:func:`asprilo.encodings.anytime.readings.reading_plan`).  A file that cannot be read,
+    a plan for another instance or one valid under no such reading is bad input, said in
+    one sentence naming the file."""
+    from asprilo.reader import read_plan, require_plan_fits_instance
+    from asprilo.sources import as_sources
+
+    from ..anytime.readings import reading_plan
+
+    name = None
+    if not isinstance(start, Plan):
+        sources = as_sources(start)
+        name = sources[0].name
+        start = read_plan(sources, robots=len(instance.robots))
+        require_plan_fits_instance(start, instance, sources, domain)
+    return reading_plan(instance, domain, start, name)

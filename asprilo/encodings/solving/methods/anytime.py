@@ -45,7 +45,7 @@ class Anytime(Method):
             watch.progress(better)
 
         result = plan_anytime(request.instance, request.domain, on_improvement=heard, watch=watch,
-                              bounds=request.bounds)
+                              bounds=request.bounds, start=request.start)
         outcome.status = result.status
         outcome.plan, outcome.check, outcome.minimal = result.plan, result.check, result.minimal
         outcome.horizon = result.plan.horizon if result.plan is not None else None
