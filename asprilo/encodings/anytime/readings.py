@@ -14,6 +14,8 @@ guaranteed: each search is random and stops at its time limit.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 from asprilo.checker import check
 from asprilo.domain import Delivery, Domain, domains
 from asprilo.errors import InputError
@@ -21,6 +23,9 @@ from asprilo.model import Instance, Plan
 
 from .plans import plan_of
 from .start import tracks_of
+
+if TYPE_CHECKING:
+    from .search import AnytimeResult
 
 #: the stronger reading of each delivery (B's closes a line, A's hands over units; C's closes
 #: a station's lines, B's one line)
@@ -66,15 +71,17 @@ def reading_plan(instance: Instance, domain: Domain, plan: Plan, name: str | Non
     return turned
 
 
-def plan_readings(instance: Instance, weakest: Domain, time_limit: float, seed: int = 0) -> dict[str, object]:
+def plan_readings(instance: Instance, weakest: Domain, time_limit: float, seed: int = 0) -> dict[str, AnytimeResult]:
     """The anytime planner on ``weakest`` and its stronger readings, the strongest first, each
     for ``time_limit`` seconds and starting from the plan found for the reading before (read
     as its own: :func:`reading_plan`): reading label -> its
     :class:`~asprilo.encodings.anytime.search.AnytimeResult`.  Each plan is at most as long as
-    the one before, since every search reports only plans shorter than the one it starts from."""
+    the one before, since every search reports only plans shorter than the one it starts from
+    (and a plan that cannot be turned into the next reading's is bad input: a bug of
+    :func:`.plans.plan_of`)."""
     from .search import plan_anytime  # the search imports this module
 
-    results: dict[str, object] = {}
+    results: dict[str, AnytimeResult] = {}
     start: Plan | None = None
     for domain in reversed(readings(weakest)):
         given = None if start is None else reading_plan(instance, domain, start)
