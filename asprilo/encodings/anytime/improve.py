@@ -25,6 +25,13 @@ Neighbourhoods, chosen with weights that grow with their successes:
 
 Robots parked for good on a station the freed robots deliver at are freed as well (routed
 after them): a changed errand may need that station later than before.
+
+Restarts (A/B/C with few robots): once the search has not bettered its best plan for
+:data:`STALL` neighbourhoods, it routes from scratch the next of the best assignments of a
+relaxed schedule (:mod:`.relaxed`: walks, carries and the queues at the stations, without
+collisions) and searches from that plan for as long; then it goes back to its best plan
+(unless the new one became better), and so on in turn.  Only a plan better than the best
+counts as an improvement.
 """
 
 from __future__ import annotations
@@ -35,6 +42,8 @@ from collections.abc import Callable
 from asprilo.domain import Job
 from asprilo.model import Cell
 
+from .prioritized import first_tracks
+from .relaxed import Assignment, Schedules
 from .reservations import Reservations, Track
 from .router import Router
 from .work import Work
@@ -54,6 +63,10 @@ LAST_SHARE = {Job.TRIPS: 0.7, Job.GOALS: 0.3}
 SWAP_SECONDS = 0.5
 #: whether a neighbourhood that gives a plan as good (same makespan and sum of costs) keeps it
 PLATEAU = True
+#: restarts from the relaxed schedule's assignments: the most robots (routing a whole plan
+#: again must be cheap), the neighbourhoods without a better plan before one, and the seconds
+#: the relaxed schedule's search may take
+RESTART_ROBOTS, STALL, RELAX_SECONDS = 12, 300, 2.0
 
 
 def score(tracks: dict[int, Track]) -> tuple[int, int]:
@@ -78,12 +91,68 @@ class Improver:
         self.plateau = PLATEAU
         self.tried = dict.fromkeys(KINDS, 0)
         self.won = dict.fromkeys(KINDS, 0)
+        self.seed = seed
+        #: the best plan so far: its score, tracks and assignment
+        self.best = (self.score(), dict(self.table.tracks), self.work.save())
+        self.stall, self.exploring = 0, False
+        #: the relaxed schedule's assignments not routed yet (None: not sought yet; no restarts
+        #: where the work cannot be re-assigned or the robots are many)
+        self.candidates: list[Assignment] | None = None
+        self.restarts = (work.domain.work is Job.TRIPS and work.reassignable()
+                         and len(self.table.instance.robots) <= RESTART_ROBOTS)
 
     def score(self) -> tuple[int, int]:
         return score(self.table.tracks)
 
     def step(self, stopped: Callable[[], bool]) -> bool:
-        """Try one neighbourhood; whether the plan got better."""
+        """Try one neighbourhood (or a restart, see the module's text); whether the plan got
+        better than the best so far."""
+        if self.restarts and self.stall >= STALL:
+            self._restart(stopped)
+        else:
+            self._neighbourhood_step(stopped)
+        if self.score() < self.best[0]:
+            self.best, self.stall = (self.score(), dict(self.table.tracks), self.work.save()), 0
+            self.exploring = False  # the new plan is the best one now
+            return True
+        self.stall += 1
+        return False
+
+    def _restart(self, stopped: Callable[[], bool]) -> None:
+        """Go back to the best plan after a search from another assignment; else route the next
+        assignment of the relaxed schedule from scratch (none left: no more restarts)."""
+        self.stall = 0
+        if self.exploring:
+            self.exploring = False
+            self._back_to_best()
+            return
+        if self.candidates is None:
+            self.candidates = Schedules(self.work, self.seed).search(RELAX_SECONDS, stopped)
+        current = set(self.work.choice.atoms)
+        while self.candidates:
+            candidate = self.candidates.pop(0)
+            self.work.adopt(candidate.give_atoms(), dict(candidate.errands))
+            if set(self.work.choice.atoms) != current or self.work.trips != self.best[2][1]:
+                break
+        else:
+            self.restarts = False
+            self._back_to_best()
+            return
+        if first_tracks(self.work, self.router, self.table, stopped, self.seed) is None:
+            self._back_to_best()
+            return
+        self.exploring = True
+
+    def _back_to_best(self) -> None:
+        """The best plan's tracks and assignment again."""
+        _, tracks, saved = self.best
+        self.table.reset(still=False)
+        for track in tracks.values():
+            self.table.add(track)
+        self.work.restore(saved)
+
+    def _neighbourhood_step(self, stopped: Callable[[], bool]) -> None:
+        """One neighbourhood, kept when the plan got better or stayed as good."""
         kind = self.random.choices(KINDS, [self.weights[k] for k in KINDS])[0]
         late = self._late_robot()
         saved = self.work.save()  # before a neighbourhood that changes the work (order)
@@ -95,7 +164,6 @@ class Improver:
             self.work.restore(saved)
         self.weights[kind] = min(10.0, self.weights[kind] * 1.5) if better else max(0.1, self.weights[kind] * 0.97)
         self.won[kind] += better
-        return better
 
     # --- choosing a neighbourhood ---------------------------------------------------------------
 

@@ -72,7 +72,7 @@ class Work:
         self._taken: tuple[set[Cell], np.ndarray, dict[int, Task]] | None = None
         self._highways = grid.mask(instance.highways.values())
         self._resting = grid.mask(self.resting)
-        self._carrying = grid.floor & ~self._resting  # where a robot with a shelf gets through
+        self.carrying = grid.floor & ~self._resting  # where a robot with a shelf gets through
 
     # --- the first assignment ----------------------------------------------------------------
 
@@ -109,6 +109,16 @@ class Work:
             self._unbox()
         else:
             self.goals = aims(choice, self._problem)
+
+    def adopt(self, gives: list[tuple[int, int, int, int]], errands: dict[int, list[int]]) -> None:
+        """Take an assignment made elsewhere (:mod:`.relaxed`): ``gives`` as (shelf, order,
+        product, units), ``errands`` the shelves of each robot in the order it brings them."""
+        atoms = {clingo.Function("give", [clingo.Number(n) for n in give]) for give in gives}
+        atoms |= {clingo.Function("carry", [clingo.Number(robot), clingo.Number(shelf)])
+                  for robot, shelves in errands.items() for shelf in shelves}
+        self._take(Choice(atoms))
+        self.trips = {robot: sorted(trips_, key=lambda trip: errands[robot].index(trip.shelf))
+                      for robot, trips_ in self.trips.items()}
 
     def save(self) -> tuple:
         """The current assignment, to :meth:`restore` it later."""
@@ -208,11 +218,11 @@ class Work:
         putdowns = {}
         for trip, carry, walk in self._changes(trips_):
             home = self.homes[trip.shelf]
-            steps = {cell: carry[cell] + walk[cell] for cell in self._spare_cells() if cell not in taken}
+            steps = {cell: carry[cell] + walk[cell] for cell in self.spare_cells() if cell not in taken}
             # the shelf's own cell and the cleared ones are empty by then: entered from a neighbour
             # (the carrying way goes around every cell a shelf starts on, these included)
             homes = [home] if home in self._storage else []
-            steps.update({cell: _entered(carry, cell) + walk[cell] for cell in [*cleared, *homes]})
+            steps.update({cell: entered(carry, cell) + walk[cell] for cell in [*cleared, *homes]})
             reachable = [cell for cell in steps if steps[cell] < INFINITE]
             if not reachable:
                 continue
@@ -231,7 +241,7 @@ class Work:
             start = trip.deliveries[-1][0] if trip.deliveries else self.homes[trip.shelf]
             yield trip, self._way(start, True), self._way(self.homes[following.shelf], False)
 
-    def _spare_cells(self) -> list[Cell]:
+    def spare_cells(self) -> list[Cell]:
         """The storage cells that no shelf starts on and where a shelf closes no way."""
         if self._spare is None:
             self._spare = sorted(cell for cell in self._storage - set(self.homes.values())
@@ -243,7 +253,7 @@ class Work:
         the cells next to it where such a robot may be are not all joined around it within
         the square of :data:`AROUND` cells on each side (a cut there may still be a detour
         further away, but the floor's own shelves made few of those)."""
-        free, (x, y) = self._carrying, cell
+        free, (x, y) = self.carrying, cell
         width, height = free.shape
 
         def open_(c: Cell) -> bool:
@@ -289,10 +299,10 @@ class Work:
         best: tuple[float, int] | None = None  # (steps saved, shelf): infinite where the way now is blocked
         for trip, carry, walk in self._changes(trips_):
             now = self.claims.get(trip.shelf, self.homes[trip.shelf])
-            steps = _entered(carry, now) + walk[now]
+            steps = entered(carry, now) + walk[now]
             for shelf in idle:
                 cell = self.homes[shelf]
-                saved = steps - (_entered(carry, cell) + walk[cell])
+                saved = steps - (entered(carry, cell) + walk[cell])
                 if saved > 0 and (best is None or saved > best[0]):
                     best = (saved, shelf)
         if best is None:
@@ -301,7 +311,7 @@ class Work:
         mine = {trip.shelf for trip in trips_}
         taken = {cell for other, cell in self.claims.items() if other not in mine} | set(self.cleared())
         away = self._way(self.homes[shelf], True)  # out from the shelf's own cell
-        spots = [cell for cell in self._spare_cells() if cell not in taken and away[cell] < INFINITE]
+        spots = [cell for cell in self.spare_cells() if cell not in taken and away[cell] < INFINITE]
         if not spots:
             return False
         spot = min(spots, key=lambda cell: (away[cell], cell))
@@ -325,10 +335,10 @@ class Work:
                         break  # a shelf with work of its own: left to the search
                     taken = set(self.claims.values()) | set(self.cleared())
                     away = self._way(self.homes[shelf], True)
-                    spots = [c for c in self._spare_cells() if c not in taken and _entered(away, c) < INFINITE]
+                    spots = [c for c in self.spare_cells() if c not in taken and entered(away, c) < INFINITE]
                     if not spots:
                         break
-                    spot = min(spots, key=lambda c: (_entered(away, c), c))
+                    spot = min(spots, key=lambda c: (entered(away, c), c))
                     self.clearings = {**self.clearings, robot: [*self.clearings.get(robot, []), (shelf, spot)]}
                     self.claims[shelf] = spot
                     busy.add(shelf)
@@ -336,7 +346,7 @@ class Work:
     def _blockers(self, home: Cell, station: Cell) -> list[int]:
         """The resting shelves on the way from ``station`` to ``home`` that passes the fewest of
         them, nearest the station first (none when a carried shelf gets out as things stand)."""
-        if _entered(self._way(station, True), home) < INFINITE:
+        if entered(self._way(station, True), home) < INFINITE:
             return []
         resting = {cell: shelf for shelf, cell in self.homes.items() if cell in self.resting and cell != home}
         crossed, came = {station: 0}, {station: station}
@@ -371,12 +381,12 @@ class Work:
     def _way(self, cell: Cell, carrying: bool):
         """Steps from ``cell`` to every cell (``carrying``: around the resting shelves; the
         grid keeps the latest searches)."""
-        return self.grid.distances([cell], self._carrying if carrying else None)
+        return self.grid.distances([cell], self.carrying if carrying else None)
 
     def _near(self, station: Cell) -> tuple[Cell, ...]:
         """Cells a few steps from a station where a robot with a shelf may park."""
         if station not in self._parking:
-            distance = self.grid.distances([station], self._carrying)
+            distance = self.grid.distances([station], self.carrying)
             stations = {s.at for s in self.instance.stations.values()}
             self._parking[station] = tuple(sorted(
                 (c for c in cells_of(distance <= PARK_RADIUS) if c not in stations),
@@ -387,10 +397,10 @@ class Work:
         """The :data:`SETTLE_CELLS` spare storage cells nearest ``station`` (for a robot with
         a shelf) that nobody needs and no other robot stays on: parking there after the last
         delivery saves carrying the shelf back (on 100x100 floors that doubled the first
-        plan's makespan), and blocks no way (:meth:`_spare_cells`)."""
+        plan's makespan), and blocks no way (:meth:`spare_cells`)."""
         if station not in self._settling:
             distance = self._way(station, True)
-            near = sorted((int(distance[cell]), cell) for cell in self._spare_cells() if distance[cell] < INFINITE)
+            near = sorted((int(distance[cell]), cell) for cell in self.spare_cells() if distance[cell] < INFINITE)
             self._settling[station] = [cell for _, cell in near[:SETTLE_KEPT]]
         needed = self.needed_cells()
         free = [cell for cell in self._settling[station] if cell not in needed and cell not in parked]
@@ -481,7 +491,7 @@ class Work:
         return steps
 
 
-def _entered(carry: np.ndarray, cell: Cell) -> float:
+def entered(carry: np.ndarray, cell: Cell) -> float:
     """Steps to ``cell`` for a robot with a shelf, ``carry`` being the steps around the
     resting shelves: a cell whose own shelf is gone by then is entered from a neighbour."""
     if carry[cell] < INFINITE:
