@@ -14,6 +14,8 @@ cell each robot ends on.
 
 from __future__ import annotations
 
+from typing import cast
+
 import clingo
 
 from asprilo.bounds import goal_cells
@@ -32,11 +34,13 @@ def tracks_of(plan: Plan, instance: Instance) -> dict[int, Track]:
     start cell."""
     cells = {robot: [spot.at] for robot, spot in instance.robots.items()}
     done: dict[int, dict[int, Task]] = {robot: {} for robot in instance.robots}
-    carried = {robot: spot.carries for robot, spot in instance.robots.items() if spot.carries is not None}
+    carried: dict[int, int] = {robot: spot.carries for robot, spot in instance.robots.items()
+                               if spot.carries is not None}
     resting = {shelf.at: number for number, shelf in instance.shelves.items() if number not in carried.values()}
     for step, actions in sorted(plan.by_step().items()):
         for action in actions:
-            path = cells[action.robot]
+            robot = cast(int, action.robot)  # a valid plan's robots are the instance's
+            path = cells[robot]
             path.extend([path[-1]] * (step - len(path)))  # waited until the step before
             here = path[-1]
             if action.name == "move":
@@ -44,15 +48,14 @@ def tracks_of(plan: Plan, instance: Instance) -> dict[int, Track]:
                 continue
             path.append(here)
             if action.name == "pickup":
-                carried[action.robot] = shelf = resting.pop(here)
-                done[action.robot][step] = Task("pickup", (here,), False, shelf)
+                carried[robot] = shelf = resting.pop(here)
+                done[robot][step] = Task("pickup", (here,), False, shelf)
             elif action.name == "putdown":
-                resting[here] = shelf = carried.pop(action.robot)
-                done[action.robot][step] = Task("putdown", (here,), True, shelf)
+                resting[here] = shelf = carried.pop(robot)
+                done[robot][step] = Task("putdown", (here,), True, shelf)
             elif action.name == "deliver":
                 line = tuple(action.args[:2])
-                done[action.robot][step] = Task("deliver", (here,), True, carried[action.robot],
-                                                tuple(action.args), (line,))
+                done[robot][step] = Task("deliver", (here,), True, carried[robot], tuple(action.args), (line,))
     return {robot: Track(robot, cells[robot], done[robot]) for robot in instance.robots}
 
 
@@ -88,11 +91,12 @@ def _trips(work: Work, robot: int, track: Track, lines: dict[tuple[int, int], tu
     first = work.instance.robots[robot].carries
     trips, trip = [], Trip(first) if first is not None else None
     for step, task in sorted(track.done.items()):
+        shelf = cast(int, task.shelf)  # a pickup's, putdown's and delivery's shelf is known
         if task.name == "pickup":
-            if task.shelf in lifted:
-                return f"shelf {task.shelf} is lifted twice (by robot {lifted[task.shelf]} and robot {robot})"
-            lifted[task.shelf] = robot
-            trip = Trip(task.shelf)
+            if shelf in lifted:
+                return f"shelf {shelf} is lifted twice (by robot {lifted[shelf]} and robot {robot})"
+            lifted[shelf] = robot
+            trip = Trip(shelf)
         elif task.name == "deliver" and trip is not None:
             trip.deliveries.append((task.cells[0], lines[robot, step], task.args))
         elif task.name == "putdown" and trip is not None:
@@ -122,7 +126,7 @@ def _lines_closed(work: Work, tracks: dict[int, Track]) -> dict[tuple[int, int],
         if work.domain.delivery is Delivery.STATION:
             station = instance.orders[named[0]].station
             served = sorted({named} | {line for line in open_lines if instance.orders[line[0]].station == station
-                                       and line[1] in stock.get(task.shelf, {})})
+                                       and line[1] in stock.get(cast(int, task.shelf), {})})
         closed[robot, step] = tuple(served)
         if not work.domain.counts_units:
             open_lines -= set(served)
@@ -139,7 +143,7 @@ def _gives(work: Work, tracks: dict[int, Track], lines: dict[tuple[int, int], tu
                 continue
             for order, product in lines[robot, step]:
                 units = task.args[2] if work.domain.counts_units else 1
-                key = (task.shelf, order, product)
+                key = (cast(int, task.shelf), order, product)
                 given[key] = given.get(key, 0) + units if work.domain.counts_units else 1
     return {clingo.Function("give", [clingo.Number(n) for n in (*key, units)]) for key, units in given.items()}
 
