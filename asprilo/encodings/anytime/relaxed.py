@@ -100,17 +100,24 @@ class Schedules:
             self._walk[shelf] = self.work.grid.distances([self.work.homes[shelf]])
         return int(self._walk[shelf][cell])
 
-    def between(self, station: Cell, shelf: int, following: int, lifted: frozenset[Cell]) -> tuple[int, bool]:
+    def between(self, station: Cell, shelf: int, following: int, lifted: frozenset[Cell],
+                vacated: list[Cell]) -> tuple[int, Cell | None]:
         """Steps from the last delivery of ``shelf`` at ``station`` to the pickup of
-        ``following`` (carry to a cell, put down, walk: the best of the shelf's own cell and
-        the spare cells), and whether the shelf goes back to its own cell."""
+        ``following`` (carry to a cell, put down, walk: the best of the shelf's own cell, the
+        spare cells and the ``vacated`` cells of shelves that never come back), and the
+        vacated cell taken (``None``: the shelf's own cell or a spare one)."""
         home = self.work.homes[shelf]
         own = self.carry(station, home, lifted) + 1 + self.walk(home, following)
         spare = (station, following)
         if spare not in self._spare:
             self._spare[spare] = min((self.carry(station, cell) + 1 + self.walk(cell, following)
                                       for cell in self.work.spare_cells()), default=INFINITE)
-        return min(own, self._spare[spare]), own <= self._spare[spare]
+        best, taken = min(own, self._spare[spare]), None
+        for cell in vacated:
+            steps = self.carry(station, cell, lifted) + 1 + self.walk(cell, following)
+            if steps < best:
+                best, taken = steps, cell
+        return best, taken
 
     # --- the relaxed schedule ------------------------------------------------------------------
 
@@ -134,25 +141,16 @@ class Schedules:
     def cost(self, gives: dict[Line, dict[int, int]], errands: dict[int, list[int]]) -> tuple[int, int]:
         """(makespan, sum of the robots' finishes) of the relaxed schedule."""
         stops = self.stops(gives)
-        instance, homes = self.work.instance, self.work.homes
+        homes = self.work.homes
         away: dict[int, list[float]] = {}  # shelf -> [lifted, back on its own cell] (steps)
+        finals = {shelves[-1] for shelves in errands.values() if shelves}
+        claimed: set[Cell] = set()  # vacated cells a shelf was put down on
 
         def lifted(step: int) -> frozenset[Cell]:
             """The cells whose shelves are away at ``step``."""
             return frozenset(homes[shelf] for shelf, (up, back) in away.items() if up < step < back)
 
-        queue: list[tuple[int, int, int, int]] = []  # (arrival, robot, errand index, stop index)
-        for robot, shelves in errands.items():
-            if shelves:
-                first = shelves[0]
-                fetched = 0 if self.carried.get(first) == robot else self.walk(instance.robots[robot].at, first) + 1
-                away[first] = [fetched, math.inf]
-        for robot, shelves in errands.items():
-            if shelves:
-                fetched = int(away[shelves[0]][0])
-                queue.append((fetched + self.carry(homes[shelves[0]], stops[shelves[0]][0][0], lifted(fetched)),
-                              robot, 0, 0))
-        heapq.heapify(queue)
+        queue = self._starts(errands, stops, away, lifted)
         free: dict[Cell, int] = {}
         last: dict[Cell, tuple[int, int]] = {}  # station -> (last delivery, robot)
         finish: dict[int, tuple[int, Cell]] = {}
@@ -167,9 +165,13 @@ class Schedules:
                 heapq.heappush(queue, (end + self.carry(station, stops[shelf][stop + 1][0]), robot, index, stop + 1))
             elif index + 1 < len(errands[robot]):
                 following = errands[robot][index + 1]
-                steps, back = self.between(station, shelf, following, lifted(end))
+                vacated = [homes[other] for other in finals if other in away and away[other][0] < end
+                           and homes[other] not in claimed and self.carried.get(other) is None]
+                steps, taken = self.between(station, shelf, following, lifted(end), vacated)
                 fetched = end + steps + 1
-                if back:
+                if taken is not None:
+                    claimed.add(taken)
+                else:  # back on its own cell (or on a spare one: the cell counts as closed again)
                     away[shelf][1] = fetched - 1 - self.walk(homes[shelf], following)
                 away[following] = [fetched, math.inf]
                 heapq.heappush(queue, (fetched + self.carry(homes[following], stops[following][0][0], lifted(fetched)),
@@ -178,6 +180,26 @@ class Schedules:
                 finish[robot] = (end, station)
         ends = [end + (last[station][1] != robot) for robot, (end, station) in finish.items()]
         return max(ends, default=0), sum(ends)
+
+    def _starts(self, errands: dict[int, list[int]], stops: dict[int, list[tuple[Cell, int]]],
+                away: dict[int, list[float]], lifted: Callable[[int], frozenset[Cell]]
+                ) -> list[tuple[int, int, int, int]]:
+        """The first arrivals at a station, a heap of (step, robot, 0, 0); the first shelves'
+        lifts go into ``away``."""
+        robots = self.work.instance.robots
+        for robot, shelves in errands.items():
+            if shelves:
+                first = shelves[0]
+                away[first] = [0 if self.carried.get(first) == robot else self.walk(robots[robot].at, first) + 1,
+                               math.inf]
+        queue = []
+        for robot, shelves in errands.items():
+            if shelves:
+                fetched = int(away[shelves[0]][0])
+                queue.append((fetched + self.carry(self.work.homes[shelves[0]], stops[shelves[0]][0][0],
+                                                   lifted(fetched)), robot, 0, 0))
+        heapq.heapify(queue)
+        return queue
 
     # --- the search ------------------------------------------------------------------------------
 
