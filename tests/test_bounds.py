@@ -248,3 +248,94 @@ def test_the_carrying_distances_are_the_same_searched_per_station_or_all_at_once
     assert len(pairs) == 320 * 10
     # two searches written apart: breadth first in Python per station, numpy's for all at once
     assert [all_at_once.carry(*pair) for pair in pairs] == [one_by_one.carry(*pair) for pair in pairs]
+
+
+# --- the carried shelf's arrival: forward from each shelf, or back from the stations ---------
+
+def test_a_carried_shelf_goes_around_a_cell_free_late_where_that_is_sooner():
+    # a 3x2 floor; from (1,1) to the station (3,1), where (2,1) may be entered from step 7 on:
+    # straight on, (2,1) at 7 and the station at 8; around through row 2, four moves
+    from asprilo.bounds.delivery import arrivals_back, carry_arrivals
+
+    floor = Floor({(x, y) for x in range(1, 4) for y in range(1, 3)})
+    station, start, late = (3, 1), (1, 1), (2, 1)
+    for lifted, expected in [(0, 4), (3, 7), (5, 8)]:  # around: lifted + 4; straight on: 8
+        forward = carry_arrivals(set(floor.cells), {start: lifted}, {late: 7})
+        assert forward[station] == expected
+        starts, free_at = np.zeros(len(floor.cells)), np.full(len(floor.cells), -math.inf)
+        starts[floor.index[start]], free_at[floor.index[late]] = lifted, 7
+        back = arrivals_back(floor, [station], starts, free_at)[0]
+        assert back[floor.index[start]] == expected
+        # the others start at 0: (1,2) 3 moves around; (2,1) is not kept from itself: 1 move;
+        # (2,2) 1 move up to (3,2) and down, or down onto (2,1) at 7: 2; the station itself 0
+        assert [back[floor.index[cell]] for cell in [(1, 2), (2, 1), (2, 2), station]] == [3, 1, 2, 0]
+
+
+def test_a_cell_that_is_no_node_or_a_start_never_lifted_arrives_nowhere():
+    from asprilo.bounds.delivery import arrivals_back
+
+    floor = Floor({(1, 1), (2, 1), (4, 1)})  # (4,1) is cut off
+    starts = np.array([math.inf, 0.0, 0.0])
+    back = arrivals_back(floor, [(2, 1), (4, 1), (9, 9)], starts, np.full(3, -math.inf))
+    assert back.tolist() == [[math.inf, 0, math.inf], [math.inf, math.inf, 0], [math.inf] * 3]
+
+
+@pytest.mark.parametrize("visits", [10**9, -1])  # forward from each shelf; back from the stations
+def test_the_hand_derived_blocked_releases_hold_searched_either_way(visits, monkeypatch):
+    from asprilo.bounds import delivery
+
+    monkeypatch.setattr(delivery, "FORWARD_VISITS", visits)
+    # the cases above, derived by hand there: R.SSP 7; the 8x2 floor 10, and 8 with the robots close
+    assert makespan_bound(_row_world(5, 1, {1: (1, 1)}, {1: (3, 1), 2: (4, 1)}, (5, 1), {1: 1}), Domain.B) == 7
+    far = _row_world(8, 2, {1: (4, 2), 2: (8, 2)}, {1: (3, 1), 2: (4, 1)}, (1, 1), {1: 1, 2: 2})
+    close = _row_world(8, 2, {1: (4, 2), 2: (5, 2)}, {1: (3, 1), 2: (4, 1)}, (1, 1), {1: 1, 2: 2})
+    assert [makespan_bound(far, Domain.B), makespan_bound(close, Domain.B)] == [10, 8]
+    # robot 1 starts on (3,1) carrying shelf 1 (lifted at 0); shelf 2 on (4,1) is lifted at 2
+    # at the earliest (robot 1 is 1 move away), so (4,1) is free at 3: shelf 1 is there at 3 and
+    # on the station (5,1) at 4; shelf 2 is there at 3 (the carried shelf is in no one's way)
+    carried = _row_world(5, 1, {1: (3, 1)}, {1: (3, 1), 2: (4, 1)}, (5, 1), {1: 1}, carries={1: 1})
+    facts = Deliveries(carried, Domain.B, Floor(carried.cells))
+    assert (facts.lifted, facts.arrival(1, (5, 1)), facts.arrival(2, (5, 1))) == ({1: 0, 2: 2}, 4, 3)
+
+
+def _random_world(seed: int) -> Instance:
+    """A 12x8 floor with 30 holes, 20 shelves, 3 stations with a line each, 4 robots and
+    2 more that start carrying a shelf."""
+    import random
+    draw = random.Random(seed)
+    grid = [(x, y) for x in range(1, 13) for y in range(1, 9)]
+    cells = sorted(set(grid) - set(draw.sample(grid, 30)))
+    chosen = draw.sample(cells, 27)
+    shelves, robots, stations = chosen[:20], chosen[20:24], chosen[24:]
+    facts = [f"init(object(node,{k}),value(at,{cell}))." for k, cell in enumerate(cells, 1)]
+    facts += [f"init(object(shelf,{s}),value(at,{cell})). init(object(product,{s}),value(on,({s},1)))."
+              for s, cell in enumerate(shelves, 1)]
+    facts += [f"init(object(pickingStation,{p}),value(at,{cell})). init(object(order,{p}),value(line,({p},1))). "
+              f"init(object(order,{p}),value(pickingStation,{p}))." for p, cell in enumerate(stations, 1)]
+    facts += [f"init(object(robot,{r}),value(at,{cell}))." for r, cell in enumerate(robots, 1)]
+    facts += [f"init(object(robot,{r}),value(at,{shelves[r - 1]})). init(object(robot,{r}),value(carries,{r})). "
+              for r in (5, 6)]
+    return read_instance(Source("<world>", "\n".join(facts)))
+
+
+def test_the_arrivals_are_the_same_searched_forward_from_each_shelf_or_back_from_the_stations(monkeypatch):
+    """Two searches written apart: forward from each shelf's cell (a heap in Python), back from
+    every station at once (numpy, round by round); on floors with holes, carried shelves, and
+    stations asked about without a line (every station of the instance)."""
+    from asprilo.bounds import delivery
+
+    monkeypatch.setattr(delivery, "STATIONS_AT_ONCE", 2)  # the three stations searched back in two passes
+    waits = nowhere = 0
+    for seed in range(8):
+        instance = _random_world(seed)
+        pairs = [(shelf, station.at) for shelf in sorted(instance.shelves) for station in instance.stations.values()]
+        searched = []
+        for visits in (10**9, -1):
+            monkeypatch.setattr(delivery, "FORWARD_VISITS", visits)
+            facts = Deliveries(instance, Domain.B, Floor(instance.cells))
+            searched.append([facts.arrival(*pair) for pair in pairs])
+        assert len(pairs) == 60 and searched[0] == searched[1]
+        unhindered = [facts.lifted[shelf] + facts.carry(shelf, station) for shelf, station in pairs]
+        waits += sum(arrival > plain for arrival, plain in zip(searched[0], unhindered, strict=True))
+        nowhere += sum(math.isinf(arrival) for arrival in searched[0])
+    assert waits and nowhere  # what is compared covers shelves that wait and shelves cut off

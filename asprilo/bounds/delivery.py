@@ -66,6 +66,65 @@ def carry_arrivals(cells: set[Cell], starts: dict[Cell, float], free_at: dict[Ce
 #: numpy (on 200x200 with 100 stations: 0.14 s instead of 4.5 s); below, importing numpy
 #: would cost more than it saves
 NUMPY_SEARCH = 1_000_000
+#: shelves of lines x cells up to which :meth:`Deliveries.arrival` searches forward from each
+#: shelf in plain Python (:func:`carry_arrivals`); beyond, back from all stations at once with
+#: numpy (:func:`arrivals_back`; 200x200 with 761 such shelves: 75 s and 3.8 GB forward).  At
+#: least :data:`asprilo.bounds.makespan.CHEAP_VISITS`: the cheap bound goes without numpy.
+FORWARD_VISITS = 100_000
+#: stations searched back side by side in one pass (memory: about 40 bytes per station and cell)
+STATIONS_AT_ONCE = 16
+
+
+def arrivals_back(floor: Floor, stations: list[Cell], starts: np.ndarray, free_at: np.ndarray) -> np.ndarray:
+    """``len(stations) x len(floor.cells)``: what :func:`carry_arrivals` finds at each station
+    from each cell ``C`` alone at step ``starts[C]`` (``starts`` and ``free_at`` are indexed like
+    ``floor.cells``; ``free_at`` is ``-INFINITE`` where a cell can be entered at any step), by
+    one search back from every station instead of one forward from every cell.
+
+    A way of ``a`` moves from ``C`` ends on the station at step ``max(starts[C] + a, late)``,
+    where ``late`` is the latest of ``free_at`` of each cell entered on the way plus the moves
+    left from there.  The search goes back one move per round, and a cell keeps a way only if
+    its ``late`` beats that of every shorter way kept there (a longer way pays only where it
+    passes cells free earlier); a ``late`` of at most ``a`` never counts (no start is before
+    step 0).  The start's own ``free_at`` is never counted: a way back through its start is
+    no better than the rest of it."""
+    import numpy as np
+    neighbours = floor.neighbours()
+    size = len(floor.cells) + 1  # with the "no node" vertex
+    starts = np.append(starts, 0.0)
+    free_at = np.append(free_at, -INFINITE)
+    result = np.full((len(stations), size), INFINITE)
+    for first in range(0, len(stations), STATIONS_AT_ONCE):
+        batch = stations[first:first + STATIONS_AT_ONCE]
+        count = len(batch)
+        offsets = np.arange(count) * size
+        kept = np.full(count * size, INFINITE)  # per station and cell: the smallest late of a way kept
+        kept[offsets + size - 1] = -INFINITE  # "no node" keeps nothing
+        best = np.full(count * size, INFINITE)  # per station and cell: the earliest arrival found
+        frontier = np.array([floor.index[cell] + offset for cell, offset in zip(batch, offsets, strict=True)
+                             if cell in floor.index], dtype=np.int64)
+        late = np.full(frontier.size, -INFINITE)
+        kept[frontier] = late
+        best[frontier] = starts[frontier % size]
+        moves = 0
+        while frontier.size:
+            vertex = frontier % size
+            leaving = np.maximum(free_at[vertex] + moves, late)  # the frontier's cells are entered, too
+            moves += 1
+            leaving[leaving <= moves] = -INFINITE
+            reached = (neighbours[vertex] + (frontier - vertex)[:, None]).ravel()
+            leaving = np.repeat(leaving, neighbours.shape[1])
+            better = leaving < kept[reached]
+            reached, leaving = reached[better], leaving[better]
+            order = np.lexsort((leaving, reached))  # the best way into each reached cell first
+            reached, leaving = reached[order], leaving[order]
+            unique = np.ones(reached.size, dtype=bool)
+            unique[1:] = reached[1:] != reached[:-1]
+            frontier, late = reached[unique], leaving[unique]
+            kept[frontier] = late
+            best[frontier] = np.minimum(best[frontier], np.maximum(starts[frontier % size] + moves, late))
+        result[first:first + count] = best.reshape(count, size)
+    return result[:, :-1]
 
 
 @dataclass(frozen=True)
@@ -106,7 +165,10 @@ class Deliveries:
         #: shelf -> the earliest step it can be off the ground (lifted by the nearest robot)
         self.lifted = {s: 0 if s in carried else float(nearest.get(cell, INFINITE)) + 1
                        for s, cell in sorted(self.shelves.items())}
-        self._arrivals: dict[int, dict[Cell, float]] = {}
+        #: station -> shelf -> :meth:`arrival`, for the stations of ``_targets`` only
+        self._arrivals: dict[Cell, dict[int, float]] = {}
+        self._targets = {line.station for line in self.lines}
+        self._searched: set[int] = set()  # the shelves searched forward
         self._from_station: dict[Cell, dict[Cell, int]] = {}
 
     @cached_property
@@ -158,13 +220,53 @@ class Deliveries:
         return 1
 
     def arrival(self, shelf: int, station: Cell) -> float:
-        """The earliest step ``shelf`` can stand on ``station``, carried."""
-        if shelf not in self._arrivals:
+        """The earliest step ``shelf`` can stand on ``station``, carried: lifted at
+        ``lifted[shelf]``, entering the cell of another shelf resting there from the start no
+        earlier than the step after that one's ``lifted``.  Kept for the stations of lines
+        only (and any other asked for): on a small floor found by a search forward from each
+        shelf asked about, else by one search back from the stations for every shelf."""
+        if station not in self._targets:
+            self._targets.add(station)
+            self._arrivals.clear()
+            self._searched.clear()
+        if self._searches_back:
+            if not self._arrivals:
+                self._arrivals = self._arrivals_back()
+        elif shelf not in self._searched:
+            self._searched.add(shelf)
             free_at = {cell: self.lifted[other] + 1 for other, cell in self.shelves.items()
                        if other != shelf and other not in self.carried}
-            self._arrivals[shelf] = carry_arrivals(self.instance.cells, {self.shelves[shelf]: self.lifted[shelf]},
-                                                   free_at)
-        return self._arrivals[shelf].get(station, INFINITE)
+            reached = carry_arrivals(self._cells, {self.shelves[shelf]: self.lifted[shelf]}, free_at)
+            for target in self._targets:
+                self._arrivals.setdefault(target, {})[shelf] = reached.get(target, INFINITE)
+        return self._arrivals[station][shelf]
+
+    @cached_property
+    def _searches_back(self) -> bool:
+        """Whether :meth:`arrival` searches back from the stations (:data:`FORWARD_VISITS`)."""
+        holders = {shelf for line in self.lines for shelf in line.holders}
+        return len(holders) * len(self.floor.cells) > FORWARD_VISITS
+
+    @cached_property
+    def _cells(self) -> set[Cell]:
+        return self.instance.cells
+
+    def _arrivals_back(self) -> dict[Cell, dict[int, float]]:
+        """Station -> shelf -> :meth:`arrival`, for every station of ``_targets`` and every shelf
+        (:func:`arrivals_back`; a shelf off the floor arrives nowhere)."""
+        import numpy as np
+        size = len(self.floor.cells)
+        starts, free_at = np.zeros(size), np.full(size, -INFINITE)
+        placed = {shelf: self.floor.index[cell] for shelf, cell in self.shelves.items() if cell in self.floor.index}
+        for shelf, vertex in placed.items():
+            starts[vertex] = self.lifted[shelf]
+            if shelf not in self.carried:
+                free_at[vertex] = self.lifted[shelf] + 1
+        targets = sorted(self._targets)
+        found = arrivals_back(self.floor, targets, starts, free_at)[:, list(placed.values())].tolist()
+        nowhere = dict.fromkeys(self.shelves, INFINITE)
+        return {target: nowhere | dict(zip(placed, row, strict=True))
+                for target, row in zip(targets, found, strict=True)}
 
     def release(self, line: Line) -> float:
         """The earliest step of the line's first delivery (see ``blocking``)."""

@@ -92,6 +92,12 @@ class Floor:
     def _open(self) -> np.ndarray:
         return self._arrays[3]
 
+    def neighbours(self) -> np.ndarray:
+        """``(len(cells) + 1) x 4``: each vertex's neighbours in ``DIRECTIONS`` order, where
+        ``len(cells)`` stands for "no node" (its own row holds nothing else): for searches of
+        their own over the floor (:func:`asprilo.bounds.delivery.arrivals_back`)."""
+        return self._next
+
     @cached_property
     def graph(self):
         """The adjacency matrix (scipy.sparse)."""
