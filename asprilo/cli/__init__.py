@@ -171,8 +171,8 @@ def _run(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespa
         return code
     except InputError as error:
         return _refuse(args, f"error: {error}", 2, error)
-    except MemoryError:
-        return _refuse(args, "error: out of memory (the limits on data are in README, Reading data)", 2)
+    except MemoryError as error:
+        return _out_of_memory(args, error)
     except KeyboardInterrupt:
         return _refuse(args, "interrupted", INTERRUPTED)
     except BrokenPipeError:
@@ -186,6 +186,41 @@ def _run(run: Callable[[argparse.Namespace], int | None], args: argparse.Namespa
         print(f"error: {STANDARD_OUTPUT}: cannot be written ({error.strerror or error})", file=sys.stderr)
         _silence_stdout()
         return 2
+
+
+#: what a command was doing when it ran out of memory, by the modules the error came through:
+#: the first phase one of them names (a module or the package it is in), in this order
+MEMORY_PHASES = [
+    ("reading the input", ("asprilo.reader", "asprilo.sources", "asprilo.parse")),
+    ("computing the lower bound", ("asprilo.bounds", "asprilo.encodings.solving.bounds")),
+    ("checking the plan", ("asprilo.checker", "asprilo.simulate")),
+    ("generating the instance", ("asprilo.generator",)),
+    ("writing the output", ("asprilo.writer",)),
+    ("grounding", ("asprilo.solver.ground",)),
+    ("solving", ("asprilo.solver", "asprilo.encodings")),
+]
+#: the commands whose exit status 1 says "nothing found within the limits" (memory is one)
+SEARCHES = {"asprilo.encodings.cli", "asprilo.generator.cli"}
+
+
+def _out_of_memory(args: argparse.Namespace, error: MemoryError) -> int:
+    """``error: out of memory while PHASE``: exit status 2 while reading (the data is beyond
+    this machine: README, Reading data, gives the limits), 1 in a search for a plan or an
+    instance (nothing found within the limits, as when a child process runs out of memory),
+    else 2 (nothing done)."""
+    passed, frame = [], error.__traceback__
+    while frame is not None:
+        module = frame.tb_frame.f_globals.get("__name__", "")
+        passed += [module, f"{module}.{frame.tb_frame.f_code.co_name}"]
+        frame = frame.tb_next
+    phase = next((phase for phase, names in MEMORY_PHASES
+                  if any(module == name or module.startswith(name + ".") for module in passed for name in names)), None)
+    if phase is None:
+        return _refuse(args, "error: out of memory", 2)
+    if phase == "reading the input":
+        return _refuse(args, f"error: out of memory while {phase} (the limits on data are in README, Reading data)", 2)
+    searching = getattr(getattr(args, "run", None), "__module__", None) in SEARCHES
+    return _refuse(args, f"error: out of memory while {phase}", 1 if searching else 2)
 
 
 def _refuse(args: argparse.Namespace, sentence: str, code: int, error: InputError | None = None) -> int:
