@@ -146,6 +146,24 @@ def test_the_greedy_start_serves_lines_from_the_nearest_shelves_and_gives_each_r
         "hint_give(3,1,10,1).", "hint_carry(8,3)."]
 
 
+def test_the_shelves_a_greedy_start_uses_get_robots_of_their_own_first():
+    import numpy as np
+
+    from asprilo.encodings.anytime.assignment import _greedy, _matching
+
+    # two robots (rows), three shelves (columns), one shelf each; shelf 0 is nearest to both.
+    # Nearest first: shelf 0 takes robot 0, shelf 1 robot 1 (5 steps), none is left for shelf 2
+    distance = np.array([[1.0, 2.0, 5.0], [1.0, 5.0, 3.0]])
+    assert _matching(distance, 1) == {(0, 0), (1, 1)}
+    # shelves 1 and 2 are those the start uses: matched first, robot 0 to 1 (2), robot 1 to 2 (3)
+    assert _matching(distance, 1, [1, 2]) == {(0, 1), (1, 2)}
+    # the start's shelves go to the robots matched to them, not to the nearest with room
+    stock, haul = {1: {10: 2}, 3: {10: 1}}, {(1, 4): 5, (3, 4): 2}
+    options = [(7, 3, 4), (8, 3, 1), (8, 1, 2), (9, 1, 6)]
+    assert _greedy({(1, 10): 3}, stock, haul, {1: 4}, options, 1, True, {3: 7, 1: 8}) == [
+        "hint_give(3,1,10,1).", "hint_give(1,1,10,2).", "hint_carry(7,3).", "hint_carry(8,1)."]
+
+
 def test_a_greedy_start_changes_where_the_search_begins_not_the_optimum():
     # the facts of the nearest-shelf test, with hints for the worse shelf and robot
     facts = ["line(1,1,1).", "order(1,1).", "holds(1,1,1).", "holds(2,1,1).", "haul(1,1,5).", "haul(2,1,2).",

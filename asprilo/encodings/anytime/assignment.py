@@ -141,7 +141,14 @@ def shelf_problem(instance: Instance, grid: Grid, domain: Domain, homes: dict[in
     facts += [f"haul({s},{ps},{d})." for (s, ps), d in haul.items()]
     robots = max(1, sum(1 for r in instance.robots.values() if r.carries is None))
     cap = max(1, math.ceil(len(lines) / robots))
-    options = _carriers(instance, grid, homes, shelves, nearest, cap)
+    hinted = len(shelves) * len(instance.robots) >= HINT_SIZE
+    orders = {o.id: o.station for o in instance.orders.values() if o.station is not None}
+    # the shelves of the greedy start are matched to robots first, so each gets one of its own
+    # (matched among all shelves, on 200x200 with 600 robots 33 of its 490 had none: a robot
+    # with two shelves, an errand of twice the bound)
+    used = [s for s, *_ in _greedy_gives(lines, {s: stock[s] for s in shelves}, haul, orders, domain.counts_units)
+            ] if hinted else []
+    options, matched = _carriers(instance, grid, homes, shelves, nearest, cap, used)
     facts += [f"option({r},{s},{d})." for r, s, d in options]
     # the robots' work is summed where some robot must bring several shelves: more lines than
     # robots, or a line that needs more units than any one shelf holds
@@ -149,10 +156,9 @@ def shelf_problem(instance: Instance, grid: Grid, domain: Domain, homes: dict[in
                              for (_, p), q in lines.items() if domain.counts_units)
     facts += _workloads(instance, options, haul, cap) if several else []
     facts.append(f"cap({cap}).")
-    hinted = len(shelves) * len(instance.robots) >= HINT_SIZE
     if hinted:
-        orders = {o.id: o.station for o in instance.orders.values() if o.station is not None}
-        facts += _greedy(lines, {s: stock[s] for s in shelves}, haul, orders, options, cap, domain.counts_units)
+        facts += _greedy(lines, {s: stock[s] for s in shelves}, haul, orders, options, cap, domain.counts_units,
+                         matched)
     assigner = Assigner("assign_shelves.lp", facts, {"delivery": domain.delivery.value},
                         ["--heuristic=Domain"] if hinted else [])
     return ShelfProblem(lines, assigner, haul)
@@ -160,11 +166,12 @@ def shelf_problem(instance: Instance, grid: Grid, domain: Domain, homes: dict[in
 
 def _greedy(lines: dict[tuple[int, int], int], stock: dict[int, dict[int, int | None]],
             haul: dict[tuple[int, int], int], orders: dict[int, int], options: list[tuple[int, int, int]],
-            cap: int, counts_units: bool) -> list[str]:
+            cap: int, counts_units: bool, matched: dict[int, int] | None = None) -> list[str]:
     """A greedy assignment as ``hint_give/4`` and ``hint_carry/2`` facts: every line served by
     the shelves holding its product nearest to its station (in A as many as its units need,
-    none giving more than it has left), each shelf used carried by the nearest robot offered
-    that has fewer than ``cap`` shelves yet (or the least busy one)."""
+    none giving more than it has left), each shelf used carried by the robot ``matched`` to it
+    (shelf -> robot), else by the nearest robot offered that has fewer than ``cap`` shelves yet
+    (or the least busy one)."""
     gives = _greedy_gives(lines, stock, haul, orders, counts_units)
     carriers: dict[int, list[tuple[int, int]]] = {}
     for robot, shelf, steps in options:
@@ -176,6 +183,8 @@ def _greedy(lines: dict[tuple[int, int], int], stock: dict[int, dict[int, int | 
         if offered:
             room = [robot for robot in offered if load.get(robot, 0) < cap]
             robot = room[0] if room else min(offered, key=load.__getitem__)
+            if matched is not None and shelf in matched:
+                robot = matched[shelf]
             load[robot] = load.get(robot, 0) + 1
             hints.append(f"hint_carry({robot},{shelf}).")
     return hints
@@ -242,11 +251,12 @@ def _hauls(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: list
 
 
 def _carriers(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: list[int], nearest: int,
-              cap: int) -> list[tuple[int, int, int]]:
+              cap: int, first: list[int] | None = None) -> tuple[list[tuple[int, int, int]], dict[int, int]]:
     """``option(R,S,D)`` as (R, S, D): the robots nearest to each shelf, and the robot a
     matching of robots (each up to ``cap`` times) to shelves gives it, so that the cap can be
-    kept even where many shelves have the same nearest robots; a robot that starts with a
-    shelf carries that one or none, and nobody else carries it."""
+    kept even where many shelves have the same nearest robots (the shelves of ``first``
+    matched first); a robot that starts with a shelf carries that one or none, and nobody
+    else carries it.  Also the matching, shelf -> robot."""
     carried = {r.carries: r.id for r in instance.robots.values() if r.carries is not None}
     free = sorted(r.id for r in instance.robots.values() if r.carries is None)
     facts = [(carried[s], s, 0) for s in shelves if s in carried]
@@ -254,21 +264,27 @@ def _carriers(instance: Instance, grid: Grid, homes: dict[int, Cell], shelves: l
     distance = grid.table([instance.robots[r].at for r in free], [homes[s] for s in loose])
     offered = {(int(row), column) for column in range(len(loose))
                for row in np.argsort(distance[:, column], kind="stable")[:nearest]}
+    matched: dict[int, int] = {}
     if free and loose:
-        offered |= _matching(distance, cap)
+        column_of = {shelf: column for column, shelf in enumerate(loose)}
+        pairs = _matching(distance, cap, [column_of[s] for s in first or () if s in column_of])
+        offered |= pairs
+        matched = {loose[column]: free[row] for row, column in pairs}
     facts += [(free[row], loose[column], int(distance[row, column]))
               for row, column in sorted(offered) if distance[row, column] < INFINITE]
-    return facts
+    return facts, matched
 
 
-def _matching(distance: np.ndarray, cap: int) -> set[tuple[int, int]]:
+def _matching(distance: np.ndarray, cap: int, first: list[int] | None = None) -> set[tuple[int, int]]:
     """(row, column) pairs of robots (rows, each at most ``cap`` times) and shelves (columns):
-    shelf after shelf, the one whose nearest robot is nearest first, to its nearest robot
-    with room left (greedy: scipy's optimal assignment takes longer to import than the
-    whole first plan of an exercise-size instance)."""
+    shelf after shelf, those of ``first`` before the others, the one whose nearest robot is
+    nearest first, to its nearest robot with room left (greedy: scipy's optimal assignment
+    takes longer to import than the whole first plan of an exercise-size instance)."""
     load = np.zeros(distance.shape[0], dtype=np.int64)
     pairs = set()
-    for column in np.argsort(distance.min(axis=0), kind="stable"):
+    ahead = np.zeros(distance.shape[1], dtype=bool)
+    ahead[first or []] = True
+    for column in np.lexsort((distance.min(axis=0), ~ahead)):
         for row in np.argsort(distance[:, column], kind="stable"):
             if distance[row, column] >= INFINITE:
                 break
