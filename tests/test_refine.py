@@ -1,15 +1,19 @@
 """The refinement of M/Md plans with goals of their own (asprilo/encodings/anytime/refine.py)
 and its safe-interval search (spacetime.py): arrivals derived by hand on corridors, the same
 earliest arrivals as a breadth-first search over every (vertex, step) on random small floors,
-and refined plans that keep the rules and reach an optimum worked out by hand."""
+and refined plans that keep the rules and reach an optimum worked out by hand; the search for
+the path that meets the fewest robots by a deadline (deadline.py) against counts by hand and a
+search over every (vertex, step), and deadlines met where a hand derivation says they can be."""
 
 from __future__ import annotations
 
 import random
 
+import numpy as np
 import pytest
 
 from asprilo.bounds import Floor
+from asprilo.encodings.anytime.deadline import Crowd, Moves, Shortener, fewest_collisions
 from asprilo.encodings.anytime.lacam import lacam_configs, paths_of
 from asprilo.encodings.anytime.refine import Refiner
 from asprilo.encodings.anytime.roadmap import Roadmap
@@ -165,3 +169,140 @@ def test_refined_plans_keep_the_rules_and_only_get_better():
     _assert_keeps_the_rules(roadmap, refiner.paths)
     assert [path[0] for path in refiner.paths] == starts and [path[-1] for path in refiner.paths] == aims
     assert refiner.score()[1] == sum(len(path) - 1 for path in refiner.paths)
+
+
+# --- shorter makespans with a deadline (deadline.py) -------------------------------------------
+
+def _fewest(roadmap: Roadmap, others: list[list[int]], start: int, goal: int, deadline: int):
+    crowd = Crowd(roadmap, Moves(roadmap), others, deadline)
+    to_goal = np.array(roadmap.distances_to([goal])[0])
+    return fewest_collisions(crowd, start, goal, to_goal, deadline, random.Random(0))
+
+
+def _collisions(roadmap: Roadmap, others: list[list[int]], path: list[int], horizon: int) -> int:
+    """A path's collisions with the others counted one by one up to ``horizon``: a robot on
+    its vertex at a step, or one coming the other way over the edge it takes."""
+    count = 0
+    for step in range(horizon + 1):
+        here = _at(path, step)
+        count += sum(_at(other, step) == here for other in others)
+        if step:
+            there = _at(path, step - 1)
+            count += sum(here != there and _at(other, step - 1) == here and _at(other, step) == there
+                         for other in others)
+    return count
+
+
+def test_the_path_meeting_fewest_robots_passes_a_parked_one_by_hand():
+    # a line (1,1)..(5,1) with a robot parked on (3,1) from the start: ours from (1,1) to
+    # (5,1) must pass it (one collision) and arrives at step 4 at the earliest
+    roadmap = Roadmap(Floor([(x, 1) for x in range(1, 6)]))
+    v = roadmap.vertex
+    path, collisions = _fewest(roadmap, [[v((3, 1))]], v((1, 1)), v((5, 1)), 6)
+    assert [roadmap.cells[vertex] for vertex in path] == [(1, 1), (2, 1), (3, 1), (4, 1), (5, 1)]
+    assert collisions == 1
+    # by the deadline 3 the goal is too far
+    assert _fewest(roadmap, [[v((3, 1))]], v((1, 1)), v((5, 1)), 3) is None
+
+
+def test_passing_on_an_edge_counts_as_a_collision_by_hand():
+    # two cells: the other robot goes (2,1) -> (1,1) at step 1 and parks; ours goes the other
+    # way.  Moving at step 1 passes it on the edge (one collision); staying on (1,1) meets it
+    # there at every step it stays, so by hand: one collision, arrival at step 1
+    roadmap = Roadmap(Floor([(1, 1), (2, 1)]))
+    v = roadmap.vertex
+    path, collisions = _fewest(roadmap, [[v((2, 1)), v((1, 1))]], v((1, 1)), v((2, 1)), 3)
+    assert [roadmap.cells[vertex] for vertex in path] == [(1, 1), (2, 1)] and collisions == 1
+
+
+def _brute_fewest(roadmap: Roadmap, others: list[list[int]], start: int, goal: int, deadline: int
+                  ) -> tuple[int, int] | None:
+    """The fewest collisions of a path onto ``goal`` by ``deadline`` (staying there up to it)
+    and the earliest arrival with that many, by a search over every (vertex, step)."""
+    to_goal = roadmap.distances_to([goal])[0]
+    fewest = {start: _collisions(roadmap, others, [start], 0)}
+    found = []
+    for step in range(deadline + 1):
+        if goal in fewest:
+            staying = sum(_at(other, later) == goal for other in others for later in range(step + 1, deadline + 1))
+            found.append((fewest[goal] + staying, step))
+        following: dict[int, int] = {}
+        for vertex, count in fewest.items():
+            for onto in (vertex, *roadmap.neighbours[vertex]):
+                if step + 1 + to_goal[onto] > deadline:
+                    continue
+                meets = sum(_at(other, step + 1) == onto for other in others)
+                meets += sum(onto != vertex and _at(other, step) == onto and _at(other, step + 1) == vertex
+                             for other in others)
+                following[onto] = min(following.get(onto, count + meets), count + meets)
+        fewest = following
+    return min(found) if found else None
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_fewest_collisions_are_those_of_a_search_over_every_step(seed):
+    draw, compared = random.Random(seed), 0
+    for _ in range(30):
+        cells = [(x, y) for x in range(1, draw.randint(2, 5) + 1) for y in range(1, draw.randint(2, 4) + 1)
+                 if draw.random() < 0.85]
+        roadmap = Roadmap(Floor(cells))
+        if roadmap.size < 3:
+            continue
+        deadline = draw.randint(2, 9)
+        others = []  # random walks (they may meet each other: only ours is counted)
+        for _ in range(draw.randint(1, 4)):
+            walk = [draw.randrange(roadmap.size)]
+            for _ in range(draw.randint(0, deadline)):
+                walk.append(draw.choice([walk[-1], *roadmap.neighbours[walk[-1]]]))
+            others.append(walk)
+        start = draw.randrange(roadmap.size)
+        goal = draw.choice([v for v in range(roadmap.size) if all(v != walk[-1] for walk in others)] or [start])
+        found = _fewest(roadmap, others, start, goal, deadline)
+        expected = _brute_fewest(roadmap, others, start, goal, deadline)
+        assert (None if found is None else (found[1], len(found[0]) - 1)) == expected
+        if found is not None:
+            path = found[0]
+            assert path[0] == start and path[-1] == goal and len(path) - 1 <= deadline
+            assert all(path[k] in (path[k - 1], *roadmap.neighbours[path[k - 1]]) for k in range(1, len(path)))
+            assert _collisions(roadmap, others, path, deadline) == found[1]
+            compared += 1
+    assert compared >= 20
+
+
+def test_a_deadline_is_met_where_it_can_be_and_only_there_by_hand():
+    # the 3x2 block of the ring test: robot 0 (1,1) -> (3,1), robot 1 the other way.  By hand
+    # (see above) the makespan 4 is the least: with 3 steps both must cross (2,1), and the
+    # one that crosses first meets the other on (3,1) or (1,1) or passes it on the edge
+    roadmap = Roadmap(Floor([(x, y) for x in (1, 2, 3) for y in (1, 2)]))
+    v = roadmap.vertex
+    aims = [v((3, 1)), v((1, 1))]
+    paths = [[v((1, 1)), v((1, 2)), v((2, 2)), v((3, 2)), v((3, 1))],
+             [v((3, 1)), v((3, 1)), v((2, 1)), v((2, 1)), v((2, 1)), v((2, 2)), v((1, 2)), v((1, 1))]]
+    shortener = Shortener(roadmap, aims, roadmap.distances_to(aims), seed=1)
+    shorter = shortener.attempt(paths, 4, lambda: False)
+    assert shorter is not None and max(len(path) - 1 for path in shorter) == 4
+    _assert_keeps_the_rules(roadmap, shorter)
+    assert [path[0] for path in shorter] == [v((1, 1)), v((3, 1))] and [path[-1] for path in shorter] == aims
+    assert shortener.attempt(paths, 3, lambda: False) is None
+    assert shortener.attempt(paths, 1, lambda: False) is None  # below a robot's distance
+
+
+def test_shortened_plans_keep_the_rules_and_meet_their_deadlines():
+    draw = random.Random(11)
+    cells = [(x, y) for x in range(1, 9) for y in range(1, 9) if (x, y) not in {(3, 3), (3, 4), (6, 5), (6, 6), (2, 7)}]
+    roadmap = Roadmap(Floor(cells))
+    starts, aims = draw.sample(range(roadmap.size), 30), draw.sample(range(roadmap.size), 30)
+    paths = paths_of(lacam_configs(roadmap, starts, aims, lambda: False, seed=1))
+    shortener = Shortener(roadmap, aims, roadmap.distances_to(aims), seed=2)
+    met = 0
+    for _ in range(12):
+        deadline = max(len(path) for path in paths) - 2
+        shorter = shortener.attempt(paths, deadline, lambda: False)
+        if shorter is None:
+            continue
+        met += 1
+        assert max(len(path) - 1 for path in shorter) <= deadline
+        _assert_keeps_the_rules(roadmap, shorter)
+        assert [path[0] for path in shorter] == starts and [path[-1] for path in shorter] == aims
+        paths = shorter
+    assert met >= 3
