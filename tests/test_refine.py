@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import random
 
-import numpy as np
 import pytest
 
 from asprilo.bounds import Floor
@@ -175,8 +174,7 @@ def test_refined_plans_keep_the_rules_and_only_get_better():
 
 def _fewest(roadmap: Roadmap, others: list[list[int]], start: int, goal: int, deadline: int):
     crowd = Crowd(roadmap, Moves(roadmap), others, deadline)
-    to_goal = np.array(roadmap.distances_to([goal])[0])
-    return fewest_collisions(crowd, start, goal, to_goal, deadline, random.Random(0))
+    return fewest_collisions(crowd, start, goal, deadline, random.Random(0))
 
 
 def _collisions(roadmap: Roadmap, others: list[list[int]], path: list[int], horizon: int) -> int:

@@ -28,8 +28,8 @@ import numpy as np
 
 from .roadmap import Roadmap
 
-#: a cost larger than any number of collisions (it may be added to itself a few thousand times)
-UNREACHABLE = 1 << 32
+#: a cost larger than any number of collisions (and far enough below the largest 32-bit number)
+UNREACHABLE = 1 << 30
 #: the most robots one repair group holds
 GROUP = 4
 #: groups in a row that gain nothing before an attempt is given up
@@ -65,9 +65,9 @@ class Crowd:
     def __init__(self, roadmap: Roadmap, moves: Moves, paths: list[list[int]], horizon: int):
         self.roadmap, self.moves, self.horizon = roadmap, moves, horizon
         self.steps = np.arange(horizon + 1)
-        self.on = np.zeros((horizon + 1, roadmap.size + 1), dtype=np.int64)
+        self.on = np.zeros((horizon + 1, roadmap.size + 1), dtype=np.int32)
         #: robots going from each vertex to its k-th source between two steps (the last row: staying)
-        self.going = np.zeros((horizon, moves.wide + 1, roadmap.size), dtype=np.int64)
+        self.going = np.zeros((horizon, moves.wide + 1, roadmap.size), dtype=np.int32)
         self.everyone = np.empty((len(paths), horizon + 1), dtype=np.int64)
         for robot, path in enumerate(paths):
             self.everyone[robot] = self.full(path)
@@ -135,39 +135,44 @@ class Crowd:
         return [other for other in found if other != robot]
 
 
-def fewest_collisions(crowd: Crowd, start: int, goal: int, to_goal: np.ndarray, deadline: int,
-                      draw: random.Random) -> tuple[list[int], int] | None:
+def fewest_collisions(crowd: Crowd, start: int, goal: int, deadline: int, draw: random.Random
+                      ) -> tuple[list[int], int] | None:
     """The path from ``start`` (step 0) onto ``goal`` by step ``deadline`` (and staying there)
     that meets the fewest robots of ``crowd``, the earliest arrival among those, as its
     vertices up to its last move, and its collisions; ``None`` when the goal is too far.
-    ``to_goal``: the goal's distance table; ``draw`` picks among equally good ways."""
-    size, sources, going, on = crowd.roadmap.size, crowd.moves.sources, crowd.going, crowd.on
-    wide = crowd.moves.wide
-    steps = np.arange(deadline + 1)
-    # what being on a vertex at a step adds: the robots there, and too late to arrive in time
-    adds = on[:deadline + 1, :size] + np.where(to_goal[None, :] > deadline - steps[:, None], UNREACHABLE, 0)
-    costs = np.full((deadline + 1, size + 1), UNREACHABLE, dtype=np.int64)  # fewest collisions so far
-    costs[0, start] = on[0, start]
-    for step in range(deadline):
+    ``draw`` picks among equally good ways.
+
+    The search stops at the first step where no vertex is reached with fewer collisions than
+    the best arrival so far: the collisions of a path only grow, so no later arrival is
+    better (a robot that can arrive without collisions is done after as many steps)."""
+    size, sources, going = crowd.roadmap.size, crowd.moves.sources, crowd.going
+    wide, adds = crowd.moves.wide, crowd.on[:, :size]
+    staying = crowd.on[:deadline + 1, goal]
+    after = (np.cumsum(staying[::-1])[::-1] - staying).tolist()  # robots on the goal after each step
+    costs = np.full((deadline + 1, size + 1), UNREACHABLE, dtype=np.int32)  # fewest collisions so far
+    costs[0, start] = adds[0, start]
+    best, arrival = UNREACHABLE, -1
+    for step in range(deadline + 1):
+        total = int(costs[step, goal]) + after[step]
+        if total < best:
+            best, arrival = total, step
+        if step == deadline or (best < UNREACHABLE and best <= costs[step].min()):
+            break
         came = costs[step][sources]
         came += going[step, :wide]
         row = costs[step + 1, :size]
         np.minimum.reduce(came, axis=0, out=row)
         row += adds[step + 1]
-    staying = on[:deadline + 1, goal]
-    after = np.cumsum(staying[::-1])[::-1] - staying  # robots on the goal after each step
-    total = costs[:, goal] + after
-    arrival = int(total.argmin())
-    if total[arrival] >= UNREACHABLE:
+    if best >= UNREACHABLE:
         return None
-    return _backwards(crowd, costs, adds, goal, arrival, draw), int(total[arrival])
+    return _backwards(adds, going, crowd.moves.columns, costs, goal, arrival, draw), best
 
 
-def _backwards(crowd: Crowd, costs: np.ndarray, adds: np.ndarray, goal: int, arrival: int,
-               draw: random.Random) -> list[int]:
+def _backwards(adds: np.ndarray, going: np.ndarray, sources: list[list[int]], costs: np.ndarray, goal: int,
+               arrival: int, draw: random.Random) -> list[int]:
     """The path that reaches ``goal`` at step ``arrival`` at the cost ``costs`` says, up to
-    its last move, found backwards from there (one of the equally good ways at random)."""
-    sources, going = crowd.moves.columns, crowd.going
+    its last move, found backwards from there (one of the equally good ways at random);
+    ``adds``, ``going``: the robots on each vertex and each move at each step."""
     cost, add, move = costs.item, adds.item, going.item
     path, vertex = [goal], goal
     for step in range(arrival, 0, -1):
@@ -185,7 +190,7 @@ class Shortener:
 
     def __init__(self, roadmap: Roadmap, aims: list[int], to: list[list[int]], seed: int = 0):
         self.roadmap, self.aims = roadmap, aims
-        self.to = [np.array(table, dtype=np.int64) for table in to]
+        self.to = to
         self.moves = Moves(roadmap)
         self.random = random.Random(seed)
 
@@ -205,24 +210,20 @@ class Shortener:
             group = self._group(crowd, colliding)
             old = {robot: crowd.everyone[robot].copy() for robot in group}
             before = self._collisions(crowd, group)
-            after = sum(self._plan(crowd, robot) for robot in group)
-            if after > before:
-                for robot in group:
-                    crowd.take(robot)
-                for robot in group:
-                    crowd.put(robot, old[robot])
+            for robot in group:
+                self._plan(crowd, robot)
+            after = self._collisions(crowd, group)
+            for robot in group:
+                crowd.put(robot, old[robot] if after > before else crowd.everyone[robot])
             idle = idle + 1 if after >= before else 0
             colliding = crowd.colliding()
         return None if colliding else [_trimmed(full.tolist()) for full in crowd.everyone]
 
-    def _plan(self, crowd: Crowd, robot: int) -> int:
-        """Plan ``robot`` (taken out of ``crowd``) again and put it in; its collisions."""
-        start = int(crowd.everyone[robot][0])
-        found = fewest_collisions(crowd, start, self.aims[robot], self.to[robot], crowd.horizon, self.random)
+    def _plan(self, crowd: Crowd, robot: int) -> None:
+        """Plan ``robot`` (taken out of ``crowd``) again and put it in."""
+        found = fewest_collisions(crowd, int(crowd.everyone[robot][0]), self.aims[robot], crowd.horizon, self.random)
         assert found is not None  # (the deadline is no shorter than any robot's way)
-        path, collisions = found
-        crowd.put(robot, crowd.full(path))
-        return collisions
+        crowd.put(robot, crowd.full(found[0]))
 
     def _group(self, crowd: Crowd, colliding: list[int]) -> list[int]:
         """A colliding robot, robots around the places where it meets others, and robots
@@ -238,8 +239,8 @@ class Shortener:
         return members
 
     def _collisions(self, crowd: Crowd, group: list[int]) -> int:
-        """The collisions of ``group``'s paths with everyone (each counted once); the group
-        is left out of ``crowd`` afterwards."""
+        """The collisions of ``group``'s paths with everyone (those between two of the group
+        counted once); the group is left out of ``crowd`` afterwards."""
         for robot in group:
             crowd.take(robot)
         total = 0
