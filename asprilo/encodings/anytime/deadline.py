@@ -31,7 +31,7 @@ from .roadmap import Roadmap
 #: a cost larger than any number of collisions (and far enough below the largest 32-bit number)
 UNREACHABLE = 1 << 30
 #: the most robots one repair group holds
-GROUP = 4
+GROUP = 3
 #: groups in a row that gain nothing before an attempt is given up
 PATIENCE = 60
 
