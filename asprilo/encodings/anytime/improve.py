@@ -289,6 +289,18 @@ class Improver:
                  for robot in (*table.visits.get(cell, {}).values(), *table.stays.get(cell, {}))]
         return [*group, *(robot for robot in dict.fromkeys(users) if robot not in group)]
 
+    def _on_vacated(self, group: list[int], saved: tuple) -> list[int]:
+        """The other robots that put a shelf down on the cell of a shelf that a robot of the
+        ``group`` brought before the neighbourhood (``saved`` work) or brings now: their tracks
+        count on that shelf being gone by then, which a changed errand may no longer make so
+        (a swap left seed 4509 of a_multiline.py with a shelf put down on a resting one)."""
+        work = self.work
+        shelves = {trip.shelf for robot in group for trips in (saved[1].get(robot, []), work.trips.get(robot, []))
+                   for trip in trips}
+        cells = {work.homes[shelf] for shelf in shelves}
+        return [robot for robot, trips in sorted(work.trips.items())
+                if robot not in group and any(work.claims.get(trip.shelf) in cells for trip in trips)]
+
     def _parked_on_stations(self, group: list[int]) -> list[int]:
         """The other robots whose tracks end on a station that the ``group`` delivers at."""
         stations = {cell for robot in group for cell in self.work.stations_of(robot)}
@@ -332,6 +344,7 @@ class Improver:
         if reassign and not self.work.reassign(set(group), SWAP_SECONDS, self._shaken(late=group[0])):
             return None
         group = self._with_users(group)
+        group += [robot for robot in self._on_vacated(group, saved) if robot not in group]
         old.update({robot: self.table.tracks[robot] for robot in group if robot not in old})
         if start > 0:
             group = [r for r in group if old[r].finish > start]

@@ -112,7 +112,10 @@ class Work:
 
     def adopt(self, gives: list[tuple[int, int, int, int]], errands: dict[int, list[int]]) -> None:
         """Take an assignment made elsewhere (:mod:`.relaxed`): ``gives`` as (shelf, order,
-        product, units), ``errands`` the shelves of each robot in the order it brings them."""
+        product, units), ``errands`` the shelves of each robot in the order it brings them.
+        The cells cleared, claimed and offered for the old assignment are dropped (a shelf that
+        one of its robots carried away may be another robot's to fetch now)."""
+        self.clearings, self.claims, self.offered = {}, {}, frozenset()
         atoms = {clingo.Function("give", [clingo.Number(n) for n in give]) for give in gives}
         atoms |= {clingo.Function("carry", [clingo.Number(robot), clingo.Number(shelf)])
                   for robot, shelves in errands.items() for shelf in shelves}
