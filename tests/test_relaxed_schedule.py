@@ -36,7 +36,7 @@ import itertools
 from helpers.errands import assigned_work
 from helpers.worlds import world
 
-from asprilo.encodings.anytime import improve
+from asprilo.encodings.anytime import improve, relaxed
 from asprilo.encodings.anytime.improve import Improver, score
 from asprilo.encodings.anytime.prioritized import first_tracks
 from asprilo.encodings.anytime.relaxed import Schedules
@@ -78,6 +78,13 @@ def test_a_robot_waits_for_the_station_and_the_first_one_steps_off_it():
 def test_a_shelf_in_a_dead_end_comes_out_through_the_cell_of_a_shelf_lifted_before():
     schedules = Schedules(assigned_work(dead()))
     assert schedules.cost(BOTH, {1: [1], 2: [2]}) == (11, 20)
+
+
+def test_a_shelf_that_cannot_get_out_yet_makes_an_assignment_very_long():
+    # robot 1 lifts shelf 2 at 5 ((4,1), (3,1), (3,2), (3,3): 4 steps, lift); robot 2 lifts
+    # shelf 1 at 5 too ((5,1), (4,1), (3,1), (3,2), lift): not before, so shelf 2 has no way out
+    schedules = Schedules(assigned_work(dead()))
+    assert schedules.cost(BOTH, {1: [2], 2: [1]})[0] >= relaxed.FAR
 
 
 def _brute_force(schedules: Schedules, gives) -> tuple[int, int]:

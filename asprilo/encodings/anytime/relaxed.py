@@ -27,7 +27,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from asprilo.bounds import INFINITE
 from asprilo.domain import Delivery
 from asprilo.model import Cell
 
@@ -36,6 +35,9 @@ from .work import Work, entered
 Line = tuple[int, int]
 #: how many of the best distinct assignments are kept
 KEPT = 24
+#: the steps counted for a way that does not exist (a shelf that cannot get out yet): so many
+#: that the search leaves such assignments
+FAR = 10**6
 #: the annealing's temperature at the start and the end (in steps of makespan)
 HOT, COLD = 2.0, 0.05
 
@@ -47,6 +49,10 @@ class Assignment:
 
     gives: tuple[tuple[Line, tuple[tuple[int, int], ...]], ...]
     errands: tuple[tuple[int, tuple[int, ...]], ...]
+
+    def by_robot(self) -> dict[int, list[int]]:
+        """Robot -> its shelves in order."""
+        return {robot: list(shelves) for robot, shelves in self.errands}
 
     def give_atoms(self) -> list[tuple[int, int, int, int]]:
         """(shelf, order, product, units) for every portion of every line."""
@@ -92,13 +98,13 @@ class Schedules:
         if key not in self._carry:
             passable = self.work.carrying | self.work.grid.mask(lifted) if lifted else self.work.carrying
             self._carry[key] = self.work.grid.distances([source], passable)
-        return int(min(entered(self._carry[key], target), INFINITE))
+        return int(min(entered(self._carry[key], target), FAR))
 
     def walk(self, cell: Cell, shelf: int) -> int:
         """Steps from ``cell`` to ``shelf``'s cell without a shelf."""
         if shelf not in self._walk:
             self._walk[shelf] = self.work.grid.distances([self.work.homes[shelf]])
-        return int(self._walk[shelf][cell])
+        return int(min(self._walk[shelf][cell], FAR))
 
     def between(self, station: Cell, shelf: int, following: int, lifted: frozenset[Cell],
                 vacated: list[Cell]) -> tuple[int, Cell | None]:
@@ -111,7 +117,7 @@ class Schedules:
         spare = (station, following)
         if spare not in self._spare:
             self._spare[spare] = min((self.carry(station, cell) + 1 + self.walk(cell, following)
-                                      for cell in self.work.spare_cells()), default=INFINITE)
+                                      for cell in self.work.spare_cells()), default=FAR)
         best, taken = min(own, self._spare[spare]), None
         for cell in vacated:
             steps = self.carry(station, cell, lifted) + 1 + self.walk(cell, following)
