@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import random
 
+import numpy as np
 import pytest
 
 from asprilo.bounds import Floor
@@ -304,3 +305,16 @@ def test_shortened_plans_keep_the_rules_and_meet_their_deadlines():
         assert [path[0] for path in shorter] == starts and [path[-1] for path in shorter] == aims
         paths = shorter
     assert met >= 3
+
+
+def test_the_move_tables_grow_with_the_vertices_not_their_pairs():
+    """A 100x100 floor: the rows of moves on its 10,000 vertices (a table of every pair of
+    vertices would be 800 MB), and each neighbour's row in a vertex's column, by hand."""
+    roadmap = Roadmap(Floor([(x, y) for x in range(1, 101) for y in range(1, 101)]))
+    moves = Moves(roadmap)
+    tables = sum(value.nbytes for value in vars(moves).values() if hasattr(value, "nbytes"))
+    assert tables <= 10 * (moves.wide + 1) * roadmap.size * 8
+    corner, right, below = (roadmap.vertex(cell) for cell in ((1, 1), (2, 1), (1, 2)))
+    # the corner's neighbours in Roadmap's order (0,1), (1,0): below is row 1, right row 2
+    found = moves.slots(np.array([below, right, corner]), np.array([corner, corner, corner]))
+    assert found.tolist() == [1, 2, moves.wide]

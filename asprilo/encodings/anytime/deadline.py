@@ -40,8 +40,8 @@ PATIENCE = 60
 class Moves:
     """Where a robot may come onto each vertex from: ``sources[0, v]`` is ``v`` itself (it
     stays), ``sources[k, v]`` for ``k >= 1`` its neighbours (padded with the vertex ``size``,
-    which nobody reaches); ``slot[u * size + v]`` is the row ``k`` of ``u`` in ``sources``'s
-    column ``v`` (``wide``, a row of its own, for staying)."""
+    which nobody reaches); :meth:`slots` gives the row ``k`` of a neighbour in ``sources``'s
+    column of a vertex (``wide``, a row of its own, for staying)."""
 
     def __init__(self, roadmap: Roadmap):
         size = self.size = roadmap.size
@@ -49,14 +49,19 @@ class Moves:
         self.wide = width + 1
         self.sources = np.full((width + 1, size), size, dtype=np.int64)
         self.sources[0] = np.arange(size)
-        self.slot = np.full(size * size, self.wide, dtype=np.int64)
         for v in range(size):
             for k, u in enumerate(roadmap.neighbours[v], start=1):
                 self.sources[k, v] = u
-                self.slot[u * size + v] = k
         self.columns: list[list[int]] = [[int(u) for u in column if u < size] for column in self.sources.T]
         #: each vertex's neighbours, and those of the vertex ``size`` (none)
         self.beside = np.vstack([self.sources[1:].T, np.full((1, width), size, dtype=np.int64)])
+
+    def slots(self, neighbour: np.ndarray, vertex: np.ndarray) -> np.ndarray:
+        """The row ``k`` of each ``neighbour`` in ``sources``'s column of its ``vertex`` (arrays
+        of one shape; ``wide`` where the two are one vertex): looked up among the vertex's few
+        neighbours, since a table of every pair of vertices grows with the floor's size squared."""
+        row = (self.sources[1:, vertex] == neighbour).argmax(axis=0) + 1
+        return np.where(neighbour == vertex, self.wide, row)
 
 
 class Crowd:
@@ -85,7 +90,7 @@ class Crowd:
     def _count(self, full: np.ndarray, sign: int) -> None:
         self.on[self.steps, full] += sign
         here, there = full[:-1], full[1:]
-        self.going[self.steps[:-1], self.moves.slot[there * self.moves.size + here], here] += sign
+        self.going[self.steps[:-1], self.moves.slots(there, here), here] += sign
 
     def take(self, robot: int) -> None:
         """Take ``robot``'s path out of the counts."""
@@ -100,7 +105,7 @@ class Crowd:
         """For each path (one a row) and step, how many robots come the other way over the
         edge it takes into that step (0 where it stays)."""
         here, there = paths[..., :-1], paths[..., 1:]
-        passing = self.going[self.steps[:-1], self.moves.slot[here * self.moves.size + there], there]
+        passing = self.going[self.steps[:-1], self.moves.slots(here, there), there]
         return np.where(here == there, 0, passing)
 
     def collisions(self, full: np.ndarray) -> int:
