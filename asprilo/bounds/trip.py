@@ -34,11 +34,13 @@ def trip_bound(facts: Deliveries, start: float, conflicts: int = TRIP_CONFLICTS)
     """The first horizon from ``start`` on that the relaxation does not refute within
     ``conflicts`` conflicts each (``start`` itself when the program would be too big to try;
     a larger budget may refute more: what a benchmark spends for its best bound)."""
+    actions = len(facts.robots) * sum(len(line.holders) for line in facts.lines)
+    if actions * actions > TRIP_WORK:  # too big whatever the gaps (each is a step at least)
+        return start
     stations = sorted({line.station for line in facts.lines})
     shelves = sorted({s for line in facts.lines for s in line.holders})
     gaps = _gaps(facts, stations, shelves)
     longest = max((g for g in gaps.values() if math.isfinite(g)), default=1)
-    actions = len(facts.robots) * sum(len(line.holders) for line in facts.lines)
     if actions * actions * longest > TRIP_WORK:
         return start
     text = _trip_facts(facts, stations, shelves, gaps)
