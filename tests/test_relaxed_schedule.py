@@ -39,7 +39,7 @@ from helpers.worlds import world
 from asprilo.encodings.anytime import improve, relaxed
 from asprilo.encodings.anytime.improve import Improver, score
 from asprilo.encodings.anytime.prioritized import first_tracks
-from asprilo.encodings.anytime.relaxed import Schedules
+from asprilo.encodings.anytime.relaxed import Assignment, Schedules
 from asprilo.encodings.anytime.reservations import Reservations
 from asprilo.encodings.anytime.router import Router
 
@@ -114,7 +114,8 @@ def test_the_search_finds_the_best_assignment_of_a_brute_force():
 
 def test_an_adopted_assignment_is_the_work_in_the_order_given():
     work = assigned_work(queue())
-    work.adopt([(1, 1, 1, 1), (2, 1, 2, 1)], {2: [2, 1]})
+    assignment = Assignment((((1, 1), ((1, 1),)), ((1, 2), ((2, 1),))), ((2, (2, 1)),))
+    work.adopt(assignment.choice(), assignment.by_robot())
     assert [trip.shelf for trip in work.trips[2]] == [2, 1] and 1 not in work.trips
     assert work.choice.of("carry") == [(2, 1), (2, 2)]
 

@@ -133,7 +133,7 @@ class Improver:
         current = set(self.work.choice.atoms)
         while self.candidates:
             candidate = self.candidates.pop(0)
-            self.work.adopt(candidate.give_atoms(), candidate.by_robot())
+            self.work.adopt(candidate.choice(), candidate.by_robot())
             if set(self.work.choice.atoms) != current or self.work.trips != self.best[2][1]:
                 break
         else:

@@ -13,7 +13,7 @@ a robot that must leave a station another robot uses after it).
 move a shelf to another robot or to another place in a robot's errand, swap two shelves of
 two robots, serve a line from other shelves (shelves already used first: one shelf then
 serves lines of several orders in one visit).  It keeps the best few distinct assignments,
-which :mod:`.improve` routes in turn (the ``schedule`` neighbourhood).
+from which :mod:`.improve` restarts its search.
 """
 
 from __future__ import annotations
@@ -25,11 +25,13 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 
+import clingo
 import numpy as np
 
 from asprilo.domain import Delivery
 from asprilo.model import Cell
 
+from .assignment import Choice
 from .work import Work, entered
 
 Line = tuple[int, int]
@@ -54,10 +56,13 @@ class Assignment:
         """Robot -> its shelves in order."""
         return {robot: list(shelves) for robot, shelves in self.errands}
 
-    def give_atoms(self) -> list[tuple[int, int, int, int]]:
-        """(shelf, order, product, units) for every portion of every line."""
-        return [(shelf, order, product, units) for (order, product), portions in self.gives
-                for shelf, units in portions]
+    def choice(self) -> Choice:
+        """The assignment as the shelf assignment program's atoms: ``give(S,O,P,N)``, ``carry(R,S)``."""
+        atoms = {clingo.Function("give", [clingo.Number(n) for n in (shelf, order, product, units)])
+                 for (order, product), portions in self.gives for shelf, units in portions}
+        atoms |= {clingo.Function("carry", [clingo.Number(robot), clingo.Number(shelf)])
+                  for robot, shelves in self.errands for shelf in shelves}
+        return Choice(atoms)
 
 
 class Schedules:

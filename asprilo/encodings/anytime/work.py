@@ -110,18 +110,12 @@ class Work:
         else:
             self.goals = aims(choice, self._problem)
 
-    def adopt(self, gives: list[tuple[int, int, int, int]], errands: dict[int, list[int]]) -> None:
-        """Take an assignment made elsewhere (:mod:`.relaxed`): ``gives`` as (shelf, order,
-        product, units), ``errands`` the shelves of each robot in the order it brings them.
-        The cells cleared, claimed and offered for the old assignment are dropped (a shelf that
-        one of its robots carried away may be another robot's to fetch now)."""
+    def adopt(self, choice: Choice, order: dict[int, list[int]]) -> None:
+        """Take an assignment made elsewhere (:mod:`.relaxed`), each robot's shelves in ``order``;
+        the old one's cleared, claimed and offered cells are dropped (another robot's now, maybe)."""
         self.clearings, self.claims, self.offered = {}, {}, frozenset()
-        atoms = {clingo.Function("give", [clingo.Number(n) for n in give]) for give in gives}
-        atoms |= {clingo.Function("carry", [clingo.Number(robot), clingo.Number(shelf)])
-                  for robot, shelves in errands.items() for shelf in shelves}
-        self._take(Choice(atoms))
-        self.trips = {robot: sorted(trips_, key=lambda trip: errands[robot].index(trip.shelf))
-                      for robot, trips_ in self.trips.items()}
+        self._take(choice)
+        self.trips = {robot: sorted(ts, key=lambda t: order[robot].index(t.shelf)) for robot, ts in self.trips.items()}
 
     def save(self) -> tuple:
         """The current assignment, to :meth:`restore` it later."""
