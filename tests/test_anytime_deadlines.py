@@ -321,3 +321,15 @@ def _watch_with(clock):
         return Watch(time_limit, cancel, listeners, clock=clock)
 
     return watch
+
+
+def test_the_time_kept_for_the_last_check_shrinks_with_the_plan():
+    """The refinement keeps time for checking its last plan: a plan as long as the one checked
+    last takes as long (0.6 s); one of a third of its steps 0.4 s (half of the check's work
+    grows with the steps: 0.3 + 0.3 / 3), none checked yet: the measured time as it is."""
+    run = search._Run.__new__(search._Run)
+    run.check_seconds, run.checked_makespan = 0.6, 0
+    assert run.check_estimate(60) == pytest.approx(0.6)
+    run.checked_makespan = 180
+    assert run.check_estimate(180) == pytest.approx(0.6)
+    assert run.check_estimate(60) == pytest.approx(0.4)

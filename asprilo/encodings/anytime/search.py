@@ -133,6 +133,7 @@ class _Run:
         #: bounds another process computes (method ``auto``): zero until they arrive
         self.awaited = bounds if isinstance(bounds, AwaitedBounds) else None
         self.check_seconds = 0.0
+        self.checked_makespan = 0  # of the plan checked last, which took check_seconds
         self.last_check = -math.inf
         self.pending: dict[int, Track] | None = None
         self.good: dict[int, Track] | None = None  # the tracks of the last plan that passed the check
@@ -192,6 +193,14 @@ class _Run:
         """Whether a plan may be checked now (:data:`CHECK_GAP`, :data:`CHECK_FACTOR`)."""
         return self.watch.clock() - self.last_check >= max(CHECK_GAP, CHECK_FACTOR * self.check_seconds)
 
+    def check_estimate(self, makespan: int) -> float:
+        """The seconds a check of a plan of ``makespan`` steps will take, from the last check:
+        half of the checker's work grows with the steps (400 agents: 0.52 s for LaCAM's plan
+        of about 180 steps, 0.29 s for the refined one of 58), the rest does not."""
+        if not self.checked_makespan:
+            return self.check_seconds
+        return self.check_seconds * (1 + makespan / self.checked_makespan) / 2
+
     def report(self) -> bool:
         """Check the pending plan and report it; whether it passed."""
         tracks, self.pending = self.pending, None
@@ -204,6 +213,7 @@ class _Run:
         verdict = check(self.instance, plan, self.domain, makespan_bound=result.bound,
                         sum_of_costs_bound=result.sum_of_costs_bound)
         self.check_seconds = clock() - began
+        self.checked_makespan = verdict.metrics.get("horizon") or 0
         self.last_check = clock()
         if not verdict.valid:
             result.message = "a plan failed the check and was dropped: " + verdict.errors[0].message
@@ -420,7 +430,7 @@ def _refine(run: _Run, refiner: Refiner) -> None:
         run.refresh_bounds()
         makespan, soc = refiner.score()
         bound, soc_bound = run.result.bound, run.result.sum_of_costs_bound
-        reserve = 1.5 * run.check_seconds + 0.05
+        reserve = 1.5 * run.check_estimate(makespan) + 0.05
         if (makespan <= bound and (soc_bound is None or soc <= soc_bound)) or run.watch.out_of_time(keep=reserve):
             break
         steps += 1
