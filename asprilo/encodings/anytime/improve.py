@@ -22,6 +22,9 @@ Neighbourhoods, chosen with weights that grow with their successes:
   cell of a shelf that never comes back there (the last shelf of another robot, or one put
   down elsewhere: :meth:`.work.Work.vacated`), drawn at random; the robot of that shelf goes
   first (it lifts the shelf before the cell is used) and parks elsewhere (A/B/C).
+- ``hold``: robots without work lift the shelves serving no order that stand on a short way
+  of a late robot's carry to its station, and park holding them off that way
+  (:mod:`.asides`); they go first (A/B/C).
 
 Robots parked for good on a station the freed robots deliver at are freed as well (routed
 after them): a changed errand may need that station later than before.
@@ -42,13 +45,14 @@ from collections.abc import Callable
 from asprilo.domain import Job
 from asprilo.model import Cell
 
+from .asides import hold_aside
 from .prioritized import first_tracks
 from .relaxed import Assignment, Schedules
 from .reservations import Reservations, Track
 from .router import Router
 from .work import Work
 
-KINDS = ("alone", "crowd", "tail", "random", "swap", "order", "clear", "vacate")
+KINDS = ("alone", "crowd", "tail", "random", "swap", "order", "clear", "vacate", "hold")
 #: the most robots one neighbourhood frees: in M/Md many robots cross paths and give way to
 #: each other, and larger groups find more (200 MovingAI agents, sum of costs after 60 s:
 #: 1.31 times its bound with 8, 1.27-1.29 with 16, 1.28 with 24 or 32)
@@ -86,7 +90,8 @@ class Improver:
         self.weights = dict.fromkeys(KINDS, 1.0)
         self.last_share, self.group = LAST_SHARE[work.domain.work], GROUP[work.domain.work]
         if work.domain.work is Job.GOALS:  # a robot of M/Md has one goal and no place to park near it
-            self.weights["alone"] = self.weights["order"] = self.weights["clear"] = self.weights["vacate"] = 0.0
+            for kind in ("alone", "order", "clear", "vacate", "hold"):
+                self.weights[kind] = 0.0
         if not work.reassignable():
             self.weights["swap"] = 0.0
         #: whether a plan as good as the present one is kept (moves on plateaus)
@@ -202,6 +207,9 @@ class Improver:
             return self._clearing(late), 0, False
         if kind == "vacate":
             return self._vacating(late), 0, False
+        if kind == "hold":  # the robots holding shelves aside go first
+            helpers = hold_aside(self.work, late, self.random)
+            return ([*helpers, late] if helpers else []), 0, False
         if kind in ("crowd", "tail"):
             group = [late, *self._met(late)[:size - 1]]
             if kind == "crowd":

@@ -23,6 +23,7 @@ from asprilo.bounds import INFINITE
 from asprilo.domain import Domain, Job
 from asprilo.model import DIRECTIONS, Cell, Instance
 
+from .asides import held
 from .assignment import Choice, aims, goal_problem, shelf_problem
 from .errands import Task, Trip, delivery_errand, goal_errand, shelf_home, trips
 from .grid import Grid, cells_of
@@ -181,8 +182,8 @@ class Work:
         if self.domain.work is Job.GOALS:
             return goal_errand(self.goals[robot]) if robot in self.goals else self._make_room(robot)
         trips_ = self.trips.get(robot, [])
-        if not trips_:
-            return self._make_room(robot)
+        if not trips_:  # a robot without trips may hold shelves aside (:mod:`.asides`)
+            return held(self, robot) or self._make_room(robot)
         last = trips_[-1].deliveries[-1][0] if trips_[-1].deliveries else None
         home = self.homes[trips_[-1].shelf]
         # a shelf carried from the start has the robot's start cell as its home: park
@@ -376,8 +377,7 @@ class Work:
         self.claims = {shelf: cell for shelf, cell in self.claims.items() if shelf not in shelves and cell not in cells}
 
     def _way(self, cell: Cell, carrying: bool):
-        """Steps from ``cell`` to every cell (``carrying``: around the resting shelves; the
-        grid keeps the latest searches)."""
+        """Steps from ``cell`` to every cell (``carrying``: around the resting shelves; cached)."""
         return self.grid.distances([cell], self.carrying if carrying else None)
 
     def _near(self, station: Cell) -> tuple[Cell, ...]:
