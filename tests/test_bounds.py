@@ -170,6 +170,39 @@ def test_the_trip_steps_follow_the_cells_a_robot_must_use():
     assert (gaps["detour", 1, station], gaps["detour", 2, station]) == (2, 3)
 
 
+CORRIDOR = """
+    init(object(node,1),value(at,(1,1))). init(object(node,2),value(at,(2,1))).
+    init(object(node,3),value(at,(3,1))). init(object(node,4),value(at,(4,1))).
+    init(object(node,5),value(at,(2,2))). init(object(pickingStation,1),value(at,(1,1))).
+    init(object(robot,1),value(at,(4,1))).
+    init(object(shelf,1),value(at,(3,1))). init(object(shelf,2),value(at,(2,1))).
+    init(object(product,1),value(on,(1,2))). init(object(product,2),value(on,(2,1))).
+    init(object(order,1),value(line,(1,1))). init(object(order,1),value(pickingStation,1)).
+    init(object(order,2),value(line,(1,1))). init(object(order,2),value(pickingStation,1)).
+"""
+
+
+def test_a_shelf_behind_another_waits_for_its_lift():
+    """A corridor (1,1)..(4,1) with a pocket (2,2); station P on (1,1), the robot on (4,1),
+    shelf 1 (two units of the product both orders ask for) on (3,1) behind shelf 2 (nothing
+    ordered) on (2,1).  By hand, the minimum is 12: walk 2, lift shelf 2, into the pocket,
+    put it down, walk 2, lift shelf 1, carry 2, deliver twice.  ``asprilo solve --method asp``
+    refutes horizons 9, 10 and 11.  Without the lift, shelf 1 enters (2,1) one step after the
+    nearest robot could lift shelf 2 (step 3): there at 4, on P at 5, delivers at 6 and 7: 7.
+    With it (trip.lp's lift/3): shelf 1 has no way around (clear/3), so shelf 2 is lifted
+    at step 3 at the earliest (walk 2, lift), and the robot that then lifts shelf 1 needs
+    lift_gap(2,1) = 3 more steps (shelf 2 may be put back on its own cell, 0 moves, put down,
+    1 move, lift; floor distances only), lifts shelf 1 at 6 at the earliest, carries it 2,
+    delivers at 9 and 10: the bound is 10, between the old 7 and the minimum 12."""
+    from asprilo.bounds.trip import blocker_facts
+    instance = read_instance(Source("<corridor>", CORRIDOR))
+    facts = Deliveries(instance, Domain.A, Floor(instance.cells))
+    assert "clear(1,0,1000000)." in blocker_facts(facts, [1], [(1, 1)])  # no way around
+    assert "blocks(1,0,2,2,1)." in blocker_facts(facts, [1], [(1, 1)])
+    assert "lift_gap(2,1,3)." in blocker_facts(facts, [1], [(1, 1)])
+    assert makespan_bound(instance, Domain.A) == 10
+
+
 @pytest.mark.parametrize("name, domain, minimal", [
     ("x2_y2_n4_r2_s2_ps1_pr2_u4_o2_N1", Domain.C, 4), ("x2_y2_n4_r2_s2_ps1_pr2_u4_o2_N1", Domain.B, 5),
     ("x3_y3_n9_r1_s1_ps1_pr1_u1_o1_N1", Domain.B, 9), ("x4_y4_n16_r2_s3_ps1_pr2_u4_o2_N1", Domain.C, 7),

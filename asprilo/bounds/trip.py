@@ -130,6 +130,7 @@ def _trip_facts(facts: Deliveries, stations: list, shelves: list[int], gaps: dic
                 out.append(f"handled({shelf},{q},{int(handled)}). carry({shelf},{q},{int(carry)}).")
     out.extend(f"carried({shelf})." for shelf in shelves if shelf in facts.carried)
     out.extend(_shelf_gaps(facts, shelves))
+    out.extend(blocker_facts(facts, shelves, stations))
     for (name, *key), steps in gaps.items():
         if math.isfinite(steps):
             out.append(f"{name}({','.join(str(index.get(part, part)) for part in key)},{int(steps)}).")
@@ -197,4 +198,103 @@ def _robot_facts(facts: Deliveries, robot: int, position: int, shelves: list[int
             own = robot_release(facts, robot, position, shelf, station)
             if carrier.get(shelf, robot) == robot and math.isfinite(own):
                 out.append(f"own({robot},{shelf},{q},{int(own)}).")
+    return out
+
+
+
+def blocker_facts(facts: Deliveries, shelves: list[int], stations: list) -> list[str]:
+    """The shelves resting in the way of a carry (trip.lp's lift/3), as facts:
+    ``clear(S,P,C)``: the fewest moves of S from where it started to station P through no
+    cell where another shelf starts; ``blocks(S,P,B,K,D)``: B starts on a cell X with K moves
+    from S over X to P, D of them from X to P (only where K < C: a shorter way passes such a
+    cell); and the robot time a lift of each such B costs (:func:`_lift_gaps`)."""
+    resting = {s: cell for s, cell in facts.shelves.items() if s not in facts.carried}
+    own = [s for s in shelves if s in resting]
+    if not own or not stations:
+        return []
+    out: list[str] = []
+    needed: set[int] = set()
+    for q, station in enumerate(stations):
+        out.extend(_ways(facts, resting, own, q, station, needed))
+    return out + _lift_gaps(facts, shelves, stations, sorted(needed))
+
+
+def _ways(facts: Deliveries, resting: dict, own: list[int], q: int, station, needed: set[int]) -> list[str]:
+    """``clear`` and ``blocks`` of the shelves ``own`` at ``station`` (number ``q``); adds the
+    blocking shelves to ``needed``."""
+    others = sorted(resting)
+    from_shelf = facts.floor.distances([resting[s] for s in own], [resting[b] for b in others])
+    to_station = facts.floor.distances([station], [resting[b] for b in others])[0]
+    around = carry_arrivals(facts.instance.cells - set(resting.values()), {station: 0}, {})
+    out = []
+    for i, shelf in enumerate(own):
+        x, y = resting[shelf]
+        clear = 0 if resting[shelf] == station else 1 + min(
+            (around.get((x + dx, y + dy), INFINITE) for dx, dy in DIRECTIONS), default=INFINITE)
+        clear = min(clear, 10**6)
+        out.append(f"clear({shelf},{q},{int(clear)}).")
+        for j, other in enumerate(others):
+            way = from_shelf[i][j] + to_station[j]
+            if other != shelf and way < clear:
+                out.append(f"blocks({shelf},{q},{other},{int(way)},{int(to_station[j])}).")
+                needed.add(other)
+    return out
+
+
+def _lift_gaps(facts: Deliveries, shelves: list[int], stations: list, lifted: list[int]) -> list[str]:
+    """For each shelf B of ``lifted``, lifted where it started and moved off (it may be put
+    back there later): ``set_down(B,Q,A)`` and ``lift_gap(B,S,G)`` as :func:`_gaps`' aside/3
+    and ``between/3`` but with B's own cell allowed for the put-down; for a B that no line
+    needs, also ``reach_shelf``, ``fetch`` and ``between(S,B,G)`` as for the lines' shelves."""
+    storage = sorted(facts.instance.storage_cells)
+    if not lifted or not storage:
+        return []
+    extra = [b for b in lifted if b not in shelves]
+    out = _reach(facts, extra)
+    everyone = shelves + extra
+    standing = storage_to_shelves(facts, storage, everyone)  # nothing put down where they stand
+    moved = facts.floor.distances([facts.shelves[b] for b in lifted], storage).T
+    to_storage = facts.floor.distances(stations, storage)
+    resting = set(storage) | set(facts.shelves.values())
+    for q, station in enumerate(stations):
+        onward = _onward(facts, storage, resting, station)
+        for k, shelf in enumerate(lifted):
+            aside = float((moved[:, k] + onward).min()) + 3
+            if math.isfinite(aside):
+                out.append(f"set_down({shelf},{q},{int(aside)}).")
+            fetch = float((to_storage[q] + standing[:, everyone.index(shelf)]).min()) + 2
+            if shelf in extra and math.isfinite(fetch):
+                out.append(f"fetch({q},{shelf},{int(fetch)}).")
+    return out + _orders_of_lifts(shelves, lifted, extra, standing, moved)
+
+
+def _reach(facts: Deliveries, extra: list[int]) -> list[str]:
+    """``reach_shelf`` of the shelves ``extra`` (as :func:`_robot_facts` for the lines' shelves)."""
+    out = []
+    for position, robot in enumerate(facts.robots):
+        busy = facts.instance.robots[robot].carries is not None
+        for shelf in extra:
+            reach = float(facts.walk[shelf][position]) + 1 + busy
+            if math.isfinite(reach):
+                out.append(f"reach_shelf({robot},{shelf},{int(reach)}).")
+    return out
+
+
+def _orders_of_lifts(shelves: list[int], lifted: list[int], extra: list[int], standing: np.ndarray,
+                     moved: np.ndarray) -> list[str]:
+    """``lift_gap(B,S,G)`` for each lifted B, and ``between(S,B,G)`` for each B of ``extra``:
+    carry the first shelf to a storage cell, put it down, walk to the second, lift it."""
+    everyone = shelves + extra
+    out = []
+    for k, shelf in enumerate(lifted):
+        column = standing[:, everyone.index(shelf)]
+        for j, other in enumerate(everyone):
+            if other == shelf:
+                continue
+            after = float((moved[:, k] + standing[:, j]).min()) + 2
+            if math.isfinite(after):
+                out.append(f"lift_gap({shelf},{other},{int(after)}).")
+            before = float((standing[:, j] + column).min()) + 2
+            if shelf in extra and other in shelves and math.isfinite(before):
+                out.append(f"between({other},{shelf},{int(before)}).")
     return out
