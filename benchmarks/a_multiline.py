@@ -3,9 +3,9 @@ anytime planner's makespan against the lower bound on the exercise-size call, ma
 
 Every seed runs as whole commands: ``asprilo gen CALL --seed S -C`` writes the instance,
 then ``asprilo solve --domain a --method anytime --time-limit T --json`` plans it.  The best
-lower bound is then sought beyond the planner's: the trip relaxation
-(:mod:`asprilo.bounds.trip`) from the planner's bound up, with ``--bound-conflicts`` per
-horizon instead of the planner's 20,000 (in a process of its own; horizons below the
+lower bound is then sought beyond the planner's: the trip relaxation (with the lifts that
+clear a carry's way, :mod:`asprilo.bounds.trip`) from the planner's bound up, with
+``--bound-conflicts`` per horizon instead of the planner's 20,000 (in a process of its own; horizons below the
 planner's bound are refuted already).  Prints per seed the first plan's time, the makespan,
 the planner's bound, the best bound, the ratio of the makespan to the best bound and whether
 the plan is proven minimal (it meets a bound), then the median and the worst ratio, how many
