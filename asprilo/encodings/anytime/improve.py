@@ -24,7 +24,8 @@ Neighbourhoods, chosen with weights that grow with their successes:
   first (it lifts the shelf before the cell is used) and parks elsewhere (A/B/C).
 - ``hold``: robots without work lift the shelves serving no order that stand on a short way
   of a late robot's carry to its station, and park holding them off that way
-  (:mod:`.asides`); they go first (A/B/C).
+  (:mod:`.asides`); they go first (A/B/C, only where some robot is without work at the
+  start: elsewhere the search runs as it did without it).
 
 Robots parked for good on a station the freed robots deliver at are freed as well (routed
 after them): a changed errand may need that station later than before.
@@ -45,7 +46,7 @@ from collections.abc import Callable
 from asprilo.domain import Job
 from asprilo.model import Cell
 
-from .asides import hold_aside
+from .asides import hold_aside, idle_robots
 from .prioritized import first_tracks
 from .relaxed import Assignment, Schedules
 from .reservations import Reservations, Track
@@ -90,8 +91,10 @@ class Improver:
         self.weights = dict.fromkeys(KINDS, 1.0)
         self.last_share, self.group = LAST_SHARE[work.domain.work], GROUP[work.domain.work]
         if work.domain.work is Job.GOALS:  # a robot of M/Md has one goal and no place to park near it
-            for kind in ("alone", "order", "clear", "vacate", "hold"):
+            for kind in ("alone", "order", "clear", "vacate"):
                 self.weights[kind] = 0.0
+        if work.domain.work is Job.GOALS or not idle_robots(work):  # nobody to hold a shelf aside
+            self.weights["hold"] = 0.0
         if not work.reassignable():
             self.weights["swap"] = 0.0
         #: whether a plan as good as the present one is kept (moves on plateaus)
