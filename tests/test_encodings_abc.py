@@ -10,6 +10,7 @@ from asprilo.checker import check
 from asprilo.domain import Domain
 from asprilo.encodings import SolveStatus, reference_encodings, solve
 from asprilo.encodings.assignment import assign_tasks, assignment_of_plan, distance_facts
+from asprilo.encodings.solving.bounds import LowerBounds
 from asprilo.encodings.solving.methods import assigned, program
 from asprilo.errors import InputError
 from asprilo.model import Action, Plan
@@ -182,13 +183,18 @@ def test_a_given_assignment_that_does_not_fit_is_bad_input(facts, message):
 
 
 def test_a_plan_along_the_assignment_is_tightened_without_it(no_probe):
-    # read as C, the small A example's assignment leads to a plan of 15 steps, above the lower
-    # bound (14); one step shorter is then tried without the assignment, and refuted.  The
-    # upward search without assignment, a separate path, agrees: 14 refuted, 15 found.
+    # read as C, the small A example's assignment leads to a plan of 15 steps, above a lower
+    # bound of 14 (given: the strong bound is 15 since the trip relaxation counts the lifts
+    # that clear a carry's way, which would leave nothing to tighten); one step shorter is
+    # then tried without the assignment, and refuted.  The upward search without assignment,
+    # a separate path, agrees: 14 refuted, 15 found; so 15 is the minimum and the strong
+    # bound's search tries 15 alone.
     instance = read_instance(SMALL_A)
-    plain = solve(instance, Domain.C, time_limit=120)
+    plain = solve(instance, Domain.C, time_limit=120, bounds=LowerBounds(14))
     assert [(a.horizon, a.result) for a in plain.horizons_tried] == [(14, "unsat"), (15, "sat")]
-    outcome = solve(instance, Domain.C, assign=True, time_limit=120)
+    strong = solve(instance, Domain.C, time_limit=120)
+    assert [(a.horizon, a.result) for a in strong.horizons_tried] == [(15, "sat")]
+    outcome = solve(instance, Domain.C, assign=True, time_limit=120, bounds=LowerBounds(14))
     assert [(a.horizon, a.result, a.note) for a in outcome.horizons_tried] == [
         (15, "sat", ""), (14, "unsat", "without assignment")]
     assert (outcome.lower_bound, outcome.horizon, outcome.minimal, outcome.check.valid) == (14, 15, True, True)
@@ -196,9 +202,10 @@ def test_a_plan_along_the_assignment_is_tightened_without_it(no_probe):
 
 def test_a_search_with_assignment_probes_without_one_first():
     # read as C, the small A example has no plan of 14 steps and one of 15 (the upward search
-    # without assignment above); the probe finds both before any assignment is computed, and
-    # the plan it returns follows the assignment read off it: each robot lifts only its shelves
-    outcome = solve(read_instance(SMALL_A), Domain.C, assign=True, time_limit=120)
+    # without assignment above); from a lower bound of 14 the probe finds both before any
+    # assignment is computed, and the plan it returns follows the assignment read off it:
+    # each robot lifts only its shelves
+    outcome = solve(read_instance(SMALL_A), Domain.C, assign=True, time_limit=120, bounds=LowerBounds(14))
     assert [(a.horizon, a.result, a.note) for a in outcome.horizons_tried] == [
         (14, "unsat", "without assignment"), (15, "sat", "without assignment")]
     assert (outcome.horizon, outcome.minimal, outcome.check.valid, outcome.refuted) == (15, True, True, [14])
