@@ -9,7 +9,6 @@ undecodable byte becomes U+FFFD) and passes the message on to the logger given t
 
 from __future__ import annotations
 
-import _thread
 import contextlib
 
 import clingo.core
@@ -25,11 +24,7 @@ def install() -> None:
     if _installed or ffi is None or panic is None or not hasattr(clingo.core, "_pyclingo_logger_callback"):
         return
 
-    def stop_or_panic(exception: type[BaseException], value: BaseException, traceback) -> None:
-        if not stop_again(exception):
-            panic(exception, value, traceback)
-
-    @ffi.def_extern(onerror=stop_or_panic, name="pyclingo_logger_callback")
+    @ffi.def_extern(onerror=panic, name="pyclingo_logger_callback")
     def _logger(code, message, data):
         logger = ffi.from_handle(data)
         text = ffi.string(message).decode("utf-8", errors="replace")
@@ -37,16 +32,6 @@ def install() -> None:
             logger(clingo.core.MessageCode(code), text)
 
     _installed = True
-
-
-def stop_again(exception: type[BaseException]) -> bool:
-    """Whether ``exception``, raised inside the logger, is a stop request (Ctrl-C, or SIGTERM
-    made one): it cannot leave clingo's nothrow scope, so the main thread is interrupted
-    again and its SIGINT handler runs at the next Python step out of it."""
-    if not issubclass(exception, KeyboardInterrupt):
-        return False
-    _thread.interrupt_main()
-    return True
 
 
 def first_error(messages: list[str]) -> str | None:
