@@ -24,6 +24,13 @@ def _at(path: list[int], step: int) -> int:
     return path[min(step, len(path) - 1)]
 
 
+def _random_roadmap(draw: random.Random, rows: int) -> Roadmap | None:
+    """A floor of up to 5 columns and ``rows`` rows with a few cells missing (None: under 3 cells)."""
+    cells = [(x, y) for x in range(1, draw.randint(2, 5) + 1) for y in range(1, draw.randint(2, rows) + 1)
+             if draw.random() < 0.85]
+    return Roadmap(Floor(cells)) if len(cells) >= 3 else None
+
+
 def _occupied(roadmap: Roadmap, paths: list[list[int]]) -> Occupancy:
     occupancy = Occupancy(roadmap, 2)
     for robot, path in enumerate(paths):
@@ -93,11 +100,9 @@ def _brute(roadmap: Roadmap, others: list[list[int]], start: int, goal: int, lim
 def test_the_earliest_arrival_is_that_of_a_search_over_every_step(seed):
     draw, compared = random.Random(seed), 0
     for _ in range(40):
-        cells = [(x, y) for x in range(1, draw.randint(2, 5) + 1) for y in range(1, draw.randint(2, 5) + 1)
-                 if draw.random() < 0.85]
-        if len(cells) < 3:
+        roadmap = _random_roadmap(draw, 5)
+        if roadmap is None:
             continue
-        roadmap = Roadmap(Floor(cells))
         vertices = draw.sample(range(roadmap.size), roadmap.size)
         starts, others = vertices[:draw.randint(1, min(5, roadmap.size - 1))], []
         for start in starts[:-1]:  # the others, each planned around those before it
@@ -242,10 +247,8 @@ def _brute_fewest(roadmap: Roadmap, others: list[list[int]], start: int, goal: i
 def test_the_fewest_collisions_are_those_of_a_search_over_every_step(seed):
     draw, compared = random.Random(seed), 0
     for _ in range(30):
-        cells = [(x, y) for x in range(1, draw.randint(2, 5) + 1) for y in range(1, draw.randint(2, 4) + 1)
-                 if draw.random() < 0.85]
-        roadmap = Roadmap(Floor(cells))
-        if roadmap.size < 3:
+        roadmap = _random_roadmap(draw, 4)
+        if roadmap is None:
             continue
         deadline = draw.randint(2, 9)
         others = []  # random walks (they may meet each other: only ours is counted)
