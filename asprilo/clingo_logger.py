@@ -5,6 +5,8 @@ to an umlaut or a dash); its Python binding decodes them strictly, and the decod
 raised inside clingo, aborts the whole process ("PANIC: exception in nothrow scope").
 :func:`install` replaces the binding's callback by one that decodes leniently (an
 undecodable byte becomes U+FFFD) and passes the message on to the logger given to clingo.
+It cannot raise either: a stop signal that comes while it runs is handled once clingo is
+done (:func:`asprilo.exits.deferring`).
 """
 
 from __future__ import annotations
@@ -12,6 +14,8 @@ from __future__ import annotations
 import contextlib
 
 import clingo.core
+
+from asprilo.exits import NOTHROW_CALLBACKS
 
 _installed = False
 
@@ -31,6 +35,7 @@ def install() -> None:
         with contextlib.suppress(Exception):  # a logger must not fail inside clingo: the message is dropped
             logger(clingo.core.MessageCode(code), text)
 
+    NOTHROW_CALLBACKS.add(_logger.__code__)
     _installed = True
 
 

@@ -11,15 +11,60 @@
 
 from __future__ import annotations
 
+import _thread
 import contextlib
 import signal
 import threading
-from collections.abc import Iterator
+import time
+from collections.abc import Callable, Iterator
+from types import CodeType, FrameType
 
 #: nothing was done: bad input, a usage error, an output that cannot be written
 REFUSED = 2
 #: stopped from outside (Ctrl-C, SIGTERM, SIGHUP): 128 plus SIGINT's number, as shells say it
 INTERRUPTED = 130
+
+#: callbacks that clingo runs in a C++ nothrow scope, where an exception aborts the whole
+#: process ("PANIC: exception in nothrow scope"); :mod:`asprilo.clingo_logger` adds its logger
+NOTHROW_CALLBACKS: set[CodeType] = set()
+
+Handler = Callable[[int, FrameType | None], object]
+
+
+def cannot_raise(frame: FrameType | None) -> bool:
+    """Whether the Python code running at ``frame`` cannot pass an exception on: a clingo
+    callback in a nothrow scope, or a destructor (Python prints the exception and drops it,
+    so a stop request raised there would be lost)."""
+    while frame is not None:
+        if frame.f_code in NOTHROW_CALLBACKS or frame.f_code.co_name == "__del__":
+            return True
+        frame = frame.f_back
+    return False
+
+
+def deferring(handler: Handler) -> Handler:
+    """``handler`` for a stop signal, put off while code that cannot raise runs: the signal is
+    then raised again for the main thread, and handled at its first step out of that code."""
+
+    def handle(number: int, frame: FrameType | None) -> None:
+        if cannot_raise(frame):
+            # raised again by a thread of its own (a bare one: the threading module's locks may
+            # be held where the signal came); raised from here, it would be handled at once,
+            # inside this handler
+            _thread.start_new_thread(_signal_main_thread_soon, (number,))
+        else:
+            handler(number, frame)
+
+    return handle
+
+
+def _signal_main_thread_soon(number: int) -> None:
+    time.sleep(_RETRY_SECONDS)
+    _thread.interrupt_main(number)
+
+
+#: how long a put-off stop signal waits before it is raised again
+_RETRY_SECONDS = 0.005
 
 
 @contextlib.contextmanager

@@ -31,7 +31,7 @@ from collections.abc import Callable, Iterator, Sequence
 from asprilo import __version__
 from asprilo.arguments import add_reading_options, reading_limits
 from asprilo.errors import InputError, InputWarning
-from asprilo.exits import INTERRUPTED
+from asprilo.exits import INTERRUPTED, deferring
 from asprilo.limits import using
 
 #: name -> (module, one-line summary); a command is listed here once it works.
@@ -137,7 +137,8 @@ def _stops_as_interrupts() -> Iterator[None]:
     """While a command runs, SIGTERM and SIGHUP do what Ctrl-C (SIGINT) does at that moment:
     its handler runs (``solve`` stops its search and answers with the best plan so far), or
     KeyboardInterrupt is raised.  A signal the process was started to ignore (``nohup``)
-    stays ignored."""
+    stays ignored.  One that comes while code runs that cannot raise (clingo's logger, a
+    destructor) is handled right after it."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -148,10 +149,13 @@ def _stops_as_interrupts() -> Iterator[None]:
             raise KeyboardInterrupt
         handler(signal.SIGINT, frame)  # signal.default_int_handler raises KeyboardInterrupt
 
-    previous = {stop: signal.getsignal(stop) for stop in (signal.SIGTERM, signal.SIGHUP)}
+    previous = {stop: signal.getsignal(stop) for stop in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP)}
     for stop, handler in previous.items():
-        if handler != signal.SIG_IGN:
-            signal.signal(stop, as_ctrl_c)
+        if stop == signal.SIGINT:
+            if handler is signal.default_int_handler:
+                signal.signal(stop, deferring(handler))
+        elif handler != signal.SIG_IGN:
+            signal.signal(stop, deferring(as_ctrl_c))
     try:
         yield
     finally:
