@@ -60,7 +60,7 @@ def deferring(handler: Handler) -> Handler:
 
 def _signal_main_thread_soon(number: int) -> None:
     time.sleep(_RETRY_SECONDS)
-    _thread.interrupt_main(number)
+    _thread.interrupt_main(signal.Signals(number))
 
 
 #: how long a put-off stop signal waits before it is raised again

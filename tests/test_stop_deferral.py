@@ -7,7 +7,6 @@ command, its stop request lost, ran on).  The waits below are hang guards, not m
 
 from __future__ import annotations
 
-import os
 import signal
 import subprocess
 import sys
