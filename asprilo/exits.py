@@ -14,6 +14,7 @@ from __future__ import annotations
 import _thread
 import contextlib
 import signal
+import sys
 import threading
 import time
 from collections.abc import Callable, Iterator
@@ -56,6 +57,26 @@ def deferring(handler: Handler) -> Handler:
             handler(number, frame)
 
     return handle
+
+
+@contextlib.contextmanager
+def keeping_lost_stops() -> Iterator[None]:
+    """A stop request (KeyboardInterrupt) raised where Python cannot pass it on and only
+    reports it (a destructor the frame test missed, a weakref callback, a finalizer) is not
+    lost meanwhile: Ctrl-C is raised again for the main thread."""
+    previous = sys.unraisablehook
+
+    def hook(unraisable) -> None:
+        if isinstance(unraisable.exc_value, KeyboardInterrupt):
+            _thread.start_new_thread(_signal_main_thread_soon, (signal.SIGINT,))
+        else:
+            previous(unraisable)
+
+    sys.unraisablehook = hook
+    try:
+        yield
+    finally:
+        sys.unraisablehook = previous
 
 
 def _signal_main_thread_soon(number: int) -> None:

@@ -3,7 +3,9 @@
 Two such places were met: clingo's logger callback, which clingo runs in a C++ nothrow scope
 (KeyboardInterrupt raised there aborted the process: "PANIC: exception in nothrow scope"), and
 a destructor such as ``clingo.Control.__del__`` (the exception was printed and dropped, and the
-command, its stop request lost, ran on).  The waits below are hang guards, not measurements."""
+command, its stop request lost, ran on).  A weakref finalizer would drop it in the same way;
+``exits.keeping_lost_stops`` raises such a stop again after it.  The waits below are hang
+guards, not measurements."""
 
 from __future__ import annotations
 
@@ -11,6 +13,7 @@ import signal
 import subprocess
 import sys
 import time
+import weakref
 from pathlib import Path
 
 import clingo
@@ -67,6 +70,33 @@ def test_a_signal_in_clingos_logger_is_handled_after_it(heard):
     wait_for(heard)
     assert during == [[], []]
     assert len(heard) == 1 and heard[0] not in ("logger", "_logger")
+
+
+def test_a_stop_raised_in_a_finalizer_is_raised_again_after_it():
+    """A weakref finalizer is no destructor the frame test knows: the stop raised there (as
+    SIGTERM raises it during a command) is reported as unraisable, then raised again."""
+    from asprilo.cli import _stops_as_interrupts
+
+    class Owner:
+        pass
+
+    ran, interrupted = [], []
+    with _stops_as_interrupts():
+        owner = Owner()
+
+        def stop_here() -> None:
+            ran.append(True)
+            signal.getsignal(signal.SIGTERM)(signal.SIGTERM, sys._getframe())
+
+        weakref.finalize(owner, stop_here)
+        try:
+            del owner  # the finalizer runs here, and its KeyboardInterrupt is only reported
+            deadline = time.monotonic() + GUARD
+            while time.monotonic() < deadline:
+                time.sleep(0.001)
+        except KeyboardInterrupt:
+            interrupted.append(True)
+    assert ran == [True] and interrupted == [True]
 
 
 def test_code_that_can_raise_is_told_at_once(heard):

@@ -31,7 +31,7 @@ from collections.abc import Callable, Iterator, Sequence
 from asprilo import __version__
 from asprilo.arguments import add_reading_options, reading_limits
 from asprilo.errors import InputError, InputWarning
-from asprilo.exits import INTERRUPTED, deferring
+from asprilo.exits import INTERRUPTED, deferring, keeping_lost_stops
 from asprilo.limits import using
 
 #: name -> (module, one-line summary); a command is listed here once it works.
@@ -138,7 +138,7 @@ def _stops_as_interrupts() -> Iterator[None]:
     its handler runs (``solve`` stops its search and answers with the best plan so far), or
     KeyboardInterrupt is raised.  A signal the process was started to ignore (``nohup``)
     stays ignored.  One that comes while code runs that cannot raise (clingo's logger, a
-    destructor) is handled right after it."""
+    destructor, a finalizer) is handled right after it."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
@@ -157,7 +157,8 @@ def _stops_as_interrupts() -> Iterator[None]:
         elif handler != signal.SIG_IGN:
             signal.signal(stop, deferring(as_ctrl_c))
     try:
-        yield
+        with keeping_lost_stops():
+            yield
     finally:
         for stop, handler in previous.items():
             signal.signal(stop, handler if handler is not None else signal.SIG_DFL)
