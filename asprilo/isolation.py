@@ -362,7 +362,9 @@ _LIVE: set[Any] = set()
 
 @atexit.register
 def _kill_live_children() -> None:
-    for process in list(_LIVE):
+    # multiprocessing's children too: an interrupt between a child's start and its entry in
+    # _LIVE (seen once, a SIGTERM as the child appeared) would leave one behind
+    for process in [*_LIVE, *multiprocessing.active_children()]:
         with contextlib.suppress(OSError, ValueError, AttributeError):
             process.kill()
 

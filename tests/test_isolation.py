@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import subprocess
+import sys
 import threading
 import time
 
@@ -68,3 +70,24 @@ def test_an_error_in_the_child_is_raised_in_the_parent():
     with pytest.raises(InputError) as raised:
         run_isolated(_bad_input)
     assert str(raised.value) == "missing.lp:3: no such file"
+
+
+#: a child started and never waited for (as when an interrupt comes between its start and its
+#: entry among the live children); it ignores SIGTERM, as every child does
+UNWAITED_CHILD = """
+import time
+from asprilo.isolation import _start
+
+def sleep(seconds, report):
+    report("up")  # it ignores SIGTERM from now on
+    time.sleep(seconds)
+
+process, receiver = _start(sleep, (120,), None, None)
+receiver.recv()
+"""
+
+
+def test_a_child_never_waited_for_does_not_keep_its_parent_at_exit():
+    """multiprocessing's exit handler sends it SIGTERM, which it ignores, and waits for it: 120 s
+    before; it is killed first now, and the parent ends at once (60 s is a hang guard)."""
+    subprocess.run([sys.executable, "-c", UNWAITED_CHILD], timeout=60, check=True)
