@@ -187,8 +187,7 @@ def _robot_facts(facts: Deliveries, robot: int, position: int, shelves: list[int
     lift = 0 if start.carries is not None else 1
     walks = facts.floor.distances([start.at], stations)[0]
     for shelf in shelves:
-        # lifting a shelf where it started: walk there (after putting down a carried one), lift
-        reach = float(facts.walk[shelf][position]) + 1 + (start.carries is not None)
+        reach = _reach_step(facts, robot, position, shelf)
         if shelf not in facts.carried and math.isfinite(reach):
             out.append(f"reach_shelf({robot},{shelf},{int(reach)}).")
         for q, station in enumerate(stations):
@@ -199,7 +198,6 @@ def _robot_facts(facts: Deliveries, robot: int, position: int, shelves: list[int
             if carrier.get(shelf, robot) == robot and math.isfinite(own):
                 out.append(f"own({robot},{shelf},{q},{int(own)}).")
     return out
-
 
 
 def blocker_facts(facts: Deliveries, shelves: list[int], stations: list) -> list[str]:
@@ -272,12 +270,17 @@ def _reach(facts: Deliveries, extra: list[int]) -> list[str]:
     """``reach_shelf`` of the shelves ``extra`` (as :func:`_robot_facts` for the lines' shelves)."""
     out = []
     for position, robot in enumerate(facts.robots):
-        busy = facts.instance.robots[robot].carries is not None
         for shelf in extra:
-            reach = float(facts.walk[shelf][position]) + 1 + busy
+            reach = _reach_step(facts, robot, position, shelf)
             if math.isfinite(reach):
                 out.append(f"reach_shelf({robot},{shelf},{int(reach)}).")
     return out
+
+
+def _reach_step(facts: Deliveries, robot: int, position: int, shelf: int) -> float:
+    """The earliest step ``robot`` (number ``position``) lifts ``shelf`` where it started: it
+    walks there (after putting down a shelf it carries from the start) and lifts it."""
+    return float(facts.walk[shelf][position]) + 1 + (facts.instance.robots[robot].carries is not None)
 
 
 def _orders_of_lifts(shelves: list[int], lifted: list[int], extra: list[int], standing: np.ndarray,

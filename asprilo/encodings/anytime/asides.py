@@ -143,4 +143,3 @@ def _give(work: Work, idle: list[int], blockers: list[Cell], way: list[Cell], li
         given.append(helper)
     work.clearings, work.claims = clearings, claims
     return given
-
