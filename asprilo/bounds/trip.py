@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 from ..model import DIRECTIONS
 from .delivery import Deliveries, carry_arrivals, robot_release, storage_to_shelves
 from .floor import INFINITE
+from .passages import passages
 
 if TYPE_CHECKING:
     import numpy as np
@@ -203,9 +204,10 @@ def _robot_facts(facts: Deliveries, robot: int, position: int, shelves: list[int
 def blocker_facts(facts: Deliveries, shelves: list[int], stations: list) -> list[str]:
     """The shelves resting in the way of a carry (trip.lp's lift/3), as facts:
     ``clear(S,P,C)``: the fewest moves of S from where it started to station P through no
-    cell where another shelf starts; ``blocks(S,P,B,K,D)``: B starts on a cell X with K moves
-    from S over X to P, D of them from X to P (only where K < C: a shorter way passes such a
-    cell); and the robot time a lift of each such B costs (:func:`_lift_gaps`)."""
+    cell where another shelf starts; ``passage(S,P,O,K)``: a way O of K < C moves, whose cells
+    the shelves B of ``passes(S,P,O,B,D)`` start on, D moves from P (every way shorter than C
+    has one passage's moves and shelves at least); and the robot time a lift of each such B
+    costs (:func:`_lift_gaps`)."""
     resting = {s: cell for s, cell in facts.shelves.items() if s not in facts.carried}
     own = [s for s in shelves if s in resting]
     if not own or not stations:
@@ -218,11 +220,12 @@ def blocker_facts(facts: Deliveries, shelves: list[int], stations: list) -> list
 
 
 def _ways(facts: Deliveries, resting: dict, own: list[int], q: int, station, needed: set[int]) -> list[str]:
-    """``clear`` and ``blocks`` of the shelves ``own`` at ``station`` (number ``q``); adds the
-    blocking shelves to ``needed``."""
+    """``clear`` and the passages (:mod:`asprilo.bounds.passages`) of the shelves ``own`` at
+    ``station`` (number ``q``); adds the shelves in the passages' way to ``needed``."""
     others = sorted(resting)
     from_shelf = facts.floor.distances([resting[s] for s in own], [resting[b] for b in others])
-    to_station = facts.floor.distances([station], [resting[b] for b in others])[0]
+    cells = sorted(facts.instance.cells)
+    near = dict(zip(cells, facts.floor.distances([station], cells)[0], strict=True))
     around = carry_arrivals(facts.instance.cells - set(resting.values()), {station: 0}, {})
     out = []
     for i, shelf in enumerate(own):
@@ -231,11 +234,16 @@ def _ways(facts: Deliveries, resting: dict, own: list[int], q: int, station, nee
             (around.get((x + dx, y + dy), INFINITE) for dx, dy in DIRECTIONS), default=INFINITE)
         clear = min(clear, 10**6)
         out.append(f"clear({shelf},{q},{int(clear)}).")
-        for j, other in enumerate(others):
-            way = from_shelf[i][j] + to_station[j]
-            if other != shelf and way < clear:
-                out.append(f"blocks({shelf},{q},{other},{int(way)},{int(to_station[j])}).")
-                needed.add(other)
+        in_way = {cell: other for other, cell in resting.items() if other != shelf}
+        found = passages(facts.instance.cells, in_way, resting[shelf], station, near, clear)
+        if found is None:  # too many to list: each shelf in the way alone
+            over = [from_shelf[i][j] + near[resting[other]] for j, other in enumerate(others)]
+            found = [(int(moves), frozenset([other])) for moves, other in zip(over, others, strict=True)
+                     if other != shelf and moves < clear]
+        for number, (moves, shelves) in enumerate(found):
+            out.append(f"passage({shelf},{q},{number},{moves}).")
+            out.extend(f"passes({shelf},{q},{number},{b},{int(near[resting[b]])})." for b in sorted(shelves))
+            needed.update(shelves)
     return out
 
 
