@@ -3,8 +3,7 @@ the bound that needs every shelf on such a way lifted (asprilo/bounds/trip.lp), 
 
 from __future__ import annotations
 
-from asprilo.bounds import Floor, makespan_bound
-from asprilo.bounds import passages as module
+from asprilo.bounds import Floor, makespan_bound, trip
 from asprilo.bounds.delivery import Deliveries
 from asprilo.bounds.passages import passages
 from asprilo.bounds.trip import blocker_facts
@@ -27,9 +26,9 @@ def test_two_ways_through_one_shelf_each_and_none_through_both():
     the second is beaten by either other; every longer way crosses column 2, so passes 7 or 8
     with more moves."""
     cells = grid(3, 2)
-    found = passages(cells, {(2, 2): 7, (2, 1): 8}, (3, 2), (1, 1), manhattan(cells, (1, 1)), 10**6)
+    found = passages(cells, {(2, 2): 7, (2, 1): 8}, (3, 2), (1, 1), manhattan(cells, (1, 1)), 10**6)[0]
     assert found == [(3, frozenset({7})), (3, frozenset({8}))]
-    assert passages(cells, {(2, 2): 7, (2, 1): 8}, (3, 2), (1, 1), manhattan(cells, (1, 1)), 3) == []
+    assert passages(cells, {(2, 2): 7, (2, 1): 8}, (3, 2), (1, 1), manhattan(cells, (1, 1)), 3)[0] == []
 
 
 def test_a_way_around_the_shelves_bounds_the_ways_listed():
@@ -37,26 +36,28 @@ def test_a_way_around_the_shelves_bounds_the_ways_listed():
     so only ways of fewer than 5 moves count: the two of 3 (4 is the wrong parity)."""
     cells = grid(3, 3)
     resting = {(2, 2): 7, (2, 1): 8}
-    found = passages(cells, resting, (3, 2), (1, 1), manhattan(cells, (1, 1)), 5)
+    found = passages(cells, resting, (3, 2), (1, 1), manhattan(cells, (1, 1)), 5)[0]
     assert found == [(3, frozenset({7})), (3, frozenset({8}))]
     # a third shelf on (2,3) closes the way around: the way that went around now passes it
     # alone, in 5 moves; a way over two of the three shelves is beaten by one over either alone
     resting[(2, 3)] = 9
-    assert passages(cells, resting, (3, 2), (1, 1), manhattan(cells, (1, 1)), 10**6) == [*found, (5, frozenset({9}))]
+    assert passages(cells, resting, (3, 2), (1, 1), manhattan(cells, (1, 1)), 10**6)[0] == [*found, (5, frozenset({9}))]
 
 
 def test_a_corridor_needs_both_shelves_in_it():
     """A corridor (1,1)..(5,1) with pockets (2,2) and (3,2): the shelf on (4,1) reaches (1,1) in 3
     moves over shelves 2 on (3,1) and 3 on (2,1); through the pockets it is 5 moves over both."""
     cells = grid(5, 1) | {(2, 2), (3, 2)}
-    found = passages(cells, {(3, 1): 2, (2, 1): 3}, (4, 1), (1, 1), manhattan(cells, (1, 1)), 10**6)
+    found = passages(cells, {(3, 1): 2, (2, 1): 3}, (4, 1), (1, 1), manhattan(cells, (1, 1)), 10**6)[0]
     assert found == [(3, frozenset({2, 3}))]
 
 
-def test_too_many_states_to_list_says_so(monkeypatch):
-    monkeypatch.setattr(module, "PASSAGE_STATES", 2)
+def test_too_many_states_to_list_says_so():
+    """On the first floor above the listing starts from one state, (3,2) with no shelves, and its
+    first move adds (2,2) with {7} and (3,1) with none: the third state passes a limit of 2."""
     cells = grid(3, 2)
-    assert passages(cells, {(2, 2): 7, (2, 1): 8}, (3, 2), (1, 1), manhattan(cells, (1, 1)), 10**6) is None
+    near = manhattan(cells, (1, 1))
+    assert passages(cells, {(2, 2): 7, (2, 1): 8}, (3, 2), (1, 1), near, 10**6, limit=2) == (None, 3)
 
 
 CORRIDOR = """
@@ -136,7 +137,7 @@ def test_too_many_ways_to_list_fall_back_to_one_shelf_each(monkeypatch):
     """The corridor when the ways cannot be listed: each shelf in the way is a passage alone (3
     moves over shelf 2's cell, 3 over shelf 3's), and the bound is the one-shelf bound of 11
     derived above."""
-    monkeypatch.setattr(module, "PASSAGE_STATES", 0)
+    monkeypatch.setattr(trip, "PASSAGE_STATES", 0)
     instance = read_instance(Source("<corridor>", CORRIDOR))
     facts = Deliveries(instance, Domain.A, Floor(instance.cells))
     said = blocker_facts(facts, [1], [(1, 1)])

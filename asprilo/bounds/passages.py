@@ -15,18 +15,21 @@ from collections.abc import Mapping
 
 from ..model import DIRECTIONS, Cell
 
-#: the (cell, shelves) states one listing may visit; beyond it the caller falls back to
-#: one shelf per way (each shelf in the way alone, which every plan obeys too)
-PASSAGE_STATES = 20_000
+#: the (cell, shelves) states one listing may visit, and all listings of one instance
+#: together; beyond them the caller falls back to one shelf per way (each shelf in the way
+#: alone, which every plan obeys too)
+PASSAGE_STATES = 2_000
+INSTANCE_STATES = 40_000
 
 
 def passages(cells: set[Cell], resting: Mapping[Cell, int], start: Cell, station: Cell,
-             near: Mapping[Cell, float], fewer_than: float) -> list[tuple[int, frozenset[int]]] | None:
+             near: Mapping[Cell, float], fewer_than: float,
+             limit: int = PASSAGE_STATES) -> tuple[list[tuple[int, frozenset[int]]] | None, int]:
     """The pairs (moves, shelves) of the ways from ``start`` to ``station`` with fewer than
     ``fewer_than`` moves, each with the shelves resting on its cells (``resting``: cell ->
     shelf, the carried shelf's own cell left out), none beaten by another; ``near``: each
     cell's floor distance to ``station``.  ``None`` when the listing would visit more than
-    :data:`PASSAGE_STATES` states."""
+    ``limit`` states; and the states visited."""
     seen: dict[Cell, list[frozenset[int]]] = {start: [frozenset()]}
     layer = [(start, frozenset[int]())]
     found: list[tuple[int, frozenset[int]]] = []
@@ -50,10 +53,10 @@ def passages(cells: set[Cell], resting: Mapping[Cell, int], start: Cell, station
                 known.append(held)
                 following.append((cell, held))
                 states += 1
-                if states > PASSAGE_STATES:
-                    return None
+                if states > limit:
+                    return None, states
         layer = following
-    return _unbeaten(found)
+    return _unbeaten(found), states
 
 
 def _unbeaten(found: list[tuple[int, frozenset[int]]]) -> list[tuple[int, frozenset[int]]]:

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING
 from ..model import DIRECTIONS
 from .delivery import Deliveries, carry_arrivals, robot_release, storage_to_shelves
 from .floor import INFINITE
-from .passages import passages
+from .passages import INSTANCE_STATES, PASSAGE_STATES, passages
 
 if TYPE_CHECKING:
     import numpy as np
@@ -214,14 +214,18 @@ def blocker_facts(facts: Deliveries, shelves: list[int], stations: list) -> list
         return []
     out: list[str] = []
     needed: set[int] = set()
+    left = INSTANCE_STATES
     for q, station in enumerate(stations):
-        out.extend(_ways(facts, resting, own, q, station, needed))
+        ways, left = _ways(facts, resting, own, q, station, needed, left)
+        out.extend(ways)
     return out + _lift_gaps(facts, shelves, stations, sorted(needed))
 
 
-def _ways(facts: Deliveries, resting: dict, own: list[int], q: int, station, needed: set[int]) -> list[str]:
+def _ways(facts: Deliveries, resting: dict, own: list[int], q: int, station, needed: set[int],
+          left: int) -> tuple[list[str], int]:
     """``clear`` and the passages (:mod:`asprilo.bounds.passages`) of the shelves ``own`` at
-    ``station`` (number ``q``); adds the shelves in the passages' way to ``needed``."""
+    ``station`` (number ``q``), listed while the ``left`` states last; adds the shelves in the
+    passages' way to ``needed``.  The facts and the states left."""
     others = sorted(resting)
     from_shelf = facts.floor.distances([resting[s] for s in own], [resting[b] for b in others])
     cells = sorted(facts.instance.cells)
@@ -235,7 +239,9 @@ def _ways(facts: Deliveries, resting: dict, own: list[int], q: int, station, nee
         clear = min(clear, 10**6)
         out.append(f"clear({shelf},{q},{int(clear)}).")
         in_way = {cell: other for other, cell in resting.items() if other != shelf}
-        found = passages(facts.instance.cells, in_way, resting[shelf], station, near, clear)
+        found, states = passages(facts.instance.cells, in_way, resting[shelf], station, near, clear,
+                                 min(PASSAGE_STATES, left))
+        left -= states
         if found is None:  # too many to list: each shelf in the way alone
             over = [from_shelf[i][j] + near[resting[other]] for j, other in enumerate(others)]
             found = [(int(moves), frozenset([other])) for moves, other in zip(over, others, strict=True)
@@ -244,7 +250,7 @@ def _ways(facts: Deliveries, resting: dict, own: list[int], q: int, station, nee
             out.append(f"passage({shelf},{q},{number},{moves}).")
             out.extend(f"passes({shelf},{q},{number},{b},{int(near[resting[b]])})." for b in sorted(shelves))
             needed.update(shelves)
-    return out
+    return out, left
 
 
 def _lift_gaps(facts: Deliveries, shelves: list[int], stations: list, lifted: list[int]) -> list[str]:
