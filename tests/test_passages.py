@@ -144,3 +144,21 @@ def test_too_many_ways_to_list_fall_back_to_one_shelf_each(monkeypatch):
     assert [fact for fact in said if fact.startswith(("passage", "passes"))] == [
         "passage(1,0,0,3).", "passes(1,0,0,2,2).", "passage(1,0,1,3).", "passes(1,0,1,3,1)."]
     assert makespan_bound(instance, Domain.A) == 11
+
+
+def test_an_exercise_floor_s_bound_meets_its_minimum(tmp_path, capsys):
+    """The exercise-size call with two orders, seed 4601 (benchmarks/RESULTS.md): the exact
+    encoding refutes horizon 16 and finds a plan of 17 (28 s here, so not run), and the bound,
+    16 before the passages and later trips' ways, is now 17."""
+    from helpers.generated import one
+
+    from asprilo.cli import main
+    from asprilo.writer import format_instance
+    options = {"-x": 11, "-y": 6, "-X": 4, "-Y": 2, "-p": 2, "-s": 16, "-P": 8, "-u": 40, "-r": 4, "-H": True,
+               "--prsmin": 1, "--prsmax": 3, "--olmin": 1, "--olmax": 3, "-o": 2}
+    instance = one(options, 4601)
+    assert makespan_bound(instance, Domain.A) == 17
+    path = tmp_path / "4601.lp"
+    path.write_text(format_instance(instance))
+    assert main(["solve", str(path), "--domain", "a", "--method", "asp", "--horizon", "16"]) == 1
+    assert "no plan exists" in capsys.readouterr().err
