@@ -41,7 +41,7 @@ def passages(cells: set[Cell], resting: Mapping[Cell, int], start: Cell, station
         for (x, y), shelves in layer:
             for dx, dy in DIRECTIONS:
                 cell = (x + dx, y + dy)
-                if cell not in cells or moves + near.get(cell, fewer_than) >= fewer_than:
+                if cell not in cells or moves + near[cell] >= fewer_than:
                     continue
                 held = shelves | {resting[cell]} if cell in resting else shelves
                 if cell == station:

@@ -227,12 +227,11 @@ def _ways(facts: Deliveries, resting: dict, own: list[int], q: int, station, nee
     ``station`` (number ``q``), listed while the ``left`` states last; adds the shelves in the
     passages' way to ``needed``.  The facts and the states left."""
     others = sorted(resting)
-    from_shelf = facts.floor.distances([resting[s] for s in own], [resting[b] for b in others])
     cells = sorted(facts.instance.cells)
     near = dict(zip(cells, facts.floor.distances([station], cells)[0], strict=True))
     around = carry_arrivals(facts.instance.cells - set(resting.values()), {station: 0}, {})
     out = []
-    for i, shelf in enumerate(own):
+    for shelf in own:
         x, y = resting[shelf]
         clear = 0 if resting[shelf] == station else 1 + min(
             (around.get((x + dx, y + dy), INFINITE) for dx, dy in DIRECTIONS), default=INFINITE)
@@ -243,7 +242,8 @@ def _ways(facts: Deliveries, resting: dict, own: list[int], q: int, station, nee
                                  min(PASSAGE_STATES, left))
         left -= states
         if found is None:  # too many to list: each shelf in the way alone
-            over = [from_shelf[i][j] + near[resting[other]] for j, other in enumerate(others)]
+            to_other = facts.floor.distances([resting[shelf]], [resting[b] for b in others])[0]
+            over = [to_other[j] + near[resting[other]] for j, other in enumerate(others)]
             found = [(int(moves), frozenset([other])) for moves, other in zip(over, others, strict=True)
                      if other != shelf and moves < clear]
         for number, (moves, shelves) in enumerate(found):
